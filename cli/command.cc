@@ -1,0 +1,46 @@
+#include "cli/command.h"
+
+#include <iostream>
+
+#include "core/error.h"
+
+namespace hapcine::cli {
+
+int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);  // prints help, returns 0
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << app.get_name() << ": " << e.what() << "\n"
+              << "Run '" << app.get_name() << " --help' for usage.\n";
+    return kExitUsage;
+  }
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    std::cerr << app.get_name() << ": " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << app.get_name() << ": " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+int NotYetImplemented(const char* name, const char* what, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::cout << "hapcine " << name << ": " << what << "\n\nNot implemented yet.\n";
+      return kExitOk;
+    }
+  }
+  std::cerr << "hapcine " << name << ": not implemented yet (" << what << ")\n";
+  return kExitUsage;
+}
+
+}  // namespace hapcine::cli

@@ -1,0 +1,71 @@
+// hapcine: haptic feedback from the camera motion of ordinary films.
+//   video -> extract -> estimate -> camera path -> haptics -> haptic track -> play
+
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "cli/command.h"
+
+namespace {
+
+struct Subcommand {
+  const char* name;
+  const char* summary;
+  int (*run)(int argc, char** argv);
+};
+
+const Subcommand kSubcommands[] = {
+    {"synth", "render synthetic clips (the paper's seven effects, hard cases) with ground truth",
+     hapcine::cli::RunSynth},
+    {"estimate", "recover the camera path (rotation, translation, zoom) from a video",
+     hapcine::cli::RunEstimate},
+    {"haptics", "turn a camera path (or video) into a haptic track", hapcine::cli::RunHaptics},
+    {"play", "play a video with its haptic track on the HapSeat (falcon, sim or none)",
+     hapcine::cli::RunPlay},
+    {"preview", "render a video with an inset showing the actuators", hapcine::cli::RunPreview},
+    {"eval", "compare an estimated camera path against ground truth", hapcine::cli::RunEval},
+    {"plot", "draw camera paths and haptic tracks as PNG and SVG", hapcine::cli::RunPlot},
+    {"batch", "process a whole video library, locally or on Slurm", hapcine::cli::RunBatch},
+    {"study", "plan, run and analyse a pairwise user study", hapcine::cli::RunStudy},
+    {"convert", "convert camera paths to and from TUM and COLMAP formats", hapcine::cli::RunConvert},
+};
+
+void PrintUsage(std::ostream& out) {
+  out << "hapcine — haptic feedback from the camera motion of ordinary films\n\n"
+         "Usage: hapcine <command> [options]    (hapcine <command> --help for details)\n\n"
+         "Commands:\n";
+  for (const auto& c : kSubcommands) {
+    out << "  " << c.name << std::string(10 - std::strlen(c.name), ' ') << c.summary << "\n";
+  }
+  out << "\nData flow: video -> estimate -> *.camera.csv -> haptics -> *.haptic.csv -> play\n"
+         "Exit codes: 0 success, 1 failure (the message names the file and the reason), 2 usage.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    PrintUsage(std::cerr);
+    return hapcine::cli::kExitUsage;
+  }
+  const std::string cmd = argv[1];
+  if (cmd == "-h" || cmd == "--help" || cmd == "help") {
+    PrintUsage(std::cout);
+    return 0;
+  }
+  if (cmd == "--version") {
+    std::cout << "hapcine 0.1.0\n";
+    return 0;
+  }
+  for (const auto& c : kSubcommands) {
+    if (cmd == c.name) {
+      std::string prog = std::string("hapcine ") + c.name;
+      argv[1] = prog.data();
+      return c.run(argc - 1, argv + 1);
+    }
+  }
+  std::cerr << "hapcine: unknown command '" << cmd << "'\n";
+  PrintUsage(std::cerr);
+  return hapcine::cli::kExitUsage;
+}

@@ -1,0 +1,145 @@
+#include "core/camera_path.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/rotation.h"
+
+namespace hapcine {
+namespace {
+
+CameraPath MakePath(int n) {
+  CameraPath p;
+  p.metadata["width"] = "1280";
+  p.metadata["height"] = "720";
+  p.metadata["fps"] = "24";
+  for (int i = 0; i < n; ++i) {
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = i / 24.0;
+    f.center = {0.01 * i, -0.002 * i, 0.5 - 0.03 * i};
+    f.world_from_cam = QuaternionFromPanTiltRoll({1.5 * i, -0.7 * i, 0.3 * i});
+    f.fov_deg = 55 + 0.1 * i;
+    f.focal_px = FocalPxFromFovDeg(f.fov_deg, 1280);
+    f.shot = i / 5;
+    f.model = i < 5 ? "rotation" : "general";
+    f.confidence = 0.9;
+    p.frames.push_back(f);
+  }
+  return p;
+}
+
+TEST(CameraPathTest, RoundTripKeepsEveryValue) {
+  const CameraPath p = MakePath(12);
+  std::stringstream ss;
+  WriteCameraPath(p, ss);
+  const CameraPath q = ReadCameraPath(ss, "mem");
+  ASSERT_EQ(q.frames.size(), p.frames.size());
+  EXPECT_EQ(q.width(), 1280);
+  EXPECT_EQ(q.height(), 720);
+  EXPECT_DOUBLE_EQ(q.fps(), 24);
+  for (size_t i = 0; i < p.frames.size(); ++i) {
+    EXPECT_EQ(q.frames[i].frame, p.frames[i].frame);
+    EXPECT_NEAR(q.frames[i].time_s, p.frames[i].time_s, 1e-6);
+    EXPECT_TRUE(q.frames[i].center.isApprox(p.frames[i].center, 1e-15));
+    EXPECT_LT(AngleBetweenDeg(q.frames[i].world_from_cam, p.frames[i].world_from_cam), 1e-9);
+    EXPECT_DOUBLE_EQ(q.frames[i].fov_deg, p.frames[i].fov_deg);
+    EXPECT_DOUBLE_EQ(*q.frames[i].focal_px, *p.frames[i].focal_px);
+    EXPECT_EQ(*q.frames[i].shot, *p.frames[i].shot);
+    EXPECT_EQ(*q.frames[i].model, *p.frames[i].model);
+    EXPECT_NEAR(*q.frames[i].confidence, 0.9, 1e-9);
+  }
+}
+
+TEST(CameraPathTest, ReadsTheSpecExample) {
+  std::stringstream ss(
+      "# width=1920 height=1080 fps=24\n"
+      "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg,focal_px,shot,model,confidence\n"
+      "0,0.000000,0,0,0,1,0,0,0,55.000000,1843.92,0,rotation,0.97\n"
+      "1,0.041667,0,0,0,0.99999,0,0.00436,0,55.000000,1843.92,0,rotation,0.97\n");
+  const CameraPath p = ReadCameraPath(ss, "example");
+  ASSERT_EQ(p.frames.size(), 2u);
+  EXPECT_EQ(p.width(), 1920);
+  EXPECT_EQ(p.height(), 1080);
+  EXPECT_NEAR(PanTiltRollFromQuaternion(p.frames[1].world_from_cam).pan_deg, 0.4996, 1e-3);
+}
+
+TEST(CameraPathTest, WrittenAnglesFollowTheSpecConvention) {
+  // Positive pan turns the view left: the optical axis (-Z) swings towards -X.
+  const Eigen::Quaterniond q = QuaternionFromPanTiltRoll({10, 0, 0});
+  const Eigen::Vector3d look = q * Eigen::Vector3d(0, 0, -1);
+  EXPECT_LT(look.x(), 0);
+  // Positive tilt turns the view up.
+  EXPECT_GT((QuaternionFromPanTiltRoll({0, 10, 0}) * Eigen::Vector3d(0, 0, -1)).y(), 0);
+  // Positive roll: the camera's +X axis tips upwards (counter-clockwise).
+  EXPECT_GT((QuaternionFromPanTiltRoll({0, 0, 10}) * Eigen::Vector3d(1, 0, 0)).y(), 0);
+}
+
+struct BadCase {
+  const char* name;
+  const char* text;
+  const char* reason;  // substring of the message
+  int line;
+};
+
+class CameraPathBadInputTest : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(CameraPathBadInputTest, RejectsWithLineAndReason) {
+  const BadCase& c = GetParam();
+  std::stringstream ss(c.text);
+  try {
+    ReadCameraPath(ss, "bad.camera.csv");
+    FAIL() << "accepted " << c.name;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("bad.camera.csv:" + std::to_string(c.line) + ":"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(c.reason), std::string::npos) << msg;
+  }
+}
+
+#define HDR "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n"
+INSTANTIATE_TEST_SUITE_P(
+    Malformed, CameraPathBadInputTest,
+    ::testing::Values(
+        BadCase{"empty", "", "no header", 0},
+        BadCase{"wrong header", "frame,t,x,y,z,qw,qx,qy,qz,fov_deg\n0,0,0,0,0,1,0,0,0,50\n",
+                "expected 'time_s'", 1},
+        BadCase{"missing column", "frame,time_s,x,y,z,qw,qx,qy,qz\n", "missing column 'fov_deg'", 1},
+        BadCase{"nan", HDR "0,0,nan,0,0,1,0,0,0,50\n", "non-finite", 2},
+        BadCase{"inf", HDR "0,0,0,0,0,1,0,0,0,inf\n", "non-finite", 2},
+        BadCase{"text", HDR "0,0,0,abc,0,1,0,0,0,50\n", "not a number", 2},
+        BadCase{"truncated", HDR "0,0,0,0,0,1,0,0,0,50\n1,0.04,0,0\n", "truncated", 3},
+        BadCase{"time backwards", HDR "0,0.1,0,0,0,1,0,0,0,50\n1,0.05,0,0,0,1,0,0,0,50\n",
+                "not increasing", 3},
+        BadCase{"non-unit quaternion", HDR "0,0,0,0,0,0.5,0,0,0,50\n", "unit length", 2},
+        BadCase{"fov", HDR "0,0,0,0,0,1,0,0,0,0\n", "outside (0, 180)", 2},
+        BadCase{"no rows", "# fps=24\n" HDR, "no data rows", 2},
+        BadCase{"huge int", HDR "99999999999,0,0,0,0,1,0,0,0,50\n", "not an integer", 2}),
+    [](const auto& info) {
+      std::string n = info.param.name;
+      for (char& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return n;
+    });
+
+TEST(CameraPathTest, WriterRefusesNonFinite) {
+  CameraPath p = MakePath(2);
+  p.frames[1].center.x() = std::numeric_limits<double>::quiet_NaN();
+  std::stringstream ss;
+  EXPECT_THROW(WriteCameraPath(p, ss), Error);
+}
+
+TEST(CameraPathTest, FailedFileWriteLeavesNothing) {
+  CameraPath p = MakePath(2);
+  p.frames[1].fov_deg = -1;
+  const std::string file = ::testing::TempDir() + "/bad_write.camera.csv";
+  EXPECT_THROW(WriteCameraPathFile(p, file), Error);
+  EXPECT_FALSE(std::ifstream(file).good());
+}
+
+}  // namespace
+}  // namespace hapcine

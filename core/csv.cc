@@ -1,0 +1,158 @@
+#include "core/csv.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/error.h"
+
+namespace hapcine {
+namespace {
+
+std::string Trim(const std::string& s) {
+  size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  size_t e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+}  // namespace
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (true) {
+    size_t comma = line.find(',', start);
+    out.push_back(Trim(line.substr(start, comma == std::string::npos
+                                              ? std::string::npos
+                                              : comma - start)));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::string FormatDouble(double v) {
+  char buf[64];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string FormatFixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  // "-0.000000" reads oddly in a spreadsheet.
+  if (std::strtod(buf, nullptr) == 0.0) std::snprintf(buf, sizeof buf, "%.*f", decimals, 0.0);
+  return buf;
+}
+
+CsvReader::CsvReader(std::istream& in, std::string source_name)
+    : in_(in), source_(std::move(source_name)) {}
+
+void CsvReader::Fail(const std::string& reason) const {
+  throw Error(source_ + ":" + std::to_string(line_), reason);
+}
+
+void CsvReader::ReadPreamble() {
+  std::string raw;
+  while (std::getline(in_, raw)) {
+    ++line_;
+    std::string s = Trim(raw);
+    if (line_ == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s = s.substr(3);  // BOM
+    if (s.empty()) continue;
+    if (s[0] == '#') {
+      // "# key=value" (value may hold spaces, e.g. a file name), or several
+      // space-separated pairs on one line ("# width=1920 height=1080 fps=24").
+      const std::string body = Trim(s.substr(1));
+      const size_t eq = body.find('=');
+      if (eq != std::string::npos && eq > 0) {
+        if (body.find('=', eq + 1) == std::string::npos) {
+          metadata_[Trim(body.substr(0, eq))] = Trim(body.substr(eq + 1));
+        } else {
+          size_t pos = 0;
+          while (pos < body.size()) {
+            size_t end = body.find(' ', pos);
+            if (end == std::string::npos) end = body.size();
+            const std::string tok = body.substr(pos, end - pos);
+            const size_t teq = tok.find('=');
+            if (teq != std::string::npos && teq > 0) {
+              metadata_[tok.substr(0, teq)] = tok.substr(teq + 1);
+            }
+            pos = end + 1;
+          }
+        }
+      }
+      continue;
+    }
+    header_ = SplitCsvLine(s);
+    return;
+  }
+  Fail("no header row (empty or metadata-only file)");
+}
+
+int CsvReader::Column(const std::string& name) const {
+  for (size_t i = 0; i < header_.size(); ++i) {
+    if (header_[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void CsvReader::RequireLeadingColumns(const std::vector<std::string>& names) const {
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (i >= header_.size()) Fail("missing column '" + names[i] + "' in header");
+    if (header_[i] != names[i]) {
+      Fail("header column " + std::to_string(i + 1) + " is '" + header_[i] +
+           "', expected '" + names[i] + "'");
+    }
+  }
+}
+
+bool CsvReader::NextRow(std::vector<std::string>* fields) {
+  std::string raw;
+  while (std::getline(in_, raw)) {
+    ++line_;
+    std::string s = Trim(raw);
+    if (s.empty()) continue;
+    if (s[0] == '#') Fail("metadata line after the header");
+    *fields = SplitCsvLine(s);
+    if (fields->size() != header_.size()) {
+      Fail("row has " + std::to_string(fields->size()) + " fields, header has " +
+           std::to_string(header_.size()) + " (truncated line?)");
+    }
+    return true;
+  }
+  return false;
+}
+
+double CsvReader::Double(const std::vector<std::string>& f, int col,
+                         const char* name) const {
+  const std::string& s = f[col];
+  if (s.empty()) Fail(std::string("empty value in column '") + name + "'");
+  errno = 0;
+  char* end = nullptr;
+  double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size()) {
+    Fail(std::string("'") + s + "' in column '" + name + "' is not a number");
+  }
+  if (!std::isfinite(v)) Fail(std::string("non-finite value in column '") + name + "'");
+  return v;
+}
+
+int CsvReader::Int(const std::vector<std::string>& f, int col,
+                   const char* name) const {
+  const std::string& s = f[col];
+  char* end = nullptr;
+  errno = 0;
+  long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE ||
+      v < -2147483647L || v > 2147483647L) {
+    Fail(std::string("'") + s + "' in column '" + name + "' is not an integer");
+  }
+  return static_cast<int>(v);
+}
+
+}  // namespace hapcine

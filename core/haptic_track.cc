@@ -1,0 +1,163 @@
+#include "core/haptic_track.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/error.h"
+
+namespace hapcine {
+namespace {
+
+const std::vector<std::string> kRequired = {"time_s", "head_x",  "head_y",  "head_z",
+                                            "left_x", "left_y",  "left_z",  "right_x",
+                                            "right_y", "right_z"};
+// A Falcon's workspace is ~0.1 m; anything beyond 1 m is a unit mistake.
+constexpr double kAbsurdPositionM = 1.0;
+
+}  // namespace
+
+const char* ActuatorName(Actuator a) {
+  switch (a) {
+    case Actuator::kHead: return "head";
+    case Actuator::kLeft: return "left";
+    case Actuator::kRight: return "right";
+  }
+  return "?";
+}
+
+void HapticTrack::Sample(double t, Eigen::Vector3d out[kNumActuators],
+                         size_t* hint) const {
+  if (samples.empty()) {
+    for (int a = 0; a < kNumActuators; ++a) out[a].setZero();
+    return;
+  }
+  if (!(t > samples.front().time_s)) {  // also catches NaN
+    for (int a = 0; a < kNumActuators; ++a) out[a] = samples.front().pos_m[a];
+    return;
+  }
+  if (t >= samples.back().time_s) {
+    for (int a = 0; a < kNumActuators; ++a) out[a] = samples.back().pos_m[a];
+    return;
+  }
+  size_t i = hint ? std::min(*hint, samples.size() - 2) : 0;
+  // Monotone playback: walk forward from the hint; a seek backwards rescans.
+  if (samples[i].time_s > t) i = 0;
+  if (samples[i + 1].time_s <= t) {
+    if (hint && i + 2 < samples.size() && samples[i + 2].time_s > t) {
+      ++i;
+    } else {
+      auto it = std::upper_bound(samples.begin(), samples.end(), t,
+                                 [](double v, const HapticSample& s) { return v < s.time_s; });
+      i = static_cast<size_t>(it - samples.begin()) - 1;
+    }
+  }
+  const HapticSample& a = samples[i];
+  const HapticSample& b = samples[i + 1];
+  const double w = (t - a.time_s) / (b.time_s - a.time_s);
+  for (int k = 0; k < kNumActuators; ++k) out[k] = (1 - w) * a.pos_m[k] + w * b.pos_m[k];
+  if (hint) *hint = i;
+}
+
+HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
+  CsvReader csv(in, source_name);
+  csv.ReadPreamble();
+  HapticTrack track;
+  track.metadata = csv.metadata();
+  auto take = [&](const char* key) -> std::string {
+    auto it = track.metadata.find(key);
+    if (it == track.metadata.end()) csv.Fail(std::string("missing metadata '# ") + key + "='");
+    std::string v = it->second;
+    track.metadata.erase(it);
+    return v;
+  };
+  const std::string rate = take("rate_hz");
+  char* end = nullptr;
+  track.rate_hz = std::strtod(rate.c_str(), &end);
+  if (end == rate.c_str() || *end != '\0' || !std::isfinite(track.rate_hz) ||
+      track.rate_hz <= 0 || track.rate_hz > 100000) {
+    csv.Fail("rate_hz '" + rate + "' is not a positive rate");
+  }
+  track.model = take("model");
+  track.source = take("source");
+  csv.RequireLeadingColumns(kRequired);
+  const int c_shot = csv.Column("shot");
+  const int c_effect = csv.Column("effect");
+
+  std::vector<std::string> f;
+  while (csv.NextRow(&f)) {
+    HapticSample s;
+    s.time_s = csv.Double(f, 0, "time_s");
+    for (int a = 0; a < kNumActuators; ++a) {
+      for (int k = 0; k < 3; ++k) {
+        const int col = 1 + 3 * a + k;
+        s.pos_m[a][k] = csv.Double(f, col, kRequired[col].c_str());
+        if (std::abs(s.pos_m[a][k]) > kAbsurdPositionM) {
+          csv.Fail("'" + kRequired[col] + "' = " + f[col] + " m is beyond any workspace");
+        }
+      }
+    }
+    if (c_shot >= 0 && !f[c_shot].empty()) s.shot = csv.Int(f, c_shot, "shot");
+    if (c_effect >= 0 && !f[c_effect].empty()) s.effect = f[c_effect];
+    if (!track.samples.empty() && s.time_s <= track.samples.back().time_s) {
+      csv.Fail("time_s is not increasing");
+    }
+    track.samples.push_back(std::move(s));
+  }
+  if (track.samples.empty()) csv.Fail("no data rows");
+  return track;
+}
+
+HapticTrack ReadHapticTrackFile(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw Error(file, "cannot open for reading");
+  return ReadHapticTrack(in, file);
+}
+
+void WriteHapticTrack(const HapticTrack& track, std::ostream& out) {
+  if (!(track.rate_hz > 0) || !std::isfinite(track.rate_hz)) {
+    throw Error("haptic track", "rate_hz must be positive");
+  }
+  bool any_shot = false, any_effect = false;
+  for (size_t i = 0; i < track.samples.size(); ++i) {
+    const HapticSample& s = track.samples[i];
+    bool finite = std::isfinite(s.time_s);
+    for (int a = 0; a < kNumActuators; ++a) finite &= s.pos_m[a].allFinite();
+    if (!finite) throw Error("haptic track", "non-finite value at sample " + std::to_string(i));
+    if (i > 0 && s.time_s <= track.samples[i - 1].time_s) {
+      throw Error("haptic track", "time not increasing at sample " + std::to_string(i));
+    }
+    any_shot |= s.shot.has_value();
+    any_effect |= s.effect.has_value();
+  }
+  out << "# rate_hz=" << FormatDouble(track.rate_hz) << "\n";
+  out << "# model=" << track.model << "\n";
+  out << "# source=" << track.source << "\n";
+  for (const auto& [key, value] : track.metadata) {
+    if (key != "rate_hz" && key != "model" && key != "source") out << "# " << key << "=" << value << "\n";
+  }
+  for (size_t i = 0; i < kRequired.size(); ++i) out << (i ? "," : "") << kRequired[i];
+  if (any_shot) out << ",shot";
+  if (any_effect) out << ",effect";
+  out << "\n";
+  for (const HapticSample& s : track.samples) {
+    out << FormatFixed(s.time_s, 6);
+    for (int a = 0; a < kNumActuators; ++a) {
+      for (int k = 0; k < 3; ++k) out << ',' << FormatFixed(s.pos_m[a][k], 7);
+    }
+    if (any_shot) out << ',' << (s.shot ? std::to_string(*s.shot) : "");
+    if (any_effect) out << ',' << s.effect.value_or("");
+    out << '\n';
+  }
+}
+
+void WriteHapticTrackFile(const HapticTrack& track, const std::string& file) {
+  AtomicFile out(file);
+  WriteHapticTrack(track, out.stream());
+  out.Commit();
+}
+
+}  // namespace hapcine

@@ -1,0 +1,42 @@
+#pragma once
+// Shot detection + feature tracking over a FrameSource, one frame at a time.
+//   pyramidal KLT with a forward-backward check, detections spread over a
+//   grid and topped up as tracks die, descriptor (ORB) matching to re-link
+//   when tracking collapses (whip pans, blur); hard cuts and fades split shots;
+//   blank frames are flagged and not tracked.
+
+#include <memory>
+
+#include "extract/frame_source.h"
+#include "extract/tracks.h"
+
+namespace hapcine {
+
+struct TrackerOptions {
+  int max_tracks = 600;            // wanted live tracks per frame
+  int grid_cols = 8, grid_rows = 6;  // detections spread over this grid
+  double min_distance_px = 8;      // between detections, working pixels
+  int klt_window = 21;             // KLT window side, working pixels
+  int pyramid_levels = 4;
+  double fb_threshold_px = 0.5;    // forward-backward error limit, working pixels
+  bool descriptor_recovery = true; // ORB re-linking when tracking collapses
+  // Shot detection
+  double cut_threshold = 0.5;      // histogram distance for a hard cut
+  double blank_luma = 16;          // mean luma (0..255) under which a frame is blank
+  double blank_stddev = 4;         // or whose contrast is below this
+  void Check() const;              // throws UsageError
+};
+
+class FeatureTracker {
+ public:
+  explicit FeatureTracker(const TrackerOptions& options = {});
+  ~FeatureTracker();
+  // Processes the next frame (frames must come in order) and returns its tracks.
+  FrameTracks Process(const Frame& frame);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hapcine

@@ -1,0 +1,38 @@
+#pragma once
+// Feature tracks, streamed frame by frame: what extract/ hands to estimate/.
+// Coordinates are in pixels of the *decoded* frame (not the working image),
+// origin at the top-left pixel's centre... i.e. OpenCV's convention, so the
+// estimator can use the decoded size's image centre as principal point.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace hapcine {
+
+enum class ShotBoundary {
+  kNone = 0,   // same shot as the previous frame
+  kCut,        // hard cut before this frame
+  kFade,       // gradual transition (fade/dissolve) ended before this frame
+  kStart,      // first frame of the video
+};
+
+struct TrackPoint {
+  long track_id = 0;        // unique over the whole video
+  Eigen::Vector2d px;       // position in decoded-frame pixels
+};
+
+struct FrameTracks {
+  int index = 0;            // decoded frame index
+  double time_s = 0;        // presentation time
+  int shot = 0;             // 0-based shot index
+  ShotBoundary boundary = ShotBoundary::kNone;
+  bool blank = false;       // black/blank/mid-fade frame: flagged, not tracked
+  // Tracking health in [0, 1]: fraction of the wanted tracks alive and
+  // verified (forward-backward). Low on blur, low texture, fades.
+  double quality = 0;
+  bool recovered = false;   // tracks were re-linked by descriptor matching
+  std::vector<TrackPoint> points;  // tracks alive in this frame
+};
+
+}  // namespace hapcine

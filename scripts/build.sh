@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Configures and builds hapcine into BUILD_DIR (default: build).
+#   HAPCINE_SANITIZE=1 scripts/build.sh   # AddressSanitizer + UBSan build in build-asan
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ "${HAPCINE_SANITIZE:-0}" = "1" ]; then
+  BUILD_DIR=${BUILD_DIR:-build-asan}
+  EXTRA=(-DHAPCINE_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug)
+else
+  BUILD_DIR=${BUILD_DIR:-build}
+  EXTRA=(-DCMAKE_BUILD_TYPE=Release)
+fi
+cmake -S . -B "$BUILD_DIR" "${EXTRA[@]}" >/dev/null
+cmake --build "$BUILD_DIR" -j"$(nproc)" "$@"
