@@ -1,9 +1,111 @@
+// `hapcine batch`: a whole library through estimate + haptics, locally with N
+// workers or as a Slurm job array; resumable. The work is in batch/.
+
+#include <iostream>
+#include <sstream>
+
+#include "batch/batch.h"
+#include "batch/library.h"
+#include "batch/progress.h"
+#include "batch/slurm.h"
 #include "cli/command.h"
+#include "core/error.h"
 
 namespace hapcine::cli {
 
 int RunBatch(int argc, char** argv) {
-  return NotYetImplemented("batch", "batch processing", argc, argv);
+  CLI::App app{
+      "Process a video library: for every film `hapcine estimate` (camera path), then\n"
+      "`hapcine haptics` for each model, each step a child process so one bad film never\n"
+      "stops the batch. Re-running the same command resumes: films whose content and\n"
+      "settings are unchanged are skipped, changed ones are redone, failures retried.\n"
+      "Outputs: OUT_DIR/<stem>-<8 hex>/<stem>.camera.csv, <stem>.<model>.haptic.csv,\n"
+      "<stem>.<model>.hjif, done.json; OUT_DIR/summary.json and summary.txt.\n"
+      "Details: docs/batch.md.",
+      "hapcine batch"};
+  batch::BatchOptions opt;
+  batch::SlurmOptions slurm;
+  std::string models = "cinematic,semantic";
+  std::string estimate_args, haptics_args, shard, sbatch_args, progress = "auto";
+  bool use_slurm = false, no_wait = false, status = false;
+  std::string positional;
+  app.add_option("LIBRARY", positional,
+                 "folder (searched recursively for video files by extension) or manifest\n"
+                 "(text: one path per line, # comments; or .csv with a 'path' column).\n"
+                 "With --status: the OUT_DIR to report on");
+  app.add_option("-o,--out", opt.out_dir, "output folder (created; shared by re-runs and shards)");
+  app.add_option("-j,--jobs", opt.jobs,
+                 "films processed in parallel (per Slurm task with --slurm); 0 = number of "
+                 "CPUs")
+      ->default_val(0);
+  app.add_option("--models", models, "comma-separated haptic models, one haptics step each")
+      ->default_val(models);
+  app.add_option("--estimate-args", estimate_args,
+                 "extra arguments for every `hapcine estimate` step (shell-style quoting)");
+  app.add_option("--haptics-args", haptics_args,
+                 "extra arguments for every `hapcine haptics` step (shell-style quoting)");
+  app.add_option("--hapcine-exe", opt.step_exe,
+                 "program run for the steps (default: this hapcine executable)");
+  app.add_flag("--force", opt.force, "redo every film even if up to date");
+  app.add_flag("--status", status,
+               "print progress of OUT_DIR from its state files (done/failed/duplicate/\n"
+               "running/pending) and exit");
+  app.add_option("--progress", progress,
+                 "auto (bar on a terminal, lines otherwise), bar, lines or quiet")
+      ->default_val(progress)
+      ->check(CLI::IsMember({"auto", "bar", "lines", "quiet"}));
+  app.add_flag("--slurm", use_slurm, "submit as a Slurm job array instead of running here");
+  app.add_option("--shards", slurm.shards,
+                 "with --slurm: array tasks (capped at the number of films)")
+      ->default_val(slurm.shards);
+  app.add_flag("--no-wait", no_wait, "with --slurm: return after submitting (then use --status)");
+  app.add_option("--wait-timeout", slurm.wait_timeout_s,
+                 "with --slurm: stop waiting after this many seconds; 0 = never")
+      ->default_val(0);
+  app.add_option("--sbatch-args", sbatch_args,
+                 "with --slurm: extra sbatch arguments, e.g. \"--partition=x --time=1:00:00\"");
+  app.add_option("--shard", shard, "i/K: process only shard i of K (what each Slurm task runs)");
+
+  return RunApp(app, argc, argv, [&]() -> int {
+    if (status) {
+      const std::string out = opt.out_dir.empty() ? positional : opt.out_dir;
+      if (out.empty()) throw UsageError("--status needs OUT_DIR");
+      std::cout << batch::ReadBatchStatus(out).ToText();
+      return kExitOk;
+    }
+    opt.library = positional;
+    opt.models.clear();
+    std::stringstream ms(models);
+    for (std::string m; std::getline(ms, m, ',');) {
+      if (!m.empty()) opt.models.push_back(m);
+    }
+    opt.estimate_args = batch::SplitArgs(estimate_args);
+    opt.haptics_args = batch::SplitArgs(haptics_args);
+    if (!shard.empty()) {
+      char slash = 0;
+      std::istringstream ss(shard);
+      if (!(ss >> opt.shard_index >> slash >> opt.shard_count) || slash != '/' || !ss.eof()) {
+        throw UsageError("--shard must look like i/K, e.g. 0/4");
+      }
+    }
+    opt.progress = progress == "bar"     ? batch::BatchOptions::Progress::kBar
+                   : progress == "lines" ? batch::BatchOptions::Progress::kLines
+                   : progress == "quiet" ? batch::BatchOptions::Progress::kQuiet
+                                         : batch::BatchOptions::Progress::kAuto;
+    if (use_slurm) {
+      if (!shard.empty()) throw UsageError("--slurm and --shard exclude each other");
+      slurm.wait = !no_wait;
+      slurm.sbatch_args = batch::SplitArgs(sbatch_args);
+      return batch::SubmitSlurmBatch(opt, slurm);
+    }
+    const batch::BatchSummary s = batch::RunLocalBatch(opt);
+    std::cerr << "batch: " << s.films.size() << " films: " << s.Count(batch::FilmStatus::kDone)
+              << " done, " << s.Count(batch::FilmStatus::kSkipped) << " skipped, "
+              << s.Count(batch::FilmStatus::kFailed) << " failed, "
+              << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
+              << batch::FormatDuration(s.wall_seconds) << "\n";
+    return s.ExitCode();
+  });
 }
 
 }  // namespace hapcine::cli

@@ -1,9 +1,130 @@
+// hapcine estimate: camera path (rotation, translation, zoom) from a video.
+// A thin mapping of flags onto EstimatorOptions; the work is
+// EstimateCameraPathFromFile() in estimate/camera_estimator.h, documented in
+// docs/estimate.md.
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
 #include "cli/command.h"
+#include "core/camera_path.h"
+#include "core/error.h"
+#include "estimate/camera_estimator.h"
 
 namespace hapcine::cli {
+namespace {
+
+// Frames done / total, rate and ETA: a bar on a terminal, a line every ~5 s otherwise.
+class EstimateProgress {
+ public:
+  explicit EstimateProgress(bool quiet)
+      : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_(start_) {}
+
+  void Update(long done, long total) {
+    if (quiet_) return;
+    const auto now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double since = std::chrono::duration<double>(now - last_).count();
+    if (since < (tty_ ? 0.2 : 5.0)) return;
+    last_ = now;
+    const double fps = elapsed > 0 ? done / elapsed : 0;
+    if (tty_) {
+      if (total > 0) {
+        const int width = 30;
+        const int filled = static_cast<int>(std::min<long>(done, total) * width / total);
+        const double eta = fps > 0 ? (total - std::min(done, total)) / fps : 0;
+        std::fprintf(stderr, "\r[%s%s] %ld/%ld frames  %.1f fps  ETA %.0f s   ",
+                     std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
+                     done, total, fps, eta);
+      } else {
+        std::fprintf(stderr, "\r%ld frames  %.1f fps   ", done, fps);
+      }
+    } else {
+      std::fprintf(stderr, "estimate: %ld/%ld frames, %.1f fps\n", done, total, fps);
+    }
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  void Done(long frames) {
+    if (quiet_) return;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (tty_ && drawn_) std::fprintf(stderr, "\n");
+    std::fprintf(stderr, "estimate: %ld frames in %.1f s (%.1f fps)\n", frames, elapsed,
+                 elapsed > 0 ? frames / elapsed : 0.0);
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool quiet_, tty_, drawn_ = false;
+  Clock::time_point start_, last_;
+};
+
+}  // namespace
 
 int RunEstimate(int argc, char** argv) {
-  return NotYetImplemented("estimate", "camera path from video", argc, argv);
+  CLI::App app{
+      "Estimate the camera path (rotation, translation, zoom) of a video and write it as a "
+      "*.camera.csv file (docs/estimate.md, camera-path spec). Per shot and segment the simplest "
+      "motion model is chosen (static, zoom, rotation, rotation+zoom, general, general+zoom).",
+      argv[0]};
+  std::string video, output;
+  EstimatorOptions opt;
+  bool no_smooth = false, quiet = false;
+  app.add_option("video", video, "input video (anything FFmpeg reads) or image folder/pattern")
+      ->required();
+  app.add_option("-o,--output", output, "output camera path (*.camera.csv), written atomically")
+      ->required();
+  app.add_option("--backend", opt.backend,
+                 "hapcine: tracks + model selection + bundle adjustment; colmap: COLMAP "
+                 "incremental SfM (needs translation to initialise)")
+      ->capture_default_str();
+  app.add_option("--max-side", opt.frames.max_working_side,
+                 "longest side of the working images, pixels (0 = decoded size)")
+      ->capture_default_str();
+  app.add_option("--tracks", opt.tracker.max_tracks, "wanted live feature tracks per frame")
+      ->capture_default_str();
+  app.add_option("--window", opt.estimator.window_frames,
+                 "frames per bundle-adjustment window (long shots are solved in overlapping "
+                 "windows, so memory is flat)")
+      ->capture_default_str();
+  app.add_option("--points", opt.estimator.max_points,
+                 "3-D points per window (the longest tracks)")
+      ->capture_default_str();
+  app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
+                 "horizontal field of view, degrees, assumed where the focal length cannot be "
+                 "observed (no rotation)")
+      ->capture_default_str();
+  app.add_option("--keyframe-gap", opt.estimator.keyframe_max_gap,
+                 "at least one keyframe every this many frames")
+      ->capture_default_str();
+  app.add_flag("--no-smooth", no_smooth, "skip the zero-phase smoothing of the path");
+  app.add_option("--smooth-sigma", opt.estimator.smooth_sigma_frames,
+                 "Gaussian sigma of the zero-phase smoothing, frames")
+      ->capture_default_str();
+  app.add_option("--threads", opt.estimator.num_threads, "Ceres solver threads")
+      ->capture_default_str();
+  app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
+      ->capture_default_str();
+  app.add_flag("-q,--quiet", quiet, "no progress output");
+
+  return RunApp(app, argc, argv, [&]() {
+    opt.estimator.smooth = !no_smooth;
+    opt.Check();
+    const std::filesystem::path out_path(output);
+    const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(parent))
+      throw Error(output, "output folder does not exist");
+    EstimateProgress progress(quiet);
+    const CameraPath path = EstimateCameraPathFromFile(
+        video, opt, [&](long done, long total) { progress.Update(done, total); });
+    WriteCameraPathFile(path, output);
+    progress.Done(static_cast<long>(path.frames.size()));
+    return kExitOk;
+  });
 }
 
 }  // namespace hapcine::cli

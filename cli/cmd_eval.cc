@@ -1,9 +1,74 @@
+// hapcine eval: compare an estimated camera path against ground truth.
+// A thin mapping of flags onto EvalOptions; the metrics live in datasets/eval.h
+// and are defined in docs/eval.md.
+
+#include <iostream>
+
 #include "cli/command.h"
+#include "core/atomic_file.h"
+#include "core/camera_path.h"
+#include "datasets/eval.h"
 
 namespace hapcine::cli {
 
 int RunEval(int argc, char** argv) {
-  return NotYetImplemented("eval", "compare camera paths", argc, argv);
+  CLI::App app{
+      "Compare an estimated camera path (*.camera.csv) against ground truth: rotation error, "
+      "FOV and zoom-ratio error, ATE after Umeyama alignment, RPE, per shot when a `shot` column "
+      "exists. Metric definitions: docs/eval.md.",
+      argv[0]};
+  std::string gt_file, est_file, json_out, per_frame_out;
+  std::string align = "sim3", matching = "auto";
+  bool json = false, no_per_shot = false;
+  EvalOptions opt;
+  app.add_option("--gt", gt_file, "ground-truth camera path (*.camera.csv)")
+      ->required();
+  app.add_option("--est", est_file, "estimated camera path (*.camera.csv)")
+      ->required();
+  app.add_flag("--json", json, "print the report as JSON instead of a table");
+  app.add_option("-o,--output", json_out, "also write the JSON report to this file (atomic)");
+  app.add_option("--align", align,
+                 "alignment of the camera centres before ATE/RPE: sim3 (Umeyama with scale, "
+                 "like evo -as; for monocular estimates), se3 (rigid, evo -a), none")
+      ->capture_default_str()->check(CLI::IsMember({"sim3", "se3", "none"}));
+  app.add_option("--rpe-delta", opt.rpe_delta, "RPE frame distance (evo --delta N --delta_unit f)")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--match", matching,
+                 "frame matching: frame (same frame index), time (nearest time_s within half a "
+                 "frame), auto (frame index; time when under half the frames share an index)")
+      ->capture_default_str()->check(CLI::IsMember({"auto", "frame", "time"}));
+  app.add_flag("--no-per-shot", no_per_shot,
+               "ignore the `shot` column: evaluate the whole clip aligned on its first frame");
+  app.add_option("--static-length", opt.static_path_length,
+                 "GT path length below which the GT camera counts as not moving (ATE % n/a, "
+                 "estimated path length reported as spurious translation), GT units")
+      ->capture_default_str();
+  app.add_option("--per-frame", per_frame_out, "write per-frame errors as CSV (atomic)");
+
+  return RunApp(app, argc, argv, [&]() {
+    opt.align = ParseTrajectoryAlignment(align);
+    opt.matching = ParseFrameMatching(matching);
+    opt.per_shot = !no_per_shot;
+    opt.Check();
+    const CameraPath gt = ReadCameraPathFile(gt_file);
+    const CameraPath est = ReadCameraPathFile(est_file);
+    EvalReport report = EvaluateCameraPaths(gt, est, opt);
+    report.gt_source = gt_file;
+    report.est_source = est_file;
+    const nlohmann::json j = EvalReportToJson(report);
+    if (!json_out.empty()) {
+      AtomicFile out(json_out);
+      out.stream() << j.dump(2) << "\n";
+      out.Commit();
+    }
+    if (!per_frame_out.empty()) WritePerFrameErrorsFile(report, per_frame_out);
+    if (json) {
+      std::cout << j.dump(2) << "\n";
+    } else {
+      std::cout << FormatEvalTable(report);
+    }
+    return kExitOk;
+  });
 }
 
 }  // namespace hapcine::cli

@@ -1,9 +1,154 @@
+// `hapcine haptics`: camera path (or video) -> haptic track (+ optional .hjif).
+// A thin mapping of flags onto HapticOptions; the work is in haptics/.
+
+#include <unistd.h>
+
+#include <iostream>
+#include <memory>
+
 #include "cli/command.h"
+#include "core/atomic_file.h"
+#include "core/camera_path.h"
+#include "core/error.h"
+#include "core/haptic_track.h"
+#include "estimate/camera_estimator.h"
+#include "haptics/haptic_models.h"
+#include "haptics/hjif_export.h"
+#include "haptics/seat_geometry.h"
 
 namespace hapcine::cli {
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
 
 int RunHaptics(int argc, char** argv) {
-  return NotYetImplemented("haptics", "haptic track from a camera path", argc, argv);
+  CLI::App app{
+      "Turn a camera path (*.camera.csv) into a haptic track (*.haptic.csv) for the HapSeat:\n"
+      "the target displacement of the head, left-hand and right-hand actuators at a fixed rate,\n"
+      "on the media clock of the video. Models (the paper's four feedback conditions):\n"
+      "  cinematic  feel the camera's movement (Equations 2-6; a zoom-in is a forward move)\n"
+      "  semantic   feel a metaphor of the camera effect (Table 2), on effects found by the\n"
+      "             classifier or placed by hand with --keyframes\n"
+      "  random     0.5 Hz low-pass filtered white noise (seeded)\n"
+      "  none       actuators stay centred\n"
+      "Films are processed per shot (`shot` column) with a washout so no actuator leaves its\n"
+      "workspace. Details and file formats: docs/haptics.md.",
+      "hapcine haptics"};
+  std::string input, output, hjif, seat_file, model = "cinematic", keyframes;
+  HapticOptions opt;
+  HjifOptions hjif_opt;
+  double rate = 0;
+  bool no_washout = false;
+  bool print_seat = false;
+  app.add_option("INPUT", input,
+                 "camera path (*.camera.csv / *.csv), or a video: its camera path is then\n"
+                 "estimated first with the default settings of `hapcine estimate`");
+  app.add_option("-o,--output", output, "output haptic track (*.haptic.csv), written atomically");
+  app.add_option("--model", model, "cinematic, semantic, random or none")
+      ->default_val(model)
+      ->check(CLI::IsMember({"cinematic", "semantic", "random", "none"}));
+  app.add_option("--hjif", hjif,
+                 "also write an MPEG-I Haptics interchange file (.hjif, ISO/IEC 23090-31)");
+  app.add_option("--seat", seat_file,
+                 "HapSeat geometry JSON overriding the built-in defaults (see --print-seat)");
+  app.add_flag("--print-seat", print_seat, "print the seat geometry in use as JSON and exit");
+  app.add_option("--rate", rate, "output rate in Hz; default: the seat's rate_hz (1000)")
+      ->default_val(0);
+  app.add_option("--seed", opt.seed, "random model: seed of the noise")->default_val(opt.seed);
+  app.add_option("--cutoff", opt.random_cutoff_hz, "random model: low-pass cutoff, Hz")
+      ->default_val(opt.random_cutoff_hz);
+  app.add_option("--keyframes", keyframes,
+                 "semantic model: hand-placed effects, CSV 'start_s,end_s,effect,intensity'\n"
+                 "(default: effects found automatically by the classifier)");
+  app.add_flag("--no-washout", no_washout,
+               "no high-pass on the camera signals (the paper's plain Equations 2-6; cut\n"
+               "crossfades, speed limit and clamp still apply)");
+  app.add_option("--washout-tau", opt.washout.tau_s, "washout high-pass time constant, s")
+      ->default_val(opt.washout.tau_s);
+  app.add_option("--washout-order", opt.washout.order, "washout high-pass order (1 or 2)")
+      ->default_val(opt.washout.order);
+  app.add_option("--cut-ramp", opt.washout.cut_ramp_s, "crossfade at a shot cut, s")
+      ->default_val(opt.washout.cut_ramp_s);
+  app.add_option("--max-speed", opt.washout.max_speed_m_s,
+                 "largest actuator speed per axis, m/s (bounds every step)")
+      ->default_val(opt.washout.max_speed_m_s);
+  app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
+                 "distance of the subject defining the zoom's equivalent forward distance,\n"
+                 "in path units; 0 = metadata subject_distance_m, else 1 (median depth)")
+      ->default_val(opt.cinematic.reference_depth_u);
+  app.add_option("--max-translation-gain", opt.cinematic.max_translation_gain,
+                 "cinematic: cap on the translation/zoom scale, metres per path unit")
+      ->default_val(opt.cinematic.max_translation_gain);
+  app.add_option("--max-rotation-gain", opt.cinematic.max_rotation_gain,
+                 "cinematic: cap on the rotation scale (1 = the camera's own angles)")
+      ->default_val(opt.cinematic.max_rotation_gain);
+  app.add_flag("--per-film-scaling", opt.cinematic.per_film_scaling,
+               "cinematic: one scaling for the whole film instead of one per shot");
+  app.add_option("--max-gap", opt.max_gap_s, "reject time gaps longer than this inside a shot, s")
+      ->default_val(opt.max_gap_s);
+  app.add_option("--hjif-rate", hjif_opt.keyframe_rate_hz, "keyframes per second in the .hjif")
+      ->default_val(hjif_opt.keyframe_rate_hz);
+
+  return RunApp(app, argc, argv, [&]() -> int {
+    if (!seat_file.empty()) opt.seat = LoadSeatGeometryFile(seat_file);
+    if (print_seat) {
+      std::cout << SeatGeometryToJson(opt.seat);
+      return kExitOk;
+    }
+    if (input.empty()) throw UsageError("INPUT is required");
+    if (output.empty()) throw UsageError("-o OUT.haptic.csv is required");
+    opt.model = HapticModelFromName(model);
+    opt.rate_hz = rate;
+    opt.keyframes_file = keyframes;
+    opt.washout.high_pass = !no_washout;
+    opt.source = input;
+    opt.Check();
+    hjif_opt.gain_m = opt.seat.workspace_half_m;
+    hjif_opt.Check();
+    const bool tty = isatty(STDERR_FILENO);
+    CameraPath path;
+    if (EndsWith(input, ".csv")) {
+      path = ReadCameraPathFile(input);
+    } else {
+      // A video: estimate its camera path first (default estimator settings;
+      // run `hapcine estimate` yourself to choose them and keep the path).
+      long last_reported = -1;
+      path = EstimateCameraPathFromFile(input, EstimatorOptions{}, [&](long done, long total) {
+        if (tty) {
+          std::cerr << "\rhaptics: estimating camera path, frame " << done;
+          if (total > 0) std::cerr << "/" << total;
+          std::cerr << std::flush;
+        } else if (done / 250 != last_reported) {
+          last_reported = done / 250;
+          std::cerr << "haptics: estimating camera path, frame " << done
+                    << (total > 0 ? "/" + std::to_string(total) : "") << "\n";
+        }
+      });
+      if (tty) std::cerr << "\n";
+    }
+    const HapticTrack track = MakeHapticTrack(path, opt);
+    // Both outputs go to temporary files first; nothing is renamed into place
+    // until both are complete.
+    AtomicFile csv(output);
+    WriteHapticTrack(track, csv.stream());
+    std::unique_ptr<AtomicFile> hj;
+    if (!hjif.empty()) {
+      hj = std::make_unique<AtomicFile>(hjif);
+      hj->stream() << HapticTrackToHjif(track, hjif_opt).dump(1) << "\n";
+    }
+    csv.Commit();
+    if (hj) hj->Commit();
+    std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
+              << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
+              << (hjif.empty() ? "" : " + " + hjif)
+              << "; clamped samples: " << track.metadata.at("clamped_samples") << "\n";
+    return kExitOk;
+  });
 }
 
 }  // namespace hapcine::cli

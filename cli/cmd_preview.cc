@@ -1,9 +1,48 @@
+// `hapcine preview`: the video with an inset of the three actuators
+// (datasets/preview.h).
+#include <unistd.h>
+
+#include <iostream>
+
 #include "cli/command.h"
+#include "datasets/preview.h"
 
 namespace hapcine::cli {
 
 int RunPreview(int argc, char** argv) {
-  return NotYetImplemented("preview", "video with an actuator inset", argc, argv);
+  CLI::App app{
+      "Render VIDEO with an inset showing the HapSeat's three actuators following the haptic "
+      "track\n"
+      "(top view of each 0.10 m workspace with a 1 s trail, and a gauge for height).",
+      "hapcine preview"};
+  PreviewOptions o;
+  app.add_option("video", o.video, "The video file")->required();
+  app.add_option("--track", o.track,
+                 "Haptic track (*.haptic.csv). Default: <video stem>.haptic.csv beside the video");
+  app.add_option("-o,--output", o.output, "Output MP4 (H.264), written atomically")->required();
+  app.add_option("--max-side", o.max_side, "Longest side of the output in pixels (0 = as decoded)")
+      ->capture_default_str();
+  app.add_option("--inset", o.inset_fraction, "Inset width as a fraction of the frame width")
+      ->capture_default_str();
+  app.add_option("--trail", o.trail_s, "Trail length, seconds")->capture_default_str();
+  app.add_option("--crf", o.crf, "x264 quality (0 best .. 51 worst)")->capture_default_str();
+  return RunApp(app, argc, argv, [&] {
+    const bool tty = isatty(STDERR_FILENO);
+    int last = 0;
+    const int n = RenderPreview(o, [&](int done, int total) {
+      if (tty) {
+        std::cerr << "\rpreview: frame " << done;
+        if (total > 0) std::cerr << " / ~" << total;
+        std::cerr << std::flush;
+      } else if (done - last >= 500) {
+        std::cerr << "preview: frame " << done << "\n";
+        last = done;
+      }
+    });
+    if (tty) std::cerr << "\n";
+    std::cerr << "wrote " << o.output << " (" << n << " frames)\n";
+    return kExitOk;
+  });
 }
 
 }  // namespace hapcine::cli

@@ -1,9 +1,130 @@
+// hapcine study: the paper's pairwise user study (section 5) as three steps,
+//   plan     clips + conditions -> PLAN.json (pairs, orders, training, hashes)
+//   run      one participant's session through `hapcine play`, resumable
+//   analyze  results files -> scores, Shapiro-Wilk, Friedman, Wilcoxon + Holm,
+//            text table, SVG bar charts
+// Each is a thin mapping of flags onto the study library (study/*.h).
+
+#include <iostream>
+#include <sstream>
+
 #include "cli/command.h"
+#include "core/error.h"
+#include "study/analysis.h"
+#include "study/plan.h"
+#include "study/player_process.h"
+#include "study/report.h"
+#include "study/results.h"
+#include "study/session.h"
 
 namespace hapcine::cli {
 
 int RunStudy(int argc, char** argv) {
-  return NotYetImplemented("study", "user study", argc, argv);
+  CLI::App app{
+      "Plan, run and analyse the pairwise user study of the paper (section 5): every pair of "
+      "haptic conditions of every clip, in both orders, in a random order per participant; the "
+      "participant picks the preferred of each pair. See docs/study.md.",
+      "hapcine study"};
+  app.require_subcommand(1);
+
+  // ---- plan
+  study::PlanOptions plan_opt;
+  std::string plan_out;
+  std::string conditions_csv = "cinematic,semantic,none,random";
+  CLI::App* plan = app.add_subcommand(
+      "plan",
+      "Make a study plan. Each CLIP is a video `dir/<stem>.<ext>` with sibling tracks "
+      "`dir/<stem>.<condition>.haptic.csv`, or a directory holding one video and "
+      "`<condition>.haptic.csv`. Conditions with identical tracks (within the tolerance) are "
+      "tested "
+      "once (the paper's Vertigo: cinematic == none).");
+  plan->add_option("clips", plan_opt.clips, "Video files or clip directories")->required();
+  plan->add_option("-o,--output", plan_out, "Plan file to write (JSON)")->required();
+  plan->add_option("--participants", plan_opt.participants,
+                   "Number of participants to draw orders for (ids P01, P02, ...)")
+      ->capture_default_str();
+  plan->add_option("--seed", plan_opt.seed,
+                   "Random seed; recorded in the plan, same seed and inputs -> same plan")
+      ->capture_default_str();
+  plan->add_option("--conditions", conditions_csv,
+                   "Comma-separated haptic conditions (track names)")
+      ->capture_default_str();
+  plan->add_option("--identical-tolerance-m", plan_opt.identical_tolerance_m,
+                   "Tracks whose samples all agree within this many metres are the same stimulus")
+      ->capture_default_str();
+
+  // ---- run
+  study::RunOptions run_opt;
+  CLI::App* run = app.add_subcommand(
+      "run",
+      "Run one participant's session: training (each clip once with one random condition), then "
+      "each pair (stimulus 1 then 2) and the answer 1 or 2. Every answer is journalled at once "
+      "(fsync): stop at any time (q, Ctrl-C) and run the same command again to resume. Exit 0 when "
+      "complete (results file written), 1 if stopped early or on failure.");
+  run->add_option("plan", run_opt.plan_path, "Plan file from `hapcine study plan`")->required();
+  run->add_option("--participant", run_opt.participant, "Participant id (P07) or number (7)")
+      ->required();
+  run->add_option("--device", run_opt.device,
+                  "Haptic device passed to the player: sim, none or falcon")
+      ->capture_default_str();
+  run->add_option("--player-cmd", run_opt.player_cmd,
+                  std::string("Player command template; {exe} {video} {track} {device} {clip} "
+                              "{condition} are replaced, no shell. Default: \"") +
+                      study::kDefaultPlayerTemplate + "\" ({exe} = this program)");
+  run->add_option("--responses", run_opt.responses_path,
+                  "Scripted answers, one 1 or 2 per line from the first unanswered trial "
+                  "(default: ask on stdin)");
+  run->add_option("-o,--results", run_opt.results_path,
+                  "Results file (default <plan dir>/<id>.results.json; journal beside it as "
+                  "<id>.journal.jsonl)");
+  bool no_verify = false;
+  run->add_flag("--no-verify", no_verify,
+                "Skip re-hashing the videos and tracks against the plan (default: verify)");
+
+  // ---- analyze
+  std::vector<std::string> result_files;
+  std::string prefix;
+  CLI::App* analyze = app.add_subcommand(
+      "analyze",
+      "Score and test the results of one plan: per-condition and per-sequence normalised scores, "
+      "Shapiro-Wilk, Friedman (participants as blocks), pairwise Wilcoxon signed-rank with "
+      "Holm-Bonferroni. Prints a table; with -o also writes PREFIX.txt, PREFIX.json, "
+      "PREFIX.overall.svg (Fig. 6) and PREFIX.sequences.svg (Fig. 7).");
+  analyze->add_option("results", result_files, "Results files (*.results.json) of the same plan")
+      ->required();
+  analyze->add_option("-o,--output", prefix, "Report prefix (default: print only)");
+
+  return RunApp(app, argc, argv, [&]() -> int {
+    if (plan->parsed()) {
+      plan_opt.conditions.clear();
+      std::stringstream ss(conditions_csv);
+      for (std::string c; std::getline(ss, c, ',');) plan_opt.conditions.push_back(c);
+      const study::StudyPlan p = study::MakePlan(plan_opt, &std::cerr);
+      study::WritePlanFile(p, plan_out);
+      std::cerr << "plan " << p.plan_id << ": " << p.clips.size() << " clips, "
+                << study::TrialsPerParticipant(p.clips) << " trials per participant, "
+                << p.participants.size() << " participants -> " << plan_out << "\n";
+      return kExitOk;
+    }
+    if (run->parsed()) {
+      run_opt.verify_hashes = !no_verify;
+      const study::RunSummary s = study::RunSession(run_opt, std::cin, std::cout);
+      if (!s.complete) {
+        std::cerr << "hapcine study run: " << s.journal_path << ": session incomplete ("
+                  << s.answered_before + s.answered_now << " of " << s.total
+                  << " answered); run again to resume\n";
+        return kExitFailure;
+      }
+      return kExitOk;
+    }
+    std::vector<study::ParticipantResults> results;
+    for (const auto& f : result_files) results.push_back(study::ReadResultsFile(f));
+    const study::StudyAnalysis a = study::AnalyzeStudy(results);
+    std::cout << study::FormatReport(a);
+    if (!prefix.empty())
+      for (const auto& path : study::WriteReport(a, prefix)) std::cerr << "wrote " << path << "\n";
+    return kExitOk;
+  });
 }
 
 }  // namespace hapcine::cli

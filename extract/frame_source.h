@@ -11,21 +11,32 @@ namespace hapcine {
 
 struct VideoInfo {
   std::string path;
-  int width = 0;           // decoded frame size, after rotation metadata
+  int width = 0;  // decoded frame size, after rotation metadata
   int height = 0;
-  double fps = 0;          // nominal (average) rate; times come from timestamps
-  double duration_s = 0;   // 0 when unknown
-  long frame_count = 0;    // estimate; 0 when unknown
-  std::string codec;       // e.g. "h264"
-  int rotation_deg = 0;    // display-matrix rotation that was applied (0/90/180/270)
+  double fps = 0;         // nominal (average) rate; times come from timestamps
+  double duration_s = 0;  // 0 when unknown
+  long frame_count = 0;   // estimate; 0 when unknown
+  std::string codec;      // e.g. "h264"
+  // Display-matrix rotation that was applied to the decoded image, degrees
+  // CLOCKWISE (0/90/180/270), exactly as the ffmpeg CLI's autorotate does.
+  // Note ffprobe prints the matrix angle counter-clockwise: "rotation=90"
+  // (phone held one way, or `-metadata:s:v rotate=90`) is 270 here.
+  int rotation_deg = 0;
 };
 
 struct Frame {
-  int index = 0;           // 0-based decoded frame index
-  double time_s = 0;       // presentation time from the container, seconds
-  cv::Mat gray;            // CV_8UC1 at working resolution
-  cv::Mat bgr;             // CV_8UC3 at working resolution (for shot detection/preview); may be empty
-  double scale = 1.0;      // working size / decoded size (same for x and y)
+  int index = 0;       // 0-based decoded frame index
+  double time_s = 0;   // presentation time from the container, seconds
+  cv::Mat gray;        // CV_8UC1 at working resolution
+  cv::Mat bgr;         // CV_8UC3 at working resolution (for shot detection/preview); may be empty
+  double scale = 1.0;  // working size / decoded size (same for x and y)
+  // Decoded frame size (after rotation). The working size is rounded to whole
+  // pixels, so the exact per-axis scales are gray.cols / decoded_width and
+  // gray.rows / decoded_height; `scale` is the one along the longest side.
+  // Working -> decoded pixel (OpenCV centre convention, see tracks.h):
+  //   p_decoded = (p_working + 0.5) / scale_axis - 0.5
+  int decoded_width = 0;
+  int decoded_height = 0;
 };
 
 struct FrameSourceOptions {
@@ -33,7 +44,9 @@ struct FrameSourceOptions {
   int max_working_side = 960;
   bool want_color = true;  // fill Frame::bgr
   int decode_threads = 0;  // 0 = FFmpeg's choice (all cores)
-  void Check() const;      // throws UsageError
+  // Image sequences carry no timestamps: frame i is at time i / this rate.
+  double image_sequence_fps = 24;
+  void Check() const;  // throws UsageError
 };
 
 // The seam that lets tests feed frames without files.

@@ -2,7 +2,15 @@
 // Feature tracks, streamed frame by frame: what extract/ hands to estimate/.
 // Coordinates are in pixels of the *decoded* frame (not the working image),
 // origin at the top-left pixel's centre... i.e. OpenCV's convention, so the
-// estimator can use the decoded size's image centre as principal point.
+// estimator can use the decoded size's image centre as principal point
+// ((width - 1) / 2, (height - 1) / 2). The tracker works on a downscaled image
+// and maps back with p_decoded = (p_working + 0.5) / scale - 0.5 (per axis):
+// pixel *edges* scale, pixel centres sit half a pixel inside them.
+//
+// Track ids are unique over the whole video and never reused. A track normally
+// has one point per consecutive frame; a track re-linked by descriptor matching
+// (FrameTracks::recovered) may skip the frames between its last good frame and
+// the recovery frame. Every track ends at a shot boundary or blank frame.
 
 #include <Eigen/Core>
 #include <string>
@@ -11,27 +19,33 @@
 namespace hapcine {
 
 enum class ShotBoundary {
-  kNone = 0,   // same shot as the previous frame
-  kCut,        // hard cut before this frame
-  kFade,       // gradual transition (fade/dissolve) ended before this frame
-  kStart,      // first frame of the video
+  kNone = 0,  // same shot as the previous frame
+  kCut,       // hard cut before this frame
+  kFade,      // gradual transition (fade/dissolve) ended before this frame
+  kStart,     // first frame of the video
 };
 
 struct TrackPoint {
-  long track_id = 0;        // unique over the whole video
-  Eigen::Vector2d px;       // position in decoded-frame pixels
+  long track_id = 0;   // unique over the whole video
+  Eigen::Vector2d px;  // position in decoded-frame pixels
 };
 
 struct FrameTracks {
-  int index = 0;            // decoded frame index
-  double time_s = 0;        // presentation time
-  int shot = 0;             // 0-based shot index
+  int index = 0;      // decoded frame index
+  double time_s = 0;  // presentation time
+  int shot = 0;       // 0-based shot index
   ShotBoundary boundary = ShotBoundary::kNone;
-  bool blank = false;       // black/blank/mid-fade frame: flagged, not tracked
+  bool blank = false;  // black/blank/mid-fade frame: flagged, not tracked
   // Tracking health in [0, 1]: fraction of the wanted tracks alive and
   // verified (forward-backward). Low on blur, low texture, fades.
+  // Exactly: (KLT survivors + re-linked tracks) / max_tracks, capped at 1; on
+  // a shot's first tracked frame the fresh detections / max_tracks; at most
+  // 0.25 when `transition`; 0 when `blank`.
   double quality = 0;
-  bool recovered = false;   // tracks were re-linked by descriptor matching
+  bool recovered = false;  // tracks were re-linked by descriptor matching
+  // Inside a suspected gradual transition (fade/dissolve in progress): the
+  // tracks are kept but quality is capped (see docs/extract.md).
+  bool transition = false;
   std::vector<TrackPoint> points;  // tracks alive in this frame
 };
 

@@ -1,0 +1,256 @@
+#include "batch/batch.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "batch/progress.h"
+#include "batch/state_files.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace hapcine::batch {
+namespace fs = std::filesystem;
+
+int BatchSummary::Count(FilmStatus s) const {
+  return static_cast<int>(std::count_if(films.begin(), films.end(),
+                                        [s](const FilmOutcome& f) { return f.status == s; }));
+}
+
+int BatchSummary::ExitCode() const {
+  return Count(FilmStatus::kFailed) + Count(FilmStatus::kBusy) == 0 ? 0 : 1;
+}
+
+nlohmann::json BatchSummary::ToJson() const {
+  nlohmann::json films_json = nlohmann::json::array();
+  for (const FilmOutcome& f : films) films_json.push_back(OutcomeToJson(f));
+  nlohmann::json counts;
+  for (FilmStatus s : {FilmStatus::kDone, FilmStatus::kSkipped, FilmStatus::kFailed,
+                       FilmStatus::kDuplicate, FilmStatus::kBusy}) {
+    counts[FilmStatusName(s)] = Count(s);
+  }
+  return {{"hapcine_version", HapcineVersion()},
+          {"library", library},
+          {"out_dir", out_dir},
+          {"settings_hash", settings_hash},
+          {"shard", {{"index", shard_index}, {"count", shard_count}}},
+          {"jobs", jobs},
+          {"started_utc", started_utc},
+          {"wall_seconds", wall_seconds},
+          {"total", films.size()},
+          {"counts", counts},
+          {"films", films_json}};
+}
+
+BatchSummary BatchSummary::FromJson(const nlohmann::json& j) {
+  BatchSummary s;
+  s.library = j.value("library", "");
+  s.out_dir = j.value("out_dir", "");
+  s.settings_hash = j.value("settings_hash", "");
+  s.shard_index = j.at("shard").value("index", 0);
+  s.shard_count = j.at("shard").value("count", 1);
+  s.jobs = j.value("jobs", 1);
+  s.started_utc = j.value("started_utc", "");
+  s.wall_seconds = j.value("wall_seconds", 0.0);
+  for (const auto& f : j.at("films")) s.films.push_back(OutcomeFromJson(f));
+  return s;
+}
+
+std::string BatchSummary::ToText() const {
+  std::ostringstream out;
+  out << "hapcine batch " << HapcineVersion() << "  library: " << library << "\n"
+      << "output: " << out_dir;
+  if (shard_count > 1) out << "  shard " << shard_index << "/" << shard_count;
+  out << "\nstarted " << started_utc << ", wall time " << std::fixed << std::setprecision(1)
+      << wall_seconds << " s, " << jobs << " job(s)\n"
+      << films.size() << " films: " << Count(FilmStatus::kDone) << " done, "
+      << Count(FilmStatus::kSkipped) << " skipped (up to date), " << Count(FilmStatus::kFailed)
+      << " failed, " << Count(FilmStatus::kDuplicate) << " duplicate";
+  if (Count(FilmStatus::kBusy) > 0) out << ", " << Count(FilmStatus::kBusy) << " busy elsewhere";
+  out << "\n\n";
+  for (const FilmOutcome& f : films) {
+    out << std::left << std::setw(9) << FilmStatusName(f.status) << " " << std::right
+        << std::setw(7) << std::setprecision(1) << f.seconds << " s  " << f.id;
+    if (f.status == FilmStatus::kDuplicate) out << "  duplicate of " << f.duplicate_of;
+    if (!f.reason.empty()) out << "  " << f.reason;
+    out << "\n";
+  }
+  return out.str();
+}
+
+void WriteSummary(const BatchSummary& summary) {
+  WriteJsonAtomic((fs::path(summary.out_dir) / "summary.json").string(), summary.ToJson());
+  AtomicFile text((fs::path(summary.out_dir) / "summary.txt").string());
+  text.stream() << summary.ToText();
+  text.Commit();
+}
+
+BatchSummary RunLocalBatch(const BatchOptions& options) {
+  options.Check();
+  const auto t0 = std::chrono::steady_clock::now();
+  BatchSummary summary;
+  summary.library = options.library;
+  summary.out_dir = options.out_dir;
+  summary.shard_index = options.shard_index;
+  summary.shard_count = options.shard_count;
+  summary.jobs = options.ResolvedJobs();
+  summary.started_utc = UtcNow();
+
+  std::error_code ec;
+  const fs::path state = fs::path(options.out_dir) / kStateDir;
+  fs::create_directories(state / "shards", ec);
+  if (ec) throw Error(options.out_dir, "cannot create output folder: " + ec.message());
+  CleanDeadTempFiles(options.out_dir);
+  CleanDeadTempFiles(state.string());
+  CleanDeadTempFiles((state / "shards").string());
+
+  const BatchPlan plan = MakePlan(options);
+  summary.settings_hash = plan.settings_hash;
+  // Shards share one plan.json written by the submitter; an unsharded run
+  // writes its own (status reads it).
+  if (!options.sharded()) WriteJsonAtomic((state / "plan.json").string(), PlanToJson(plan));
+
+  std::vector<const FilmPlan*> mine;
+  for (const FilmPlan& f : plan.films) {
+    if (f.shard == options.shard_index) mine.push_back(&f);
+  }
+  // Originals first, so a duplicate is recorded after what it points to.
+  std::stable_partition(mine.begin(), mine.end(),
+                        [](const FilmPlan* f) { return f->duplicate_of.empty(); });
+
+  ProgressReporter::Mode mode = ProgressReporter::Mode::kQuiet;
+  switch (options.progress) {
+    case BatchOptions::Progress::kAuto:
+      mode =
+          ::isatty(STDERR_FILENO) ? ProgressReporter::Mode::kBar : ProgressReporter::Mode::kLines;
+      break;
+    case BatchOptions::Progress::kBar:
+      mode = ProgressReporter::Mode::kBar;
+      break;
+    case BatchOptions::Progress::kLines:
+      mode = ProgressReporter::Mode::kLines;
+      break;
+    case BatchOptions::Progress::kQuiet:
+      break;
+  }
+  const std::string step_exe = options.ResolvedStepExe();
+  const int workers = std::max(1, std::min<int>(summary.jobs, static_cast<int>(mine.size())));
+  ProgressReporter progress(std::cerr, mode, static_cast<int>(mine.size()), workers);
+
+  std::vector<FilmOutcome> outcomes(mine.size());
+  std::atomic<size_t> next{0};
+  std::mutex mu;
+  std::condition_variable cv;
+  int running_workers = workers;
+  auto worker = [&]() {
+    for (size_t i = next++; i < mine.size(); i = next++) {
+      FilmOutcome o;
+      try {
+        o = ProcessFilm(options, step_exe, plan.settings_hash, *mine[i]);
+      } catch (const std::exception& e) {  // e.g. an unwritable output folder
+        o.id = mine[i]->id;
+        o.path = mine[i]->path;
+        o.status = FilmStatus::kFailed;
+        o.reason = e.what();
+      }
+      const bool reused = o.status != FilmStatus::kDone && o.status != FilmStatus::kFailed;
+      progress.Finished(o.id, FilmStatusName(o.status), o.seconds, reused, o.reason);
+      outcomes[i] = std::move(o);
+    }
+    std::lock_guard<std::mutex> lock(mu);
+    --running_workers;
+    cv.notify_all();
+  };
+  std::vector<std::thread> threads;
+  for (int w = 0; w < workers; ++w) threads.emplace_back(worker);
+  {
+    std::unique_lock<std::mutex> lock(mu);
+    while (!cv.wait_for(lock, std::chrono::seconds(1), [&] { return running_workers == 0; })) {
+      progress.Tick();
+    }
+  }
+  for (std::thread& t : threads) t.join();
+  progress.Close();
+
+  // Summary in plan (path) order, whatever order the workers finished in.
+  std::vector<size_t> order(mine.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return mine[a]->path < mine[b]->path; });
+  for (size_t i : order) summary.films.push_back(outcomes[i]);
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  if (options.sharded()) {
+    WriteJsonAtomic((state / "shards" /
+                     ("summary-" + std::to_string(options.shard_index) + "-of-" +
+                      std::to_string(options.shard_count) + ".json"))
+                        .string(),
+                    summary.ToJson());
+  } else {
+    WriteSummary(summary);
+  }
+  return summary;
+}
+
+std::string BatchStatus::ToText() const {
+  std::ostringstream out;
+  out << total << " films: " << done << " done, " << failed << " failed, " << duplicate
+      << " duplicate, " << running << " running, " << pending << " pending\n";
+  for (const auto& [id, reason] : failures) out << "  failed " << id << ": " << reason << "\n";
+  for (const std::string& t : slurm_tasks) out << "  slurm " << t << "\n";
+  return out.str();
+}
+
+BatchStatus ReadBatchStatus(const std::string& out_dir) {
+  const fs::path plan_path = fs::path(out_dir) / kStateDir / "plan.json";
+  const auto plan_json = ReadJsonFile(plan_path.string());
+  if (!plan_json) throw Error(plan_path.string(), "no batch state here (missing or unreadable)");
+  BatchPlan plan;
+  try {
+    plan = PlanFromJson(*plan_json);
+  } catch (const std::exception& e) {
+    throw Error(plan_path.string(), std::string("malformed plan: ") + e.what());
+  }
+  BatchStatus status;
+  for (const FilmPlan& f : plan.films) {
+    ++status.total;
+    const fs::path dir = fs::path(out_dir) / f.id;
+    if (!f.duplicate_of.empty() && fs::exists(dir / kDuplicateFile)) {
+      ++status.duplicate;
+    } else if (FilmIsLocked(dir.string())) {
+      ++status.running;
+    } else if (f.duplicate_of.empty() && FilmIsDone(dir.string(), f, plan.settings_hash)) {
+      ++status.done;
+    } else if (const auto failed = ReadJsonFile((dir / kFailedFile).string());
+               failed && failed->value("input_hash", "") == f.input_hash &&
+               failed->value("settings_hash", "") == plan.settings_hash) {
+      ++status.failed;
+      status.failures.emplace_back(f.id, failed->value("reason", ""));
+    } else {
+      ++status.pending;
+    }
+  }
+  const fs::path slurm = fs::path(out_dir) / "slurm";
+  for (int i = 0; i < plan.shard_count && plan.shard_count > 1; ++i) {
+    std::ifstream in(slurm / ("task-" + std::to_string(i) + ".status"));
+    std::string line;
+    if (in && std::getline(in, line)) {
+      status.slurm_tasks.push_back("task " + std::to_string(i) + ": " + line);
+    } else {
+      status.slurm_tasks.push_back("task " + std::to_string(i) + ": no exit status yet");
+    }
+  }
+  return status;
+}
+
+}  // namespace hapcine::batch

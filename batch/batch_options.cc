@@ -1,0 +1,76 @@
+#include "batch/batch_options.h"
+
+#include <unistd.h>
+
+#include <climits>
+#include <thread>
+
+#include "batch/content_hash.h"
+#include "core/error.h"
+
+#ifndef HAPCINE_VERSION
+#define HAPCINE_VERSION "unknown"
+#endif
+
+namespace hapcine::batch {
+
+std::string HapcineVersion() { return HAPCINE_VERSION; }
+
+std::string SelfExecutable() {
+  char buf[PATH_MAX];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) throw Error("/proc/self/exe", "cannot resolve the running executable");
+  return std::string(buf, static_cast<size_t>(n));
+}
+
+void BatchOptions::Check() const {
+  if (library.empty()) throw UsageError("LIBRARY (folder or manifest) is required");
+  if (out_dir.empty()) throw UsageError("-o OUT_DIR is required");
+  if (jobs < 0) throw UsageError("--jobs must be >= 0 (0 = number of CPUs)");
+  if (models.empty()) throw UsageError("--models needs at least one model");
+  for (const std::string& m : models) {
+    if (m.empty() || m.find_first_of("/ \t.") != std::string::npos) {
+      throw UsageError("bad model name '" + m + "'");
+    }
+  }
+  if (shard_count < 1 || shard_index < 0 || shard_index >= shard_count) {
+    throw UsageError("--shard must be i/K with 0 <= i < K");
+  }
+}
+
+int BatchOptions::ResolvedJobs() const {
+  if (jobs > 0) return jobs;
+  const unsigned n = std::thread::hardware_concurrency();
+  return n > 0 ? static_cast<int>(n) : 1;
+}
+
+std::string BatchOptions::ResolvedStepExe() const {
+  return step_exe.empty() ? SelfExecutable() : step_exe;
+}
+
+nlohmann::json SettingsJson(const BatchOptions& options) {
+  return {{"hapcine_version", HapcineVersion()},
+          {"estimate_args", options.estimate_args},
+          {"haptics_args", options.haptics_args},
+          {"models", options.models}};
+}
+
+std::string SettingsHash(const BatchOptions& options) {
+  return Fnv1a64Hex(SettingsJson(options).dump());
+}
+
+std::string EstimateStepKey(const BatchOptions& options) {
+  nlohmann::json j = {{"hapcine_version", HapcineVersion()},
+                      {"estimate_args", options.estimate_args}};
+  return Fnv1a64Hex(j.dump());
+}
+
+std::string HapticsStepKey(const BatchOptions& options, const std::string& model) {
+  nlohmann::json j = {{"hapcine_version", HapcineVersion()},
+                      {"estimate_args", options.estimate_args},
+                      {"haptics_args", options.haptics_args},
+                      {"model", model}};
+  return Fnv1a64Hex(j.dump());
+}
+
+}  // namespace hapcine::batch

@@ -1,0 +1,299 @@
+#include "batch/batch.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "batch/fake_step_for_test.h"
+#include "batch/library.h"
+#include "batch/state_files.h"
+#include "core/error.h"
+
+namespace hapcine::batch {
+namespace {
+namespace fs = std::filesystem;
+
+using testutil::LogLines;
+using testutil::MakeTestLibrary;
+using testutil::OutputFiles;
+using testutil::ReadAll;
+using testutil::TempDir;
+using testutil::TempLeftovers;
+using testutil::TestLibrary;
+using testutil::WriteFakeStep;
+using testutil::WriteFile;
+
+const FilmOutcome* Find(const BatchSummary& s, const std::string& name) {
+  for (const FilmOutcome& f : s.films) {
+    if (fs::path(f.path).filename() == fs::path(name).filename() && f.path.size() >= name.size() &&
+        f.path.compare(f.path.size() - name.size(), name.size(), name) == 0) {
+      return &f;
+    }
+  }
+  return nullptr;
+}
+
+class BatchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    lib_ = MakeTestLibrary(dir_.path() + "/library");
+    log_ = dir_.path() + "/calls.log";
+    options_.library = lib_.root;
+    options_.out_dir = dir_.path() + "/out";
+    options_.jobs = 3;
+    options_.models = {"cinematic", "semantic"};
+    options_.step_exe = WriteFakeStep(dir_.path(), log_);
+    options_.progress = BatchOptions::Progress::kQuiet;
+  }
+  std::string FilmDir(const std::string& name) const {
+    return options_.out_dir + "/" + FilmId(lib_.root + "/" + name);
+  }
+
+  TempDir dir_;
+  TestLibrary lib_;
+  std::string log_;
+  BatchOptions options_;
+};
+
+TEST_F(BatchTest, FirstRunDoesGoodFilmsRecordsFailuresAndDuplicates) {
+  const BatchSummary s = RunLocalBatch(options_);
+  ASSERT_EQ(static_cast<int>(s.films.size()), lib_.total());
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
+  EXPECT_EQ(s.Count(FilmStatus::kFailed), 3);
+  EXPECT_EQ(s.Count(FilmStatus::kDuplicate), 1);
+  EXPECT_EQ(s.ExitCode(), 1);  // failures make the batch fail, after doing everything else
+
+  for (const std::string& name : lib_.good) {
+    const std::string dir = FilmDir(name);
+    const std::string stem = FileStem(name);
+    EXPECT_TRUE(fs::is_regular_file(dir + "/" + stem + ".camera.csv")) << dir;
+    for (const char* m : {"cinematic", "semantic"}) {
+      EXPECT_TRUE(fs::is_regular_file(dir + "/" + stem + "." + m + ".haptic.csv")) << dir;
+      EXPECT_TRUE(fs::is_regular_file(dir + "/" + stem + "." + m + ".hjif")) << dir;
+    }
+    const auto done = ReadJsonFile(dir + "/done.json");
+    ASSERT_TRUE(done.has_value()) << dir;
+    EXPECT_EQ((*done)["outputs"].size(), 5u);
+    EXPECT_EQ((*done)["path"], lib_.root + "/" + name);
+    EXPECT_EQ((*done)["steps"].size(), 3u);
+  }
+  // Each failure has its one-line reason, from the step's stderr or the pre-check.
+  EXPECT_NE(Find(s, "corrupt.mp4")->reason.find("estimate: exit 1: hapcine estimate: "),
+            std::string::npos);
+  EXPECT_NE(Find(s, "corrupt.mp4")->reason.find("corrupt video stream"), std::string::npos);
+  EXPECT_NE(Find(s, "empty.mp4")->reason.find("empty file (0 bytes)"), std::string::npos);
+  EXPECT_NE(Find(s, "notes.mp4")->reason.find("no video stream found"), std::string::npos);
+  const auto failed = ReadJsonFile(FilmDir("corrupt.mp4") + "/failed.json");
+  ASSERT_TRUE(failed.has_value());
+  EXPECT_EQ((*failed)["step"], "estimate");
+  EXPECT_FALSE(fs::exists(FilmDir("corrupt.mp4") + "/done.json"));
+
+  const FilmOutcome* dup = Find(s, lib_.duplicate);
+  ASSERT_NE(dup, nullptr);
+  EXPECT_EQ(dup->status, FilmStatus::kDuplicate);
+  EXPECT_EQ(dup->duplicate_of, FilmId(lib_.root + "/a.mp4"));
+  EXPECT_TRUE(OutputFiles(FilmDir(lib_.duplicate)).empty());  // processed once, at a.mp4
+
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 5u);  // once per distinct good film
+  EXPECT_TRUE(TempLeftovers(options_.out_dir).empty());
+
+  const auto summary = ReadJsonFile(options_.out_dir + "/summary.json");
+  ASSERT_TRUE(summary.has_value());
+  EXPECT_EQ((*summary)["counts"]["done"], 5);
+  EXPECT_EQ((*summary)["counts"]["failed"], 3);
+  EXPECT_EQ((*summary)["counts"]["duplicate"], 1);
+  const std::string text = ReadAll(options_.out_dir + "/summary.txt");
+  EXPECT_NE(text.find("9 films: 5 done, 0 skipped (up to date), 3 failed, 1 duplicate"),
+            std::string::npos)
+      << text;
+}
+
+TEST_F(BatchTest, RerunSkipsWhatIsDoneAndRetriesFailures) {
+  RunLocalBatch(options_);
+  const auto before = OutputFiles(options_.out_dir);
+  const BatchSummary s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kSkipped), 5);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 0);
+  EXPECT_EQ(s.Count(FilmStatus::kFailed), 3);
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 5u);  // nothing re-estimated
+  EXPECT_EQ(OutputFiles(options_.out_dir), before);
+}
+
+TEST_F(BatchTest, ChangedContentRedoesOnlyThatFilm) {
+  RunLocalBatch(options_);
+  // Same size, same name, different bytes: caught by the content hash.
+  const std::string b = lib_.root + "/b.mov";
+  std::string content = ReadAll(b);
+  content[content.size() - 2] ^= 1;
+  WriteFile(b, content);
+  const BatchSummary s = RunLocalBatch(options_);
+  EXPECT_EQ(Find(s, "b.mov")->status, FilmStatus::kDone);
+  EXPECT_EQ(s.Count(FilmStatus::kSkipped), 4);
+  EXPECT_EQ(LogLines(log_, "estimate " + b).size(), 2u);
+}
+
+TEST_F(BatchTest, ChangedSettingsRedoOnlyTheStepsTheyAffect) {
+  RunLocalBatch(options_);
+  options_.models = {"cinematic", "semantic", "random"};
+  BatchSummary s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 5u);  // camera paths reused
+  EXPECT_EQ(LogLines(log_, "haptics random ").size(), 5u);
+  EXPECT_EQ(LogLines(log_, "haptics cinematic ").size(), 5u);  // not redone either
+  const FilmOutcome* a = Find(s, "a.mp4");
+  ASSERT_EQ(a->steps.size(), 4u);
+  EXPECT_TRUE(a->steps[0].reused);
+  EXPECT_FALSE(a->steps[3].reused);
+
+  options_.estimate_args = {"--max-frames", "100"};
+  s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 10u);  // estimate args change everything
+  EXPECT_NE(ReadAll(FilmDir("a.mp4") + "/a.camera.csv").find("args:--max-frames 100"),
+            std::string::npos);
+
+  options_.force = true;
+  s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 15u);
+}
+
+TEST_F(BatchTest, CrashingSilentAndMissingStepProgramsAreRecordedNotFatal) {
+  WriteFile(lib_.root + "/crash.mp4", "FAKEVIDEO segv\n");
+  WriteFile(lib_.root + "/silent.mp4", "FAKEVIDEO silent\n");
+  BatchSummary s = RunLocalBatch(options_);
+  EXPECT_NE(Find(s, "crash.mp4")->reason.find("killed by signal 11"), std::string::npos)
+      << Find(s, "crash.mp4")->reason;
+  EXPECT_NE(Find(s, "silent.mp4")->reason.find("exited 0 but did not write silent.camera.csv"),
+            std::string::npos);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
+
+  options_.step_exe = dir_.path() + "/no-such-program";
+  options_.force = true;
+  s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kFailed), 10);
+  EXPECT_NE(Find(s, "a.mp4")->reason.find("exit 127: cannot execute step program"),
+            std::string::npos)
+      << Find(s, "a.mp4")->reason;
+  // A failed redo leaves no done.json claiming the film is finished.
+  EXPECT_FALSE(fs::exists(FilmDir("a.mp4") + "/done.json"));
+}
+
+TEST_F(BatchTest, StaleTemporariesAreCleanedAndLockedFilmsLeftAlone) {
+  RunLocalBatch(options_);
+  const std::string a = FilmDir("a.mp4");
+  WriteFile(a + "/.tmp/a.camera.csv", "half");
+  WriteFile(a + "/done.json.tmp-999999", "{");
+  WriteFile(a + "/.steps/estimate.json.tmp-999999", "{");
+  WriteFile(options_.out_dir + "/summary.json.tmp-999999", "{");
+  {
+    FilmLock held(FilmDir("b.mov"));  // as if another batch were working on it
+    ASSERT_TRUE(held.locked());
+    EXPECT_TRUE(FilmIsLocked(FilmDir("b.mov")));
+    const BatchSummary s = RunLocalBatch(options_);
+    EXPECT_EQ(Find(s, "b.mov")->status, FilmStatus::kBusy);
+    EXPECT_EQ(Find(s, "a.mp4")->status, FilmStatus::kSkipped);
+    EXPECT_EQ(s.ExitCode(), 1);
+    EXPECT_EQ(ReadBatchStatus(options_.out_dir).running, 1);
+  }
+  EXPECT_FALSE(FilmIsLocked(FilmDir("b.mov")));
+  EXPECT_TRUE(TempLeftovers(options_.out_dir).empty());
+}
+
+TEST_F(BatchTest, StatusCountsFromStateFiles) {
+  EXPECT_THROW(ReadBatchStatus(options_.out_dir), Error);
+  RunLocalBatch(options_);
+  BatchStatus st = ReadBatchStatus(options_.out_dir);
+  EXPECT_EQ(st.total, 9);
+  EXPECT_EQ(st.done, 5);
+  EXPECT_EQ(st.failed, 3);
+  EXPECT_EQ(st.duplicate, 1);
+  EXPECT_EQ(st.pending, 0);
+  EXPECT_EQ(st.failures.size(), 3u);
+  fs::remove(FilmDir("a.mp4") + "/a.semantic.hjif");  // an output lost: no longer done
+  st = ReadBatchStatus(options_.out_dir);
+  EXPECT_EQ(st.done, 4);
+  EXPECT_EQ(st.pending, 1);
+  EXPECT_NE(st.ToText().find("9 films: 4 done, 3 failed, 1 duplicate, 0 running, 1 pending"),
+            std::string::npos);
+  // ... and a re-run redoes it.
+  const BatchSummary s = RunLocalBatch(options_);
+  EXPECT_EQ(Find(s, "a.mp4")->status, FilmStatus::kDone);
+}
+
+TEST_F(BatchTest, ShardsPartitionTheLibraryAndMatchAnUnshardedRun) {
+  RunLocalBatch(options_);
+  const auto unsharded = OutputFiles(options_.out_dir);
+
+  BatchOptions sharded = options_;
+  sharded.out_dir = dir_.path() + "/out-sharded";
+  sharded.shard_count = 3;
+  std::multiset<std::string> seen;
+  for (int i = 0; i < 3; ++i) {
+    sharded.shard_index = i;
+    const BatchSummary s = RunLocalBatch(sharded);
+    for (const FilmOutcome& f : s.films) seen.insert(f.path);
+    EXPECT_TRUE(
+        fs::exists(sharded.out_dir + "/.batch/shards/summary-" + std::to_string(i) + "-of-3.json"));
+    const FilmOutcome* dup = Find(s, lib_.duplicate);
+    if (dup != nullptr) {
+      EXPECT_NE(Find(s, "a.mp4"), nullptr);  // a duplicate goes with its original
+    }
+  }
+  EXPECT_EQ(static_cast<int>(seen.size()), lib_.total());
+  EXPECT_EQ(std::set<std::string>(seen.begin(), seen.end()).size(), seen.size());  // disjoint
+  EXPECT_EQ(OutputFiles(sharded.out_dir), unsharded);  // same relative names, same bytes
+}
+
+TEST_F(BatchTest, ManifestLibraryIsEquivalentToFolder) {
+  WriteFile(dir_.path() + "/lib.csv",
+            "title,path\nA,library/a.mp4\nJP,library/日本.mkv\nGone,library/missing.mp4\n");
+  options_.library = dir_.path() + "/lib.csv";
+  const BatchSummary s = RunLocalBatch(options_);
+  ASSERT_EQ(s.films.size(), 3u);
+  EXPECT_EQ(Find(s, "a.mp4")->status, FilmStatus::kDone);
+  EXPECT_EQ(Find(s, "日本.mkv")->status, FilmStatus::kDone);
+  EXPECT_NE(Find(s, "missing.mp4")->reason.find("cannot stat"), std::string::npos);
+}
+
+TEST(BatchOptionsTest, CheckRejectsBadOptions) {
+  BatchOptions o;
+  o.library = "lib";
+  o.out_dir = "out";
+  EXPECT_NO_THROW(o.Check());
+  BatchOptions bad = o;
+  bad.models = {};
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad = o;
+  bad.models = {"../evil"};
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad = o;
+  bad.shard_index = 2;
+  bad.shard_count = 2;
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad = o;
+  bad.jobs = -1;
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad = o;
+  bad.out_dir = "";
+  EXPECT_THROW(bad.Check(), UsageError);
+}
+
+TEST(BatchOptionsTest, StepKeysSeparateEstimateFromHapticsSettings) {
+  BatchOptions a;
+  BatchOptions b = a;
+  b.haptics_args = {"--gain", "2"};
+  EXPECT_EQ(EstimateStepKey(a), EstimateStepKey(b));
+  EXPECT_NE(HapticsStepKey(a, "cinematic"), HapticsStepKey(b, "cinematic"));
+  EXPECT_NE(HapticsStepKey(a, "cinematic"), HapticsStepKey(a, "semantic"));
+  EXPECT_NE(SettingsHash(a), SettingsHash(b));
+  b = a;
+  b.estimate_args = {"--fast"};
+  EXPECT_NE(EstimateStepKey(a), EstimateStepKey(b));
+  EXPECT_NE(HapticsStepKey(a, "cinematic"), HapticsStepKey(b, "cinematic"));
+}
+
+}  // namespace
+}  // namespace hapcine::batch

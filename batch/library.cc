@@ -1,0 +1,199 @@
+#include "batch/library.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "batch/content_hash.h"
+#include "core/error.h"
+
+namespace hapcine::batch {
+namespace fs = std::filesystem;
+namespace {
+
+std::string Lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string Trim(const std::string& s) {
+  size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(b, e - b);
+}
+
+std::string Absolute(const fs::path& p) {
+  std::error_code ec;
+  fs::path abs = fs::absolute(p, ec);
+  if (ec) abs = p;
+  return abs.lexically_normal().string();
+}
+
+// Splits one CSV line into fields (RFC 4180 quoting, no embedded newlines).
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.push_back(field);
+      field.clear();
+    } else if (c != '\r') {
+      field += c;
+    }
+  }
+  fields.push_back(field);
+  return fields;
+}
+
+std::vector<std::string> ReadManifest(const fs::path& manifest) {
+  std::ifstream in(manifest);
+  if (!in) throw Error(manifest.string(), "cannot open manifest");
+  const fs::path base = manifest.parent_path();
+  const bool csv = Lower(manifest.extension().string()) == ".csv";
+  std::vector<std::string> paths;
+  std::string line;
+  int line_no = 0;
+  int path_column = -1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line = line.substr(3);  // BOM
+    if (csv) {
+      if (Trim(line).empty()) continue;
+      std::vector<std::string> fields = SplitCsvLine(line);
+      if (path_column < 0) {
+        for (size_t i = 0; i < fields.size(); ++i) {
+          if (Lower(Trim(fields[i])) == "path") path_column = static_cast<int>(i);
+        }
+        if (path_column < 0) {
+          throw Error(manifest.string() + ":" + std::to_string(line_no),
+                      "CSV manifest needs a header row with a 'path' column");
+        }
+        continue;
+      }
+      if (static_cast<size_t>(path_column) >= fields.size()) {
+        throw Error(manifest.string() + ":" + std::to_string(line_no), "row has no 'path' field");
+      }
+      line = fields[path_column];
+    }
+    const std::string entry = Trim(line);
+    if (entry.empty() || (!csv && entry[0] == '#')) continue;
+    fs::path p(entry);
+    if (p.is_relative()) p = base / p;
+    paths.push_back(Absolute(p));
+  }
+  return paths;
+}
+
+std::vector<std::string> ScanFolder(const fs::path& folder) {
+  std::vector<std::string> paths;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec);
+  if (ec) throw Error(folder.string(), "cannot list folder: " + ec.message());
+  for (; it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (ec) throw Error(folder.string(), "cannot list folder: " + ec.message());
+    const fs::path& p = it->path();
+    const std::string name = p.filename().string();
+    if (!name.empty() && name[0] == '.') {
+      if (it->is_directory(ec)) it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file(ec)) continue;  // follows symlinks
+    std::string ext = p.extension().string();
+    if (!ext.empty()) ext = ext.substr(1);
+    if (IsVideoExtension(ext)) paths.push_back(Absolute(p));
+  }
+  return paths;
+}
+
+}  // namespace
+
+bool IsVideoExtension(const std::string& extension) {
+  static const std::set<std::string> kVideo = {"mp4", "m4v",  "mov", "mkv", "webm", "avi",
+                                               "mpg", "mpeg", "m2v", "ts",  "m2ts", "mts",
+                                               "wmv", "flv",  "3gp", "ogv", "vob",  "mxf"};
+  return kVideo.count(Lower(extension)) > 0;
+}
+
+std::vector<std::string> ListLibrary(const std::string& library) {
+  std::error_code ec;
+  const fs::path root(library);
+  if (!fs::exists(root, ec)) throw Error(library, "no such file or folder");
+  std::vector<std::string> paths =
+      fs::is_directory(root, ec) ? ScanFolder(root) : ReadManifest(root);
+  std::sort(paths.begin(), paths.end());
+  paths.erase(std::unique(paths.begin(), paths.end()), paths.end());
+  return paths;
+}
+
+std::string FileStem(const std::string& path) { return fs::path(path).stem().string(); }
+
+std::string FilmId(const std::string& absolute_path) {
+  std::string stem = FileStem(absolute_path);
+  std::string safe;
+  for (char c : stem) {
+    const auto u = static_cast<unsigned char>(c);
+    safe += (u < 0x20 || u == 0x7f || c == '/') ? '_' : c;
+  }
+  if (safe.empty()) safe = "film";
+  if (safe[0] == '.') safe[0] = '_';
+  if (safe.size() > 80) {
+    size_t cut = 80;
+    // Back up to a UTF-8 lead byte so a multi-byte character is never split.
+    while (cut > 0 && (static_cast<unsigned char>(safe[cut]) & 0xC0) == 0x80) --cut;
+    safe.resize(cut);
+  }
+  return safe + "-" + Fnv1a64Hex(absolute_path).substr(0, 8);
+}
+
+std::vector<std::string> SplitArgs(const std::string& text) {
+  std::vector<std::string> words;
+  std::string word;
+  bool in_word = false;
+  char quote = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quote) {
+      if (c == quote) {
+        quote = 0;
+      } else if (c == '\\' && quote == '"' && i + 1 < text.size()) {
+        word += text[++i];
+      } else {
+        word += c;
+      }
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+      in_word = true;
+    } else if (c == '\\' && i + 1 < text.size()) {
+      word += text[++i];
+      in_word = true;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      if (in_word) words.push_back(word);
+      word.clear();
+      in_word = false;
+    } else {
+      word += c;
+      in_word = true;
+    }
+  }
+  if (quote) throw UsageError("unterminated quote in arguments: " + text);
+  if (in_word) words.push_back(word);
+  return words;
+}
+
+}  // namespace hapcine::batch

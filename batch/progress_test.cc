@@ -1,0 +1,57 @@
+#include "batch/progress.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace hapcine::batch {
+namespace {
+
+TEST(ProgressTest, EtaUsesOnlyWorkedFilmsAndWorkers) {
+  EXPECT_LT(ProgressReporter::Eta(0, 0.0, 10, 2), 0.0);  // unknown before any film was worked
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(2, 20.0, 10, 2), 50.0);
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(2, 20.0, 0, 2), 0.0);
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(1, 5.0, 3, 0), 15.0);  // workers clamped to 1
+}
+
+TEST(ProgressTest, FormatDuration) {
+  EXPECT_EQ(FormatDuration(4.24), "4.2s");
+  EXPECT_EQ(FormatDuration(192), "3m12s");
+  EXPECT_EQ(FormatDuration(3720), "1h02m");
+  EXPECT_EQ(FormatDuration(-1), "?");
+  EXPECT_EQ(FormatDuration(0.0 / 0.0), "?");
+}
+
+TEST(ProgressTest, LinesModePrintsOneLinePerFilmWithReason) {
+  std::ostringstream out;
+  ProgressReporter p(out, ProgressReporter::Mode::kLines, 2, 1);
+  p.Finished("a-1234abcd", "done", 2.0, false, "");
+  p.Finished("b-1234abcd", "failed", 0.5, false, "estimate: exit 1: bad");
+  p.Close();
+  EXPECT_EQ(out.str(),
+            "batch: [1/2] done a-1234abcd (2.0s)\n"
+            "batch: [2/2] failed b-1234abcd (0.5s): estimate: exit 1: bad\n");
+}
+
+TEST(ProgressTest, BarModeRedrawsInPlace) {
+  std::ostringstream out;
+  ProgressReporter p(out, ProgressReporter::Mode::kBar, 4, 2);
+  p.Finished("a", "done", 2.0, false, "");
+  p.Close();
+  const std::string s = out.str();
+  EXPECT_NE(s.find("\r\033[K[#######.......................] 1/4"), std::string::npos) << s;
+  EXPECT_NE(s.find("ETA 3.0s"), std::string::npos) << s;
+  EXPECT_EQ(s.back(), '\n');
+}
+
+TEST(ProgressTest, QuietModePrintsNothing) {
+  std::ostringstream out;
+  ProgressReporter p(out, ProgressReporter::Mode::kQuiet, 1, 1);
+  p.Finished("a", "done", 1.0, false, "");
+  p.Tick();
+  p.Close();
+  EXPECT_TRUE(out.str().empty());
+}
+
+}  // namespace
+}  // namespace hapcine::batch

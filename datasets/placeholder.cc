@@ -1,1 +1,0 @@
-// placeholder so the library target exists until the stage lands

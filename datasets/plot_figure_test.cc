@@ -1,0 +1,86 @@
+#include "datasets/plot_figure.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+
+namespace hapcine {
+namespace {
+
+TEST(PlotFigureTest, NiceTicksAreRoundAndCoverTheRange) {
+  const auto t = NiceTicks(0.0, 10.0, 5);
+  ASSERT_EQ(t.size(), 6u);
+  EXPECT_EQ(t.front(), 0.0);
+  EXPECT_EQ(t.back(), 10.0);
+  const auto u = NiceTicks(-0.013, 0.042, 6);
+  ASSERT_GE(u.size(), 3u);
+  EXPECT_NEAR(u[1] - u[0], 0.01, 1e-12);
+  EXPECT_TRUE(NiceTicks(1, 1).empty());
+  EXPECT_TRUE(NiceTicks(0, std::numeric_limits<double>::infinity()).empty());
+}
+
+TEST(PlotFigureTest, TickLabels) {
+  EXPECT_EQ(TickLabel(2.5, 0.5), "2.5");
+  EXPECT_EQ(TickLabel(10, 5), "10");
+  EXPECT_EQ(TickLabel(-0.0, 1), "0");
+  EXPECT_EQ(TickLabel(0.02, 0.01), "0.02");
+}
+
+TEST(PlotFigureTest, FlatAndEmptyDataGetAUsableRange) {
+  Figure fig;
+  PlotPanel p;
+  PlotSeries s;
+  s.x = {0, 1, 2};
+  s.y = {5, 5, 5};
+  p.series.push_back(s);
+  fig.panels.push_back(p);
+  fig.panels.push_back(PlotPanel());  // no data at all
+  const FigureLayout L = LayoutFigure(fig);
+  EXPECT_LT(L.panels[0].y_min, 5);
+  EXPECT_GT(L.panels[0].y_max, 5);
+  EXPECT_LT(L.panels[1].y_min, L.panels[1].y_max);
+  EXPECT_TRUE(std::isfinite(L.panels[0].MapY(5)));
+  EXPECT_GT(L.height_px, 0);
+}
+
+TEST(PlotFigureTest, BadFiguresAreUsageErrors) {
+  EXPECT_THROW(LayoutFigure(Figure()), UsageError);
+  Figure fig;
+  PlotPanel p;
+  PlotSeries s;
+  s.x = {0, 1};
+  s.y = {0};
+  p.series.push_back(s);
+  fig.panels.push_back(p);
+  EXPECT_THROW(LayoutFigure(fig), UsageError);
+}
+
+TEST(PlotFigureTest, NonFinitePointsSplitRunsAndLongRunsAreDecimated) {
+  Figure fig;
+  PlotPanel p;
+  PlotSeries s;
+  for (int i = 0; i < 100000; ++i) {
+    s.x.push_back(i * 1e-3);
+    s.y.push_back(i == 50000 ? std::nan("") : std::sin(i * 1e-2));
+  }
+  p.series.push_back(s);
+  fig.panels.push_back(p);
+  const FigureLayout L = LayoutFigure(fig);
+  const auto runs = SeriesRuns(s, L, L.panels[0].plot, 8000);
+  ASSERT_EQ(runs.size(), 2u);
+  for (const auto& r : runs) {
+    EXPECT_LE(r.size(), 4 * static_cast<size_t>(L.panels[0].plot.w) + 8);
+    EXPECT_GT(r.size(), 100u);
+  }
+  // The envelope keeps the extremes.
+  double mx = -1;
+  for (const auto& [x, y] : runs[0]) mx = std::max(mx, y);
+  EXPECT_NEAR(mx, 1.0, 1e-3);
+  EXPECT_EQ(SeriesRuns(s, L, L.panels[0].plot, 1u << 30)[0].size(), 50000u);
+}
+
+}  // namespace
+}  // namespace hapcine

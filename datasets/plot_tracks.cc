@@ -1,0 +1,176 @@
+#include "datasets/plot_tracks.h"
+
+#include <cmath>
+#include <map>
+
+#include "core/csv.h"
+#include "core/error.h"
+#include "core/rotation.h"
+
+namespace hapcine {
+namespace {
+
+struct PathSeries {
+  std::vector<double> t, pan, tilt, roll, x, y, z, fov;
+};
+
+PathSeries Extract(const CameraPath& p, bool relative, double scale) {
+  PathSeries s;
+  if (p.frames.empty()) return s;
+  const Eigen::Quaterniond q0_inv = p.frames[0].world_from_cam.conjugate();
+  const Eigen::Vector3d c0 = p.frames[0].center;
+  for (const auto& f : p.frames) {
+    Eigen::Quaterniond q = f.world_from_cam;
+    Eigen::Vector3d c = f.center;
+    if (relative) {
+      q = q0_inv * q;
+      c = q0_inv * (c - c0);
+    }
+    c *= scale;
+    const PanTiltRoll a = PanTiltRollFromQuaternion(q);
+    s.t.push_back(f.time_s);
+    s.pan.push_back(a.pan_deg);
+    s.tilt.push_back(a.tilt_deg);
+    s.roll.push_back(a.roll_deg);
+    s.x.push_back(c.x());
+    s.y.push_back(c.y());
+    s.z.push_back(c.z());
+    s.fov.push_back(f.fov_deg);
+  }
+  return s;
+}
+
+// Least-squares s minimising sum |g_t - s e_t|^2 over frames with equal
+// indices (relative positions); 1 when undefined (no motion).
+double EstimateScale(const CameraPath& gt, const CameraPath& est) {
+  std::map<int, Eigen::Vector3d> g;
+  const Eigen::Quaterniond g0 = gt.frames[0].world_from_cam.conjugate();
+  for (const auto& f : gt.frames) g[f.frame] = g0 * (f.center - gt.frames[0].center);
+  const Eigen::Quaterniond e0 = est.frames[0].world_from_cam.conjugate();
+  double num = 0, den = 0;
+  for (const auto& f : est.frames) {
+    auto it = g.find(f.frame);
+    if (it == g.end()) continue;
+    const Eigen::Vector3d e = e0 * (f.center - est.frames[0].center);
+    num += it->second.dot(e);
+    den += e.squaredNorm();
+  }
+  const double s = den > 1e-300 ? num / den : 1.0;
+  return std::isfinite(s) && s > 0 ? s : 1.0;
+}
+
+void AddSeries(PlotPanel* panel, const std::string& name, const std::vector<double>& t,
+               const std::vector<double>& v, int color, bool dashed) {
+  PlotSeries s;
+  s.name = name;
+  s.x = t;
+  s.y = v;
+  s.color = PaletteColor(color);
+  s.dashed = dashed;
+  panel->series.push_back(std::move(s));
+}
+
+}  // namespace
+
+void CameraPlotOptions::Check() const {
+  if (scale_estimate && !relative_to_first) {
+    throw UsageError("scaling the estimate needs positions relative to the first frame");
+  }
+}
+
+Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
+                        const CameraPlotOptions& options) {
+  options.Check();
+  if (gt.frames.empty()) throw UsageError("camera path has no frames");
+  if (est && est->frames.empty()) throw UsageError("estimated camera path has no frames");
+  Figure fig;
+  fig.title = options.title;
+  fig.panels.resize(3);
+  PlotPanel& rot = fig.panels[0];
+  PlotPanel& pos = fig.panels[1];
+  PlotPanel& fov = fig.panels[2];
+  rot.title = "rotation (pan, tilt, roll)";
+  rot.y_label = "deg";
+  pos.title = "camera centre";
+  pos.y_label = "units";
+  fov.title = "horizontal field of view";
+  fov.y_label = "deg";
+  fov.height_weight = 0.8;
+
+  struct Source {
+    const CameraPath* path;
+    std::string suffix;
+    std::string position_suffix;  // notes the estimate's scale factor
+    bool dashed;
+    double scale;
+  };
+  const std::string gt_suffix = est ? " (GT)" : "";
+  std::vector<Source> sources = {{&gt, gt_suffix, gt_suffix, false, 1.0}};
+  if (est) {
+    const double s =
+        options.relative_to_first && options.scale_estimate ? EstimateScale(gt, *est) : 1.0;
+    std::string position_suffix = " (est)";
+    if (s != 1.0) position_suffix = " (est x" + FormatDouble(std::round(s * 1000) / 1000) + ")";
+    sources.push_back({est, " (est)", position_suffix, true, s});
+  }
+  for (const auto& src : sources) {
+    const PathSeries s = Extract(*src.path, options.relative_to_first, src.scale);
+    AddSeries(&rot, "pan" + src.suffix, s.t, s.pan, 0, src.dashed);
+    AddSeries(&rot, "tilt" + src.suffix, s.t, s.tilt, 1, src.dashed);
+    AddSeries(&rot, "roll" + src.suffix, s.t, s.roll, 2, src.dashed);
+    AddSeries(&pos, "x" + src.position_suffix, s.t, s.x, 3, src.dashed);
+    AddSeries(&pos, "y" + src.position_suffix, s.t, s.y, 4, src.dashed);
+    AddSeries(&pos, "z" + src.position_suffix, s.t, s.z, 5, src.dashed);
+    AddSeries(&fov, "fov" + src.suffix, s.t, s.fov, 0, src.dashed);
+  }
+  return fig;
+}
+
+Figure HapticTrackFigure(const HapticTrack& track, const std::string& title) {
+  if (track.samples.empty()) throw UsageError("haptic track has no samples");
+  Figure fig;
+  fig.title = title;
+  std::vector<double> t;
+  for (const auto& s : track.samples) t.push_back(s.time_s);
+  const char* kTitles[kNumActuators] = {"head (H)", "left hand (LA)", "right hand (RA)"};
+  for (int a = 0; a < kNumActuators; ++a) {
+    PlotPanel panel;
+    panel.title = kTitles[a];
+    panel.y_label = "mm";
+    const char* axis[3] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> v;
+      for (const auto& s : track.samples) v.push_back(1000.0 * s.pos_m[a](k));
+      AddSeries(&panel, axis[k], t, v, k, false);
+    }
+    fig.panels.push_back(std::move(panel));
+  }
+  // Effect bands: runs of equal non-empty `effect`, each label its own colour.
+  PlotPanel line;
+  line.title = "effect";
+  line.show_y_axis = false;
+  line.height_weight = 0.55;
+  std::map<std::string, int> colors;
+  for (size_t i = 0; i < track.samples.size();) {
+    const auto& eff = track.samples[i].effect;
+    size_t j = i + 1;
+    while (j < track.samples.size() && track.samples[j].effect == eff) ++j;
+    if (eff && !eff->empty()) {
+      if (!colors.count(*eff)) colors[*eff] = static_cast<int>(colors.size());
+      PlotBand b;
+      b.x_begin = track.samples[i].time_s;
+      // The run lasts until the next sample starts (or one period past the last).
+      b.x_end = j < track.samples.size() ? track.samples[j].time_s
+                                         : track.samples[j - 1].time_s +
+                                               (track.rate_hz > 0 ? 1.0 / track.rate_hz : 0.0);
+      b.label = *eff;
+      b.color = PaletteColor(colors[*eff] + 1);
+      line.bands.push_back(b);
+    }
+    i = j;
+  }
+  if (!line.bands.empty()) fig.panels.push_back(std::move(line));
+  return fig;
+}
+
+}  // namespace hapcine

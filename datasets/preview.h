@@ -1,0 +1,34 @@
+#pragma once
+// `hapcine preview`: the film with an inset showing what the HapSeat's three
+// actuators do, so a haptic track can be judged without a seat.
+//
+// For each frame at time t, the inset has three panels (head, left hand,
+// right hand). Each panel is the actuator's 0.10 m workspace seen from above
+// (X to the right, Z backward = down in the panel) with a dot at G'_A(t) and
+// a fading trail of the last second, plus a vertical gauge for Y (up). The
+// video is re-encoded as H.264 MP4 (datasets/video_writer.h: written under a
+// temporary name, renamed when complete).
+
+#include <functional>
+#include <string>
+
+namespace hapcine {
+
+struct PreviewOptions {
+  std::string video;             // input film
+  std::string track;             // *.haptic.csv (default: <video stem>.haptic.csv)
+  std::string output;            // output .mp4
+  int max_side = 1280;           // longest side of the output, pixels (0: as decoded)
+  double inset_fraction = 0.45;  // inset width as a fraction of the frame width
+  double trail_s = 1.0;          // length of the trail
+  int crf = 20;                  // x264 quality
+  void Check() const;            // throws UsageError
+};
+
+// Renders; `progress(done, total_estimate)` is called every few frames.
+// Returns the number of frames written. Throws hapcine::Error naming the
+// file on bad input; never leaves a partial output.
+int RenderPreview(const PreviewOptions& options,
+                  const std::function<void(int, int)>& progress = {});
+
+}  // namespace hapcine

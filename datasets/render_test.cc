@@ -1,0 +1,188 @@
+#include "datasets/render.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "core/error.h"
+#include "core/rotation.h"
+#include "datasets/scene_texture.h"
+
+namespace hapcine::synth {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+// A dark room with nothing lit but the albedo (ambient 1, no lights, no
+// corner darkening near the middle), so pixel values are exact coverages.
+std::shared_ptr<Scene> DarkRoom() {
+  auto s = std::make_shared<Scene>();
+  s->room.lo = Vector3d(-50, -50, -50);
+  s->room.hi = Vector3d(50, 50, 50);
+  s->textures.push_back(std::make_shared<Texture>(
+      [](double, double) { return Rgb(0.1f, 0.1f, 0.1f); }, 100, 100, 1.0, false, 1));
+  s->textures.push_back(std::make_shared<Texture>(
+      [](double, double) { return Rgb(0.9f, 0.9f, 0.9f); }, 1, 1, 0.1, true, 1));
+  for (int& t : s->room.texture) t = 0;
+  s->ambient = 1;
+  return s;
+}
+
+// Coverage-weighted centroid of the bright object, continuous pixel coords.
+Vector2d BrightCentroid(const cv::Mat& img) {
+  double sw = 0, sx = 0, sy = 0;
+  for (int y = 0; y < img.rows; ++y) {
+    for (int x = 0; x < img.cols; ++x) {
+      // Texture bytes: 0.1 -> 26, 0.9 -> 230 (rounded), rendered as bytes.
+      const double w = (img.at<cv::Vec3f>(y, x)[1] - 26.0) / (230.0 - 26.0);
+      sw += w;
+      sx += w * (x + 0.5);
+      sy += w * (y + 0.5);
+    }
+  }
+  return Vector2d(sx / sw, sy / sw);
+}
+
+TEST(CameraRayDirection, PixelCentreConvention) {
+  // Pixel (i, j) has its centre at (i + 0.5, j + 0.5); the principal point
+  // is (W/2, H/2); image y goes down while camera +Y goes up.
+  const double f = 100;
+  const Vector3d d = CameraRayDirection(1.5, 0.5, 4, 2, f);
+  EXPECT_DOUBLE_EQ(d.x(), -0.5 / f);
+  EXPECT_DOUBLE_EQ(d.y(), 0.5 / f);
+  EXPECT_DOUBLE_EQ(d.z(), -1);
+  const Vector3d c = CameraRayDirection(2, 1, 4, 2, f);
+  EXPECT_EQ(c, Vector3d(0, 0, -1));
+}
+
+TEST(CameraView, FocalFromHorizontalFov) {
+  CameraView v;
+  v.width = 1280;
+  v.fov_deg = 90;
+  EXPECT_NEAR(v.focal_px(), 640, 1e-9);
+}
+
+TEST(ProjectToImage, InvertsRayDirection) {
+  CameraView v;
+  v.width = 640;
+  v.height = 360;
+  v.fov_deg = 47;
+  v.center = Vector3d(1, 2, 3);
+  v.world_from_cam = QuaternionFromPanTiltRoll({30, -12, 8});
+  for (double x : {0.0, 17.25, 320.0, 639.9}) {
+    for (double y : {0.0, 100.5, 359.0}) {
+      const Vector3d d = v.world_from_cam * CameraRayDirection(x, y, v.width, v.height,
+                                                               v.focal_px());
+      Vector2d xy;
+      ASSERT_TRUE(ProjectToImage(v, v.center + 7.3 * d, &xy));
+      EXPECT_NEAR(xy.x(), x, 1e-9);
+      EXPECT_NEAR(xy.y(), y, 1e-9);
+    }
+  }
+  // Behind the camera: no projection.
+  Vector2d xy;
+  EXPECT_FALSE(ProjectToImage(v, v.center - v.world_from_cam * Vector3d(0, 0, -1), &xy));
+}
+
+TEST(RenderView, FrontoParallelSquareLandsAtProjectedPixel) {
+  // A square facing the camera projects to a square centred exactly on the
+  // projection of its centre; with supersampling the rendered coverage
+  // centroid must agree to a small fraction of a pixel.
+  auto scene = DarkRoom();
+  BoxPrim b;
+  b.center = Vector3d(0.37, -0.213, -5);
+  b.half = Vector3d(0.3, 0.25, 0.01);
+  for (int& t : b.texture) t = 1;
+  scene->boxes.push_back(b);
+  scene->groups.push_back({{}, {}, {0}, {}, {}});
+  scene->UpdateGroupBounds();
+  CameraView v;
+  v.width = 160;
+  v.height = 120;
+  v.fov_deg = 60;
+  RenderOptions o;
+  o.supersample = 8;
+  o.adaptive = true;
+  const cv::Mat img = RenderView(*scene, v, o);
+  Vector2d expected;
+  ASSERT_TRUE(ProjectToImage(v, b.center + Vector3d(0, 0, b.half.z()), &expected));
+  const Vector2d got = BrightCentroid(img);
+  // Coverage of axis-aligned edges is quantised to 1/8 px by the 8x8 grid.
+  EXPECT_NEAR(got.x(), expected.x(), 0.04);
+  EXPECT_NEAR(got.y(), expected.y(), 0.04);
+  // +X right and +Y up: the square (right of and below the axis) is in the
+  // lower-right quadrant.
+  EXPECT_GT(got.x(), 80);
+  EXPECT_GT(got.y(), 60);
+}
+
+TEST(RenderView, RotatedCameraSeesSphereOnItsAxisAtImageCentre) {
+  auto scene = DarkRoom();
+  CameraView v;
+  v.width = 96;
+  v.height = 64;
+  v.fov_deg = 40;
+  v.center = Vector3d(0.5, 1, 2);
+  // (Room corners, whose shading darkens, stay out of view.)
+  v.world_from_cam = QuaternionFromPanTiltRoll({15, -10, 30});
+  // On the optical axis: a circle centred on the principal point.
+  scene->spheres.push_back({v.center + v.world_from_cam * Vector3d(0, 0, -6), 0.4, 1});
+  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->UpdateGroupBounds();
+  RenderOptions o;
+  o.supersample = 4;
+  const Vector2d got = BrightCentroid(RenderView(*scene, v, o));
+  EXPECT_NEAR(got.x(), 48, 0.02);
+  EXPECT_NEAR(got.y(), 32, 0.02);
+
+  // Up and to the right in the camera frame: upper-right of the image.
+  scene->spheres[0].center = v.center + v.world_from_cam * Vector3d(1.0, 0.6, -6);
+  scene->UpdateGroupBounds();
+  const Vector2d moved = BrightCentroid(RenderView(*scene, v, o));
+  EXPECT_GT(moved.x(), 60);
+  EXPECT_LT(moved.y(), 25);
+}
+
+TEST(RenderView, DeterministicAcrossThreadCounts) {
+  auto scene = DarkRoom();
+  scene->spheres.push_back({Vector3d(0.2, 0.1, -4), 0.5, 1});
+  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->UpdateGroupBounds();
+  CameraView v;
+  v.width = 64;
+  v.height = 48;
+  RenderOptions one, many;
+  one.threads = 1;
+  many.threads = 3;
+  const cv::Mat a = RenderView(*scene, v, one), b = RenderView(*scene, v, many);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0);
+}
+
+TEST(RenderOptions, RejectsBadSupersample) {
+  RenderOptions o;
+  o.supersample = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.supersample = 9;
+  EXPECT_THROW(o.Check(), UsageError);
+}
+
+TEST(Texture, MipmapsAverageAndWrap) {
+  // A 2-texel-period checkerboard averages to grey in the coarser levels,
+  // and wrapped lookups repeat.
+  Texture t([](double u, double v) {
+              const int i = static_cast<int>(std::floor(u * 10)), j = static_cast<int>(std::floor(v * 10));
+              return ((i + j) & 1) ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+            },
+            1.6, 1.6, 0.1, true, 1);
+  ASSERT_EQ(t.width_px(), 16);
+  EXPECT_GE(t.levels(), 5);
+  EXPECT_NEAR(t.Texel(1, 3, 5)[0], 0.5, 0.01);
+  EXPECT_NEAR(t.SampleTrilinear(0.05, 0.05, 1.6)[0], 0.5, 0.01);  // a whole-texture footprint
+  const Rgb a = t.SampleTrilinear(0.33, 0.71, 0.01), b = t.SampleTrilinear(0.33 + 1.6, 0.71 - 3.2, 0.01);
+  EXPECT_NEAR((a - b).norm(), 0, 1e-6);
+}
+
+}  // namespace
+}  // namespace hapcine::synth

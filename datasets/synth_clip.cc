@@ -1,0 +1,269 @@
+#include "datasets/synth_clip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <sstream>
+#include <system_error>
+
+#include "core/error.h"
+#include "core/rotation.h"
+#include "datasets/video_writer.h"
+
+namespace hapcine {
+namespace {
+
+namespace fs = std::filesystem;
+using synth::CameraState;
+using synth::CameraView;
+using synth::PresetInfo;
+
+synth::ClipTiming Timing(const SynthOptions& o) { return {o.duration_s, o.fps}; }
+
+std::string Num(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+// Views averaged into frame `frame`: one at the frame time, or, for
+// motion-blurred presets, enough sub-frame views across the shutter interval
+// (centred on the frame time) that consecutive ones move the image by at most
+// ~2.5 px. The ground truth is the pose at the centre of the exposure.
+std::vector<CameraView> FrameViews(const PresetInfo& p, int frame, const SynthOptions& o) {
+  const synth::ClipTiming timing = Timing(o);
+  const double t = timing.FrameTime(frame);
+  if (!p.motion_blur) {
+    return {SynthView(PresetCameraAt(p, t, timing, o.seed), o.width, o.height)};
+  }
+  const double half = 0.5 * o.shutter / o.fps;
+  const CameraState a = PresetCameraAt(p, t - half, timing, o.seed);
+  const CameraState b = PresetCameraAt(p, t + half, timing, o.seed);
+  const double f = FocalPxFromFovDeg(std::max(a.fov_deg, b.fov_deg), o.width);
+  const double disp_px = DegToRad(AngleBetweenDeg(a.world_from_cam(), b.world_from_cam())) * f +
+                         std::abs(FocalPxFromFovDeg(a.fov_deg, o.width) -
+                                  FocalPxFromFovDeg(b.fov_deg, o.width)) +
+                         (a.center - b.center).norm() * f;  // worst case: 1 m depth
+  const int n = std::clamp(static_cast<int>(std::ceil(disp_px / 2.5)), 1, 48);
+  std::vector<CameraView> views;
+  for (int k = 0; k < n; ++k) {
+    const double tk = n == 1 ? t : t - half + (k + 0.5) / n * 2 * half;
+    views.push_back(SynthView(PresetCameraAt(p, tk, timing, o.seed), o.width, o.height));
+  }
+  return views;
+}
+
+bool SameViews(const std::vector<CameraView>& a, const std::vector<CameraView>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].center != b[i].center || a[i].fov_deg != b[i].fov_deg ||
+        a[i].world_from_cam.coeffs() != b[i].world_from_cam.coeffs()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void PrepareOutputDir(const std::string& dir) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st)) throw Error(dir, "output path exists and is not a directory");
+    return;
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(dir, "cannot create output directory: " + ec.message());
+}
+
+}  // namespace
+
+void SynthOptions::Check() const {
+  if (width < 16 || height < 16 || width % 2 || height % 2 || width > 7680 || height > 4320) {
+    throw UsageError("width and height must be even and in [16, 7680] x [16, 4320]");
+  }
+  if (!(fps >= 1 && fps <= 240)) throw UsageError("fps must be in [1, 240]");
+  if (!(duration_s > 0 && duration_s <= 600)) throw UsageError("duration must be in (0, 600] s");
+  if (std::lround(duration_s * fps) < 2) throw UsageError("a clip needs at least 2 frames");
+  if (supersample < 1 || supersample > 8) throw UsageError("supersample must be in [1, 8]");
+  if (jobs < 0) throw UsageError("jobs must be >= 0");
+  if (crf < 0 || crf > 51 || noisy_crf < 0 || noisy_crf > 51) {
+    throw UsageError("crf must be in [0, 51]");
+  }
+  if (!(shutter > 0 && shutter <= 1)) throw UsageError("shutter must be in (0, 1]");
+  static const char* kX264[] = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+                                "medium",    "slow",      "slower",   "veryslow", "placebo"};
+  if (std::find(std::begin(kX264), std::end(kX264), x264_preset) == std::end(kX264)) {
+    throw UsageError("unknown x264 preset '" + x264_preset + "'");
+  }
+}
+
+std::vector<std::string> SynthPresetNames() {
+  std::vector<std::string> out;
+  for (const PresetInfo& p : synth::SynthPresets()) out.push_back(p.name);
+  return out;
+}
+
+std::vector<std::string> SynthTable1PresetNames() {
+  std::vector<std::string> out;
+  for (const PresetInfo& p : synth::SynthPresets()) {
+    if (p.group == "table1") out.push_back(p.name);
+  }
+  return out;
+}
+
+std::vector<std::string> SynthHardPresetNames() {
+  std::vector<std::string> out;
+  for (const PresetInfo& p : synth::SynthPresets()) {
+    if (p.group == "hard") out.push_back(p.name);
+  }
+  return out;
+}
+
+std::string SynthPresetDescription(const std::string& preset) {
+  return synth::FindSynthPreset(preset).description;
+}
+
+CameraView SynthView(const CameraState& state, int width, int height) {
+  CameraView v;
+  v.center = state.center;
+  v.world_from_cam = state.world_from_cam();
+  v.fov_deg = state.fov_deg;
+  v.width = width;
+  v.height = height;
+  return v;
+}
+
+CameraPath SynthGroundTruth(const std::string& preset, const SynthOptions& options) {
+  options.Check();
+  const PresetInfo& p = synth::FindSynthPreset(preset);
+  const synth::ClipTiming timing = Timing(options);
+  const int n = timing.frames();
+  std::vector<CameraState> states(n);
+  for (int i = 0; i < n; ++i) {
+    states[i] = PresetCameraAt(p, timing.FrameTime(i), timing, options.seed);
+  }
+  CameraPath path;
+  auto& m = path.metadata;
+  m["width"] = std::to_string(options.width);
+  m["height"] = std::to_string(options.height);
+  m["fps"] = Num(options.fps);
+  m["preset"] = p.name;
+  m["generator"] = "hapcine synth";
+  m["seed"] = std::to_string(options.seed);
+  m["duration_s"] = Num(options.duration_s);
+  m["frames"] = std::to_string(n);
+  m["units"] = "m";
+  m["scene"] = p.scene == synth::SceneStyle::kLowTexture ? "hall_low_texture" : "hall";
+  m["pixel_centre"] = "i+0.5";  // pixel (i, j) centre at (i+0.5, j+0.5); principal point W/2 H/2
+  if (p.motion_blur) m["shutter"] = Num(options.shutter);
+  if (p.noise_sigma > 0) m["noise_sigma"] = Num(p.noise_sigma);
+  if (p.cut) m["cut_frames"] = std::to_string(PresetCutFrame(p, timing));
+  if (p.fade) {
+    const double u = timing.unit_s();
+    m["fade_out_s"] = Num(2.5 * u) + "-" + Num(3.5 * u);
+    m["black_s"] = Num(3.5 * u) + "-" + Num(4.0 * u);
+    m["fade_in_s"] = Num(4.0 * u) + "-" + Num(5.0 * u);
+  }
+  for (int i = 0; i < n; ++i) {
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = timing.FrameTime(i);
+    f.center = states[i].center;
+    f.world_from_cam = states[i].world_from_cam();
+    f.fov_deg = states[i].fov_deg;
+    f.focal_px = FocalPxFromFovDeg(states[i].fov_deg, options.width);
+    f.shot = states[i].shot;
+    // The model of a frame is the motion that brought the camera there from
+    // the previous frame of the same shot (the first frame of a shot takes
+    // the motion to the next one).
+    int a = i - 1, b = i;
+    if (a < 0 || states[a].shot != states[b].shot) {
+      a = i;
+      b = i + 1;
+    }
+    f.model = (b < n && states[a].shot == states[b].shot) ? synth::MotionClass(states[a], states[b])
+                                                          : "static";
+    path.frames.push_back(std::move(f));
+  }
+  return path;
+}
+
+std::shared_ptr<const synth::Scene> SynthScene(uint32_t seed, synth::SceneStyle style,
+                                               int threads) {
+  static std::mutex mutex;
+  static std::map<std::pair<uint32_t, int>, std::shared_ptr<const synth::Scene>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto key = std::make_pair(seed, static_cast<int>(style));
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  if (cache.size() >= 2) cache.clear();  // bounded memory: a few hundred MB at most
+  auto scene = synth::BuildHallScene(seed, style, threads);
+  cache[key] = scene;
+  return scene;
+}
+
+SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
+                      const std::string& out_dir) {
+  options.Check();
+  const PresetInfo& p = synth::FindSynthPreset(preset);
+  const CameraPath truth = SynthGroundTruth(preset, options);
+  PrepareOutputDir(out_dir);
+  SynthResult result;
+  result.video_path = (fs::path(out_dir) / (p.name + ".mp4")).string();
+  result.camera_path = (fs::path(out_dir) / (p.name + ".camera.csv")).string();
+  result.frames = static_cast<int>(truth.frames.size());
+
+  VideoWriterOptions vopt;
+  vopt.crf = p.high_crf ? options.noisy_crf : options.crf;
+  vopt.preset = options.x264_preset;
+  VideoWriter writer;
+  writer.Open(result.video_path, options.width, options.height, options.fps, vopt);
+
+  const auto scene = SynthScene(options.seed, p.scene, options.jobs);
+  synth::RenderOptions ropt;
+  ropt.supersample = options.supersample;
+  ropt.adaptive = options.adaptive;
+  ropt.threads = options.jobs;
+  synth::RenderOptions blur_opt = ropt;
+  blur_opt.supersample = 1;  // averaging many sub-frames already antialiases
+
+  const synth::ClipTiming timing = Timing(options);
+  std::vector<CameraView> prev_views;
+  cv::Mat clean, frame_f, frame_8u, noise;
+  for (int i = 0; i < result.frames; ++i) {
+    std::vector<CameraView> views = FrameViews(p, i, options);
+    if (clean.empty() || !SameViews(views, prev_views)) {  // still frames are rendered once
+      clean = views.size() == 1 ? synth::RenderView(*scene, views[0], ropt)
+                                : synth::RenderAverage(*scene, views, blur_opt);
+      result.rendered_views += static_cast<int>(views.size());
+      prev_views = std::move(views);
+    }
+    const double gain = PresetBrightnessAt(p, timing.FrameTime(i), timing);
+    frame_f = gain == 1.0 ? clean : clean * gain;
+    if (p.noise_sigma > 0) {
+      noise.create(frame_f.size(), CV_32FC3);
+      cv::RNG rng((static_cast<uint64_t>(options.seed) << 32) ^ (0x9E3779B9ULL * (i + 1)));
+      rng.fill(noise, cv::RNG::NORMAL, 0, p.noise_sigma);
+      frame_f = frame_f + noise;
+    }
+    frame_f.convertTo(frame_8u, CV_8UC3);  // rounds and saturates
+    writer.Write(frame_8u);
+    if (options.progress) options.progress(p.name, i + 1, result.frames);
+  }
+  // Ground truth first, then the video; if the video cannot be committed the
+  // CSV goes too, so the pair is either complete or absent.
+  WriteCameraPathFile(truth, result.camera_path);
+  try {
+    writer.Close();
+  } catch (...) {
+    std::remove(result.camera_path.c_str());
+    throw;
+  }
+  return result;
+}
+
+}  // namespace hapcine

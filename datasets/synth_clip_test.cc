@@ -1,0 +1,120 @@
+#include "datasets/synth_clip.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "datasets/synth_test_util.h"
+
+namespace hapcine {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path TempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("hapcine_synth_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+SynthOptions Tiny() {
+  SynthOptions o;
+  o.width = 160;
+  o.height = 90;
+  o.duration_s = 7.0 / 12;  // 14 frames at 24 fps: 2 still, 10 moving, 2 still
+  o.x264_preset = "ultrafast";
+  return o;
+}
+
+TEST(SynthClip, WritesVideoAndMatchingGroundTruth) {
+  const fs::path dir = TempDir("ok") / "nested";  // created on demand
+  const SynthResult r = SynthClip("traveling", Tiny(), dir.string());
+  EXPECT_EQ(r.frames, 14);
+  ASSERT_TRUE(fs::exists(r.video_path));
+  ASSERT_TRUE(fs::exists(r.camera_path));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+  // "1 s" is 2 frames here: frames 0-2 (t <= 1/12 s) and 12-13 (t >= 6/12 s)
+  // are still and rendered once per run of identical poses.
+  EXPECT_EQ(r.rendered_views, 1 + 9 + 1);
+
+  const CameraPath gt = ReadCameraPathFile(r.camera_path);
+  ASSERT_EQ(gt.frames.size(), 14u);
+  EXPECT_EQ(gt.width(), 160);
+  EXPECT_EQ(gt.height(), 90);
+  EXPECT_DOUBLE_EQ(gt.fps(), 24);
+  EXPECT_EQ(gt.metadata.at("preset"), "traveling");
+  const testing::DecodedVideo video = testing::DecodeVideo(r.video_path);
+  int n = 0;
+  for (const cv::Mat& img : video.frames) {
+    EXPECT_EQ(img.cols, 160);
+    EXPECT_EQ(img.rows, 90);
+    EXPECT_NEAR(video.times_s[n], gt.frames[n].time_s, 1e-6);
+    ++n;
+  }
+  EXPECT_EQ(n, 14);
+  fs::remove_all(dir.parent_path());
+}
+
+TEST(SynthClip, FadeGoesBlackAndNoiseIsSeeded) {
+  const fs::path dir = TempDir("fade");
+  SynthOptions o = Tiny();
+  o.duration_s = 7.0 / 8;  // 21 frames; black from frame 11 to 12 (3.5/8 .. 4/8 s)
+  const SynthResult r = SynthClip("fade_to_black", o, dir.string());
+  std::vector<double> mean;
+  for (const cv::Mat& img : testing::DecodeVideo(r.video_path).frames) {
+    mean.push_back(cv::mean(img)[1]);
+  }
+  ASSERT_EQ(mean.size(), 21u);
+  EXPECT_GT(mean[0], 40);
+  EXPECT_LT(mean[11], 20);  // black (plus codec ringing)
+  EXPECT_GT(mean[20], 40);
+  fs::remove_all(dir);
+}
+
+TEST(SynthClip, RenderIsDeterministicInTheSeed) {
+  SynthOptions o = Tiny();
+  const auto& p = synth::FindSynthPreset("arcing");
+  const synth::ClipTiming timing{o.duration_s, o.fps};
+  const auto view = SynthView(synth::PresetCameraAt(p, 0.3, timing, o.seed), 96, 54);
+  synth::RenderOptions ro;
+  const cv::Mat a = synth::RenderView(*SynthScene(1, synth::SceneStyle::kTextured), view, ro);
+  const cv::Mat b = synth::RenderView(*synth::BuildHallScene(1, synth::SceneStyle::kTextured), view, ro);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0);
+  const cv::Mat c = synth::RenderView(*SynthScene(2, synth::SceneStyle::kTextured), view, ro);
+  EXPECT_GT(cv::norm(a, c, cv::NORM_L1) / a.total(), 1.0);  // another seed, other textures
+  // Rich texture: plenty of local contrast everywhere in the frame.
+  cv::Mat gray;
+  cv::cvtColor(a, gray, cv::COLOR_BGR2GRAY);
+  cv::Scalar m, sd;
+  cv::meanStdDev(gray, m, sd);
+  EXPECT_GT(sd[0], 15);
+}
+
+TEST(SynthClip, BadOutputDirLeavesNothingBehind) {
+  const fs::path dir = TempDir("bad");
+  fs::create_directories(dir);
+  const fs::path file = dir / "a_file";
+  std::ofstream(file) << "x";
+  EXPECT_THROW(SynthClip("static_camera", Tiny(), file.string()), Error);
+  EXPECT_THROW(SynthClip("static_camera", Tiny(), (file / "sub").string()), Error);
+  if (::geteuid() != 0) {  // root ignores permissions
+    const fs::path ro = dir / "readonly";
+    fs::create_directories(ro);
+    ::chmod(ro.c_str(), 0555);
+    EXPECT_THROW(SynthClip("static_camera", Tiny(), ro.string()), Error);
+    EXPECT_TRUE(fs::is_empty(ro));
+    ::chmod(ro.c_str(), 0755);
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}),
+            ::geteuid() != 0 ? 2 : 1);
+  EXPECT_THROW(SynthClip("no_such_preset", Tiny(), dir.string()), UsageError);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace hapcine

@@ -1,0 +1,375 @@
+// The only translation unit with Ceres AutoDiff templates (slow to compile).
+#include "estimate/bundle_adjustment.h"
+
+#include <ceres/ceres.h>
+#include <ceres/manifold.h>
+#include <ceres/sphere_manifold.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace hapcine {
+namespace {
+
+// Point in camera coordinates: R_wc^T (d + rho (anchor - c)), up to scale.
+template <typename T>
+bool Project(const T* q, const T* c, const T* log_f, const T* d, const T& rho,
+             const Eigen::Vector3d& anchor, T* u) {
+  Eigen::Map<const Eigen::Quaternion<T>> world_from_cam(q);
+  Eigen::Matrix<T, 3, 1> v(d[0], d[1], d[2]);
+  if (c != nullptr) {
+    v += rho * (anchor.cast<T>() - Eigen::Matrix<T, 3, 1>(c[0], c[1], c[2]));
+  }
+  const Eigen::Matrix<T, 3, 1> p = world_from_cam.conjugate() * v;
+  if (!(p.z() > T(1e-9) * ceres::sqrt(p.squaredNorm() + T(1e-300)))) return false;
+  const T f = ceres::exp(log_f[0]);
+  u[0] = f * p.x() / p.z();
+  u[1] = f * p.y() / p.z();
+  return true;
+}
+
+// Camera (q, c, log f) and point (d, rho) all free.
+struct DepthCost {
+  DepthCost(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
+      : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
+  template <typename T>
+  bool operator()(const T* q, const T* c, const T* log_f, const T* X, T* r) const {
+    T p[2];
+    if (!Project(q, c, log_f, X, X[3], anchor_, p)) return false;
+    r[0] = (p[0] - T(u_.x())) * inv_scale_;
+    r[1] = (p[1] - T(u_.y())) * inv_scale_;
+    return true;
+  }
+  static ceres::CostFunction* Create(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor,
+                                     double inv_scale) {
+    return new ceres::AutoDiffCostFunction<DepthCost, 2, 4, 3, 1, 4>(
+        new DepthCost(u, anchor, inv_scale));
+  }
+  Eigen::Vector2d u_;
+  Eigen::Vector3d anchor_;
+  double inv_scale_;
+};
+
+// Rotation-only window: the bearing alone (points at infinity relative to a fixed centre).
+struct BearingCost {
+  BearingCost(const Eigen::Vector2d& u, double inv_scale) : u_(u), inv_scale_(inv_scale) {}
+  template <typename T>
+  bool operator()(const T* q, const T* log_f, const T* d, T* r) const {
+    T p[2];
+    if (!Project<T>(q, nullptr, log_f, d, T(0), Eigen::Vector3d::Zero(), p)) return false;
+    r[0] = (p[0] - T(u_.x())) * inv_scale_;
+    r[1] = (p[1] - T(u_.y())) * inv_scale_;
+    return true;
+  }
+  static ceres::CostFunction* Create(const Eigen::Vector2d& u, double inv_scale) {
+    return new ceres::AutoDiffCostFunction<BearingCost, 2, 4, 1, 3>(new BearingCost(u, inv_scale));
+  }
+  Eigen::Vector2d u_;
+  double inv_scale_;
+};
+
+// Pose-only: the point is a constant.
+struct PoseCost {
+  PoseCost(const Eigen::Vector2d& u, const BaPoint& point, bool use_depth, double inv_scale)
+      : u_(u), point_(point), use_depth_(use_depth), inv_scale_(inv_scale) {}
+  template <typename T>
+  bool operator()(const T* q, const T* c, const T* log_f, T* r) const {
+    const T d[3] = {T(point_.homogeneous(0)), T(point_.homogeneous(1)), T(point_.homogeneous(2))};
+    T p[2];
+    if (!Project<T>(q, use_depth_ ? c : nullptr, log_f, d, T(point_.homogeneous(3)), point_.anchor, p))
+      return false;
+    r[0] = (p[0] - T(u_.x())) * inv_scale_;
+    r[1] = (p[1] - T(u_.y())) * inv_scale_;
+    return true;
+  }
+  static ceres::CostFunction* Create(const Eigen::Vector2d& u, const BaPoint& point, bool use_depth,
+                                     double inv_scale) {
+    return new ceres::AutoDiffCostFunction<PoseCost, 2, 4, 3, 1>(
+        new PoseCost(u, point, use_depth, inv_scale));
+  }
+  Eigen::Vector2d u_;
+  BaPoint point_;
+  bool use_depth_;
+  double inv_scale_;
+};
+
+// (log f_c - 2 log f_b + log f_a) / sigma: the zoom *rate* is smooth between
+// neighbouring keyframes. A second difference does not pull a steady zoom
+// towards "no zoom" (a first difference would shrink every zoom ratio).
+struct FocalStepCost {
+  explicit FocalStepCost(double inv_sigma) : inv_sigma_(inv_sigma) {}
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* c, T* r) const {
+    r[0] = (c[0] - T(2) * b[0] + a[0]) * inv_sigma_;
+    return true;
+  }
+  double inv_sigma_;
+};
+
+struct FocalPriorCost {
+  FocalPriorCost(double prior, double inv_sigma) : prior_(prior), inv_sigma_(inv_sigma) {}
+  template <typename T>
+  bool operator()(const T* a, T* r) const {
+    r[0] = (a[0] - T(prior_)) * inv_sigma_;
+    return true;
+  }
+  double prior_, inv_sigma_;
+};
+
+struct ScaleCost {
+  ScaleCost(double distance, double inv_sigma) : distance_(distance), inv_sigma_(inv_sigma) {}
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* r) const {
+    const T dx = b[0] - a[0], dy = b[1] - a[1], dz = b[2] - a[2];
+    r[0] = (ceres::sqrt(dx * dx + dy * dy + dz * dz + T(1e-30)) - T(distance_)) * inv_sigma_;
+    return true;
+  }
+  double distance_, inv_sigma_;
+};
+
+struct Blocks {
+  std::vector<std::array<double, 4>> q;  // Eigen order x, y, z, w
+  std::vector<std::array<double, 3>> c;
+  std::vector<double> lf;
+  std::vector<int> rot, cen, foc;  // root block index per camera
+};
+
+int Root(const std::vector<int>& roots, int src, int self) { return src < 0 ? self : roots[src]; }
+
+Blocks MakeBlocks(const std::vector<BaCamera>& cams) {
+  Blocks b;
+  const int n = static_cast<int>(cams.size());
+  b.q.resize(n);
+  b.c.resize(n);
+  b.lf.resize(n);
+  b.rot.resize(n);
+  b.cen.resize(n);
+  b.foc.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& cam = cams[i];
+    const Eigen::Quaterniond q = cam.world_from_cam.normalized();
+    b.q[i] = {q.x(), q.y(), q.z(), q.w()};
+    b.c[i] = {cam.center.x(), cam.center.y(), cam.center.z()};
+    b.lf[i] = cam.log_focal;
+    b.rot[i] = Root(b.rot, cam.rotation_source, i);
+    b.cen[i] = Root(b.cen, cam.center_source, i);
+    b.foc[i] = Root(b.foc, cam.focal_source, i);
+  }
+  return b;
+}
+
+void ReadBack(const Blocks& b, std::vector<BaCamera>* cams) {
+  for (size_t i = 0; i < cams->size(); ++i) {
+    auto& cam = (*cams)[i];
+    const auto& q = b.q[b.rot[i]];
+    cam.world_from_cam = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+    const auto& c = b.c[b.cen[i]];
+    cam.center = Eigen::Vector3d(c[0], c[1], c[2]);
+    cam.log_focal = b.lf[b.foc[i]];
+  }
+}
+
+bool ObservationError(const BaCamera& cam, const BaPoint& pt, const Eigen::Vector2d& u,
+                      bool use_depth, double* err) {
+  const Eigen::Quaterniond q = cam.world_from_cam.normalized();
+  const double qa[4] = {q.x(), q.y(), q.z(), q.w()};
+  const double p[3] = {cam.center.x(), cam.center.y(), cam.center.z()};
+  double proj[2];
+  if (!Project<double>(qa, use_depth ? p : nullptr, &cam.log_focal, pt.homogeneous.data(),
+                       pt.homogeneous(3), pt.anchor, proj)) {
+    *err = std::numeric_limits<double>::infinity();
+    return false;
+  }
+  *err = (Eigen::Vector2d(proj[0], proj[1]) - u).norm();
+  return true;
+}
+
+double Rms(const std::vector<double>& e) {
+  double s = 0;
+  int n = 0;
+  for (double v : e)
+    if (std::isfinite(v)) {
+      s += v * v;
+      ++n;
+    }
+  return n ? std::sqrt(s / n) : 0;
+}
+
+}  // namespace
+
+std::vector<double> ObservationErrors(const std::vector<BaCamera>& cameras,
+                                      const std::vector<BaPoint>& points,
+                                      const std::vector<BaObservation>& observations,
+                                      bool use_depth) {
+  std::vector<double> errs(observations.size());
+  for (size_t i = 0; i < observations.size(); ++i) {
+    const auto& o = observations[i];
+    ObservationError(cameras[o.camera], points[o.point], o.u, use_depth, &errs[i]);
+  }
+  return errs;
+}
+
+BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* points,
+                      const std::vector<BaObservation>& observations, const BaOptions& options) {
+  BaSummary summary;
+  if (cameras->empty()) return summary;
+  Blocks b = MakeBlocks(*cameras);
+  std::vector<std::array<double, 4>> X(points->size());
+  for (size_t i = 0; i < points->size(); ++i) {
+    Eigen::Vector4d h = (*points)[i].homogeneous;
+    if (!options.use_depth) h(3) = 0;
+    h.normalize();
+    X[i] = {h(0), h(1), h(2), h(3)};
+  }
+  const auto before = ObservationErrors(*cameras, *points, observations, options.use_depth);
+  summary.rms_before = Rms(before);
+
+  ceres::Problem::Options po;
+  po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  ceres::EigenQuaternionManifold quat_manifold;
+  ceres::SphereManifold<4> sphere4;
+  ceres::SphereManifold<3> sphere3;
+  const double inv_scale = 1.0 / options.huber_scale;
+  std::vector<char> point_used(points->size(), 0);
+  for (size_t i = 0; i < observations.size(); ++i) {
+    if (!std::isfinite(before[i])) continue;
+    const auto& o = observations[i];
+    double* q = b.q[b.rot[o.camera]].data();
+    double* lf = &b.lf[b.foc[o.camera]];
+    double* x = X[o.point].data();
+    if (options.use_depth) {
+      double* c = b.c[b.cen[o.camera]].data();
+      problem.AddResidualBlock(DepthCost::Create(o.u, (*points)[o.point].anchor, inv_scale),
+                               new ceres::HuberLoss(1.0), q, c, lf, x);
+    } else {
+      problem.AddResidualBlock(BearingCost::Create(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
+    }
+    point_used[o.point] = 1;
+    ++summary.num_observations;
+  }
+  if (summary.num_observations == 0) return summary;
+  for (size_t i = 0; i < X.size(); ++i) {
+    if (!point_used[i]) continue;
+    problem.SetManifold(X[i].data(), options.use_depth ? static_cast<ceres::Manifold*>(&sphere4)
+                                                       : static_cast<ceres::Manifold*>(&sphere3));
+  }
+  const int n = static_cast<int>(cameras->size());
+  // Focal priors: between consecutive distinct focal blocks, and on the first.
+  int prev_focal = -1, prev2_focal = -1;
+  for (int i = 0; i < n; ++i) {
+    const int f = b.foc[i];
+    if (!problem.HasParameterBlock(&b.lf[f]) || f == prev_focal) continue;
+    if (prev2_focal >= 0) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FocalStepCost, 1, 1, 1, 1>(
+                                   new FocalStepCost(1.0 / options.focal_step_sigma)),
+                               nullptr, &b.lf[prev2_focal], &b.lf[prev_focal], &b.lf[f]);
+    }
+    if (prev_focal < 0) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FocalPriorCost, 1, 1>(
+                                   new FocalPriorCost(options.focal_prior_log,
+                                                      1.0 / options.focal_prior_sigma)),
+                               nullptr, &b.lf[f]);
+    }
+    prev2_focal = prev_focal;
+    prev_focal = f;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (problem.HasParameterBlock(b.q[i].data())) problem.SetManifold(b.q[i].data(), &quat_manifold);
+  }
+  // Gauge: fixed cameras' own blocks constant.
+  for (int i = 0; i < n; ++i) {
+    if ((*cameras)[i].fixed_focal && problem.HasParameterBlock(&b.lf[b.foc[i]]))
+      problem.SetParameterBlockConstant(&b.lf[b.foc[i]]);
+    if (!(*cameras)[i].fixed) continue;
+    if (problem.HasParameterBlock(b.q[b.rot[i]].data())) problem.SetParameterBlockConstant(b.q[b.rot[i]].data());
+    if (options.use_depth && problem.HasParameterBlock(b.c[b.cen[i]].data()))
+      problem.SetParameterBlockConstant(b.c[b.cen[i]].data());
+  }
+  if (options.fix_first_focal && problem.HasParameterBlock(&b.lf[b.foc[0]]))
+    problem.SetParameterBlockConstant(&b.lf[b.foc[0]]);
+  if (options.use_depth && options.scale_a >= 0 && options.scale_b >= 0) {
+    double* ca = b.c[b.cen[options.scale_a]].data();
+    double* cb = b.c[b.cen[options.scale_b]].data();
+    if (ca != cb && problem.HasParameterBlock(ca) && problem.HasParameterBlock(cb) &&
+        !(problem.IsParameterBlockConstant(ca) && problem.IsParameterBlockConstant(cb))) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScaleCost, 1, 3, 3>(new ScaleCost(
+                                   options.scale_distance, 1e3 / options.scale_distance)),
+                               nullptr, ca, cb);
+    }
+  }
+
+  ceres::Solver::Options so;
+  so.linear_solver_type = n <= 80 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  so.max_num_iterations = options.max_iterations;
+  so.num_threads = options.num_threads;
+  so.function_tolerance = 1e-7;
+  so.parameter_tolerance = 1e-9;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary cs;
+  ceres::Solve(so, &problem, &cs);
+  summary.iterations = static_cast<int>(cs.iterations.size());
+  summary.success = cs.IsSolutionUsable();
+  if (!summary.success) return summary;
+  ReadBack(b, cameras);
+  for (size_t i = 0; i < points->size(); ++i) {
+    (*points)[i].homogeneous = Eigen::Vector4d(X[i][0], X[i][1], X[i][2], X[i][3]);
+  }
+  summary.rms_after = Rms(ObservationErrors(*cameras, *points, observations, options.use_depth));
+  return summary;
+}
+
+BaSummary SolvePose(BaCamera* camera, const PoseFreedoms& freedoms,
+                    const std::vector<BaPoint>& points,
+                    const std::vector<BaObservation>& observations, const BaOptions& options) {
+  BaSummary summary;
+  std::vector<BaCamera> cams = {*camera};
+  cams[0].rotation_source = cams[0].center_source = cams[0].focal_source = -1;
+  Blocks b = MakeBlocks(cams);
+  ceres::Problem::Options po;
+  po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  ceres::EigenQuaternionManifold quat_manifold;
+  const double inv_scale = 1.0 / options.huber_scale;
+  std::vector<double> before;
+  for (const auto& o : observations) {
+    double e;
+    if (!ObservationError(cams[0], points[o.point], o.u, options.use_depth, &e)) continue;
+    before.push_back(e);
+    problem.AddResidualBlock(PoseCost::Create(o.u, points[o.point], options.use_depth, inv_scale),
+                             new ceres::HuberLoss(1.0), b.q[0].data(), b.c[0].data(), &b.lf[0]);
+  }
+  summary.num_observations = static_cast<int>(before.size());
+  summary.rms_before = Rms(before);
+  if (summary.num_observations < 3) return summary;
+  problem.SetManifold(b.q[0].data(), &quat_manifold);
+  if (!freedoms.rotation) problem.SetParameterBlockConstant(b.q[0].data());
+  if (!freedoms.center || !options.use_depth) problem.SetParameterBlockConstant(b.c[0].data());
+  if (!freedoms.focal) problem.SetParameterBlockConstant(&b.lf[0]);
+  if (freedoms.rotation || (freedoms.center && options.use_depth) || freedoms.focal) {
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = options.max_iterations;
+    so.logging_type = ceres::SILENT;
+    so.function_tolerance = 1e-8;
+    ceres::Solver::Summary cs;
+    ceres::Solve(so, &problem, &cs);
+    summary.iterations = static_cast<int>(cs.iterations.size());
+    if (!cs.IsSolutionUsable()) return summary;
+  }
+  summary.success = true;
+  ReadBack(b, &cams);
+  camera->world_from_cam = cams[0].world_from_cam;
+  camera->center = cams[0].center;
+  camera->log_focal = cams[0].log_focal;
+  std::vector<double> after;
+  for (const auto& o : observations) {
+    double e;
+    if (ObservationError(*camera, points[o.point], o.u, options.use_depth, &e)) after.push_back(e);
+  }
+  summary.rms_after = Rms(after);
+  return summary;
+}
+
+}  // namespace hapcine

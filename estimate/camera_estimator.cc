@@ -1,0 +1,78 @@
+#include "estimate/camera_estimator.h"
+
+#include <sstream>
+
+#include "core/error.h"
+#include "estimate/colmap_backend.h"
+
+namespace hapcine {
+
+void EstimatorOptions::Check() const {
+  if (backend != "hapcine" && backend != "colmap")
+    throw UsageError("backend must be 'hapcine' or 'colmap', not '" + backend + "'");
+  frames.Check();
+  tracker.Check();
+  estimator.Check();
+  if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
+}
+
+namespace {
+
+std::string Num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void AddMetadata(const FrameSource& source, const EstimatorOptions& options, CameraPath* path) {
+  const VideoInfo& info = source.info();
+  path->metadata["width"] = std::to_string(info.width);
+  path->metadata["height"] = std::to_string(info.height);
+  if (info.fps > 0) path->metadata["fps"] = Num(info.fps);
+  path->metadata["source"] = info.path;
+  path->metadata["estimator"] = "hapcine-" + options.backend;
+  path->metadata["working_side"] = std::to_string(options.frames.max_working_side);
+  if (options.backend == "hapcine") {
+    path->metadata["tracks"] = std::to_string(options.tracker.max_tracks);
+    path->metadata["window_frames"] = std::to_string(options.estimator.window_frames);
+    path->metadata["prior_hfov_deg"] = Num(options.estimator.prior_hfov_deg);
+    path->metadata["smooth_sigma_frames"] =
+        options.estimator.smooth ? Num(options.estimator.smooth_sigma_frames) : "0";
+  }
+}
+
+}  // namespace
+
+CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& options,
+                              ProgressFn progress) {
+  options.Check();
+  const VideoInfo& info = source.info();
+  if (info.width <= 0 || info.height <= 0) throw Error(info.path, "unknown frame size");
+  CameraPath path;
+  if (options.backend == "colmap") {
+    path = EstimateWithColmap(source, options.colmap_binary, progress);
+  } else {
+    FeatureTracker tracker(options.tracker);
+    TrackCameraEstimator estimator(info.width, info.height, options.estimator);
+    Frame frame;
+    long done = 0;
+    while (source.Next(&frame)) {
+      estimator.AddFrame(tracker.Process(frame));
+      ++done;
+      if (progress) progress(done, info.frame_count);
+    }
+    path = estimator.Finish();
+  }
+  if (path.frames.empty()) throw Error(info.path, "no frames could be decoded");
+  AddMetadata(source, options, &path);
+  return path;
+}
+
+CameraPath EstimateCameraPathFromFile(const std::string& video, const EstimatorOptions& options,
+                                      ProgressFn progress) {
+  options.Check();
+  auto source = OpenFrameSource(video, options.frames);
+  return EstimateCameraPath(*source, options, progress);
+}
+
+}  // namespace hapcine

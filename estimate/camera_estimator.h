@@ -1,0 +1,43 @@
+#pragma once
+// The estimator's public entry point: video (or any FrameSource) in, camera
+// path (../shared/spec/camera-path.md) out.
+//
+// Streaming: frames are decoded and tracked one at a time and handed to
+// TrackCameraEstimator (track_estimator.h), which solves bundle-adjustment
+// windows as they fill, so memory stays flat in video length.
+// Backends: "hapcine" (this pipeline) or "colmap" (colmap_backend.h).
+
+#include <functional>
+#include <string>
+
+#include "core/camera_path.h"
+#include "estimate/track_estimator.h"
+#include "extract/feature_tracker.h"
+#include "extract/frame_source.h"
+
+namespace hapcine {
+
+struct EstimatorOptions {
+  std::string backend = "hapcine";  // "hapcine" or "colmap"
+  FrameSourceOptions frames;         // working resolution (max_working_side, default 960)
+  TrackerOptions tracker;            // feature tracking (max_tracks, default 600)
+  TrackEstimatorOptions estimator;   // models, bundle adjustment, smoothing
+  std::string colmap_binary = "colmap";  // used by the colmap backend
+  void Check() const;                // throws UsageError
+};
+
+// Progress: frames done, total frames (0 when unknown).
+using ProgressFn = std::function<void(long done, long total)>;
+
+// Runs the chosen backend over `source`. Metadata written: width, height, fps
+// (nominal), source, backend and the main estimator settings.
+CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& options,
+                              ProgressFn progress = {});
+
+// Opens `video` (OpenFrameSource) and runs EstimateCameraPath. Throws
+// hapcine::Error("<video>", reason) on unreadable input or when nothing could
+// be estimated.
+CameraPath EstimateCameraPathFromFile(const std::string& video, const EstimatorOptions& options,
+                                      ProgressFn progress = {});
+
+}  // namespace hapcine

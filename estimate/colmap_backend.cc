@@ -1,0 +1,125 @@
+#include "estimate/colmap_backend.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "core/error.h"
+#include "estimate/colmap_model.h"
+
+namespace hapcine {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string Tail(const std::string& log_path) {
+  std::ifstream in(log_path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+// Removes the temporary folder on every exit path.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::string tmpl = (fs::temp_directory_path() / "hapcine-colmap-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw Error(tmpl, "cannot create a temporary folder");
+    path = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+}  // namespace
+
+CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_binary,
+                              const ProgressFn& progress) {
+  const VideoInfo& info = source.info();
+  TempDir tmp;
+  const fs::path images = tmp.path / "images", sparse = tmp.path / "sparse";
+  fs::create_directories(images);
+  fs::create_directories(sparse);
+  const std::string log = (tmp.path / "colmap.log").string();
+
+  auto run = [&](const std::string& step, const std::string& args) {
+    const std::string cmd = Quote(colmap_binary) + " " + step + " " + args + " >>" + Quote(log) + " 2>&1";
+    const int rc = std::system(cmd.c_str());
+    if (rc != 0) {
+      const bool missing = WIFEXITED(rc) && WEXITSTATUS(rc) == 127;
+      throw Error(info.path, missing ? "colmap binary '" + colmap_binary + "' not found"
+                                     : "colmap " + step + " failed: " + Tail(log));
+    }
+  };
+
+  // Frames to disk (working resolution).
+  std::vector<double> times;
+  Frame frame;
+  long done = 0;
+  while (source.Next(&frame)) {
+    const cv::Mat& img = frame.bgr.empty() ? frame.gray : frame.bgr;
+    char name[64];
+    std::snprintf(name, sizeof(name), "frame_%06d.jpg", frame.index);
+    if (!cv::imwrite((images / name).string(), img, {cv::IMWRITE_JPEG_QUALITY, 95}))
+      throw Error((images / name).string(), "cannot write frame");
+    if (frame.index >= static_cast<int>(times.size())) times.resize(frame.index + 1, frame.time_s);
+    times[frame.index] = frame.time_s;
+    ++done;
+    if (progress) progress(done, info.frame_count);
+  }
+  if (times.empty()) throw Error(info.path, "no frames could be decoded");
+  // Keep times increasing if some index was skipped by the decoder.
+  for (size_t i = 1; i < times.size(); ++i)
+    if (!(times[i] > times[i - 1])) times[i] = times[i - 1] + 1e-6;
+
+  const std::string db = Quote((tmp.path / "database.db").string());
+  run("feature_extractor", "--database_path " + db + " --image_path " + Quote(images.string()) +
+                               " --ImageReader.single_camera 0 --ImageReader.camera_model SIMPLE_PINHOLE"
+                               " --SiftExtraction.use_gpu 0");
+  run("sequential_matcher", "--database_path " + db + " --SiftMatching.use_gpu 0");
+  run("mapper", "--database_path " + db + " --image_path " + Quote(images.string()) +
+                    " --output_path " + Quote(sparse.string()));
+
+  // The model with the most registered images.
+  fs::path best;
+  size_t best_count = 0;
+  for (const auto& entry : fs::directory_iterator(sparse)) {
+    if (!entry.is_directory()) continue;
+    const fs::path txt = tmp.path / ("txt_" + entry.path().filename().string());
+    fs::create_directories(txt);
+    run("model_converter", "--input_path " + Quote(entry.path().string()) + " --output_path " +
+                               Quote(txt.string()) + " --output_type TXT");
+    std::ifstream in(txt / "images.txt");
+    std::string line;
+    size_t count = 0;
+    while (std::getline(in, line))
+      if (!line.empty() && line[0] != '#') ++count;
+    if (count > best_count) {
+      best_count = count;
+      best = txt;
+    }
+  }
+  if (best.empty())
+    throw Error(info.path,
+                "colmap mapper could not initialise a model (pure rotation, static camera or "
+                "too little texture?)");
+  ColmapReadOptions ro;
+  ro.frame_times = times;
+  ro.decoded_width = info.width;
+  return ReadColmapTextModel(best.string(), ro);
+}
+
+}  // namespace hapcine

@@ -1,0 +1,191 @@
+#include "estimate/colmap_model.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/rotation.h"
+
+namespace hapcine {
+namespace {
+
+struct ColmapCamera {
+  int width = 0, height = 0;
+  double focal_px = 0;
+};
+
+struct ColmapImage {
+  Eigen::Quaterniond cam_from_world;
+  Eigen::Vector3d translation;  // X_c = R X_w + t
+  int camera_id = 0;
+  int frame = 0;
+  std::vector<long> point_ids;
+};
+
+// Data lines of a COLMAP text file (comments and blank lines skipped), with line numbers.
+std::vector<std::pair<int, std::string>> ReadLines(const std::string& path, bool keep_blank) {
+  std::ifstream in(path);
+  if (!in) throw Error(path, "cannot open");
+  std::vector<std::pair<int, std::string>> lines;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty() && line[0] == '#') continue;
+    if (line.empty() && !keep_blank) continue;
+    lines.push_back({number, line});
+  }
+  return lines;
+}
+
+int FrameFromName(const std::string& name) {
+  const size_t end = name.find_last_of("0123456789");
+  if (end == std::string::npos) return -1;
+  size_t begin = end;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(name[begin - 1]))) --begin;
+  try {
+    return std::stoi(name.substr(begin, end - begin + 1));
+  } catch (...) {
+    return -1;
+  }
+}
+
+}  // namespace
+
+CameraPath ReadColmapTextModel(const std::string& dir, const ColmapReadOptions& options) {
+  const std::string cameras_path = dir + "/cameras.txt";
+  const std::string images_path = dir + "/images.txt";
+  const std::string points_path = dir + "/points3D.txt";
+
+  std::map<int, ColmapCamera> cameras;
+  for (const auto& [number, line] : ReadLines(cameras_path, false)) {
+    std::istringstream s(line);
+    int id;
+    std::string model;
+    ColmapCamera cam;
+    if (!(s >> id >> model >> cam.width >> cam.height >> cam.focal_px) || cam.width <= 0 ||
+        !(cam.focal_px > 0) || !std::isfinite(cam.focal_px))
+      throw Error(cameras_path + ":" + std::to_string(number), "malformed camera line");
+    cameras[id] = cam;
+  }
+
+  // images.txt: two lines per image; the second (2-D points) may be empty.
+  std::vector<ColmapImage> images;
+  const auto lines = ReadLines(images_path, true);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const auto& [number, line] = lines[i];
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    std::istringstream s(line);
+    long image_id;
+    double qw, qx, qy, qz, tx, ty, tz;
+    ColmapImage im;
+    std::string name;
+    const std::string where = images_path + ":" + std::to_string(number);
+    if (!(s >> image_id >> qw >> qx >> qy >> qz >> tx >> ty >> tz >> im.camera_id >> name))
+      throw Error(where, "malformed image line");
+    const Eigen::Quaterniond q(qw, qx, qy, qz);
+    if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1) > 1e-3) throw Error(where, "non-unit quaternion");
+    if (!cameras.count(im.camera_id)) throw Error(where, "unknown camera id " + std::to_string(im.camera_id));
+    im.cam_from_world = q.normalized();
+    im.translation = Eigen::Vector3d(tx, ty, tz);
+    if (!im.translation.allFinite()) throw Error(where, "non-finite translation");
+    im.frame = FrameFromName(name);
+    if (im.frame < 0) throw Error(where, "no frame number in image name '" + name + "'");
+    if (i + 1 < lines.size()) {  // the points line
+      std::istringstream p(lines[i + 1].second);
+      double x, y;
+      long pid;
+      while (p >> x >> y >> pid)
+        if (pid >= 0) im.point_ids.push_back(pid);
+      ++i;
+    }
+    images.push_back(std::move(im));
+  }
+  if (images.empty()) throw Error(images_path, "no registered images");
+  std::sort(images.begin(), images.end(), [](const auto& a, const auto& b) { return a.frame < b.frame; });
+
+  std::map<long, Eigen::Vector3d> points;
+  {
+    std::ifstream probe(points_path);
+    if (probe) {
+      for (const auto& [number, line] : ReadLines(points_path, false)) {
+        std::istringstream s(line);
+        long id;
+        double x, y, z;
+        if (!(s >> id >> x >> y >> z))
+          throw Error(points_path + ":" + std::to_string(number), "malformed point line");
+        points[id] = Eigen::Vector3d(x, y, z);
+      }
+    }
+  }
+
+  // Reference: the first registered frame.
+  const ColmapImage& ref = images.front();
+  const Eigen::Matrix3d R_ref = ref.cam_from_world.toRotationMatrix();
+  std::vector<double> depths;
+  for (long pid : ref.point_ids) {
+    auto it = points.find(pid);
+    if (it == points.end()) continue;
+    const double z = (R_ref * it->second + ref.translation).z();
+    if (z > 0 && std::isfinite(z)) depths.push_back(z);
+  }
+  double unit = 1;
+  if (!depths.empty()) {
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    unit = depths[depths.size() / 2];
+  }
+  const Eigen::Vector3d C_ref = -R_ref.transpose() * ref.translation;
+  const Eigen::Matrix3d F = Eigen::Vector3d(1, -1, -1).asDiagonal();
+
+  std::map<int, CameraFrame> registered;
+  for (const auto& im : images) {
+    const Eigen::Matrix3d R = im.cam_from_world.toRotationMatrix();
+    const Eigen::Vector3d C = -R.transpose() * im.translation;
+    CameraFrame f;
+    f.frame = im.frame;
+    f.world_from_cam = CanonicalQuaternion(Eigen::Quaterniond(F * (R_ref * R.transpose()) * F));
+    f.center = F * (R_ref * (C - C_ref)) / unit;
+    const ColmapCamera& cam = cameras.at(im.camera_id);
+    const int width = options.decoded_width > 0 ? options.decoded_width : cam.width;
+    const double focal = cam.focal_px * width / cam.width;
+    f.focal_px = focal;
+    f.fov_deg = FovDegFromFocalPx(focal, width);
+    f.shot = 0;
+    f.model = "general";
+    f.confidence = 1;
+    registered[im.frame] = f;
+  }
+
+  CameraPath path;
+  if (options.frame_times.empty()) {
+    const double fps = options.fps > 0 ? options.fps : 25;
+    for (auto& [frame, f] : registered) {
+      f.time_s = frame / fps;
+      path.frames.push_back(f);
+    }
+  } else {
+    const CameraFrame* prev = nullptr;
+    for (size_t i = 0; i < options.frame_times.size(); ++i) {
+      auto it = registered.find(static_cast<int>(i));
+      CameraFrame f;
+      if (it != registered.end()) {
+        f = it->second;
+        prev = &it->second;
+      } else {
+        f = prev ? *prev : registered.begin()->second;
+        f.confidence = 0;
+      }
+      f.frame = static_cast<int>(i);
+      f.time_s = options.frame_times[i];
+      path.frames.push_back(f);
+    }
+  }
+  return path;
+}
+
+}  // namespace hapcine

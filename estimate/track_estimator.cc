@@ -1,0 +1,616 @@
+#include "estimate/track_estimator.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/rotation.h"
+#include "estimate/smoothing.h"
+#include "estimate/two_view_geometry.h"
+
+namespace hapcine {
+
+void TrackEstimatorOptions::Check() const {
+  if (!(prior_hfov_deg > 1 && prior_hfov_deg < 179)) throw UsageError("prior FOV must be in (1, 179) degrees");
+  if (window_frames < 10) throw UsageError("window must be at least 10 frames");
+  if (max_points < 20) throw UsageError("max points must be at least 20");
+  if (!(keyframe_motion > 0 && keyframe_motion < 0.5)) throw UsageError("keyframe motion must be in (0, 0.5)");
+  if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) throw UsageError("keyframe min shared must be in (0, 1)");
+  if (keyframe_max_gap < 1) throw UsageError("keyframe max gap must be >= 1");
+  if (min_tracks < 8) throw UsageError("min tracks must be >= 8");
+  if (!(min_rotation_for_focal_deg >= 0)) throw UsageError("min rotation for focal must be >= 0");
+  if (!(smooth_sigma_frames >= 0)) throw UsageError("smoothing sigma must be >= 0");
+  if (ba_iterations < 1) throw UsageError("BA iterations must be >= 1");
+  if (num_threads < 1) throw UsageError("threads must be >= 1");
+  two_view.Check();
+}
+
+namespace {
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Angle between the optical axes (roll about the axis does not count: it
+// does not tell the focal length).
+double AxisAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  const Eigen::Vector3d za = a * Eigen::Vector3d::UnitZ(), zb = b * Eigen::Vector3d::UnitZ();
+  return RadToDeg(std::acos(std::clamp(za.dot(zb), -1.0, 1.0)));
+}
+
+// OpenCV world/camera axes -> the file's OpenGL axes (flip Y and Z).
+const Eigen::Matrix3d kFlip = Eigen::Vector3d(1, -1, -1).asDiagonal();
+
+double Clamp01(double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; }
+
+}  // namespace
+
+TrackCameraEstimator::TrackCameraEstimator(int width, int height,
+                                           const TrackEstimatorOptions& options)
+    : width_(width), height_(height), options_(options) {
+  options_.Check();
+  if (width <= 0 || height <= 0) throw UsageError("frame size must be positive");
+  // Normalised focal = f_px / width.
+  prior_log_focal_ = std::log(FocalPxFromFovDeg(options_.prior_hfov_deg, width) / width);
+  path_.metadata["width"] = std::to_string(width);
+  path_.metadata["height"] = std::to_string(height);
+}
+
+Eigen::Vector2d TrackCameraEstimator::Normalise(const Eigen::Vector2d& px) const {
+  return (px - Eigen::Vector2d(0.5 * (width_ - 1), 0.5 * (height_ - 1))) / width_;
+}
+
+void TrackCameraEstimator::StartShot(int shot) {
+  shot_ = shot;
+  shot_frames_ = 0;
+  frames_.clear();
+  buffer_start_ = 0;
+  keyframes_.clear();
+  raw_.clear();
+  outlier_tracks_.clear();
+  focal_samples_.clear();
+  focal_observed_ = false;
+  scale_set_ = false;
+  scene_depth_ = 1;
+}
+
+void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
+  const bool new_shot = shot_ < 0 || tracks.shot != shot_ ||
+                        tracks.boundary == ShotBoundary::kCut ||
+                        tracks.boundary == ShotBoundary::kFade;
+  if (new_shot) {
+    if (shot_ >= 0) FinishShot();
+    StartShot(shot_ < 0 ? tracks.shot : std::max(tracks.shot, shot_ + 1));
+  }
+  BufferedFrame f;
+  f.tracks = tracks;
+  f.tracks.points.clear();
+  for (const auto& p : tracks.points) {
+    if (p.px.allFinite()) f.u[p.track_id] = Normalise(p.px);
+  }
+  f.usable = !tracks.blank && static_cast<int>(f.u.size()) >= options_.min_tracks;
+  const int pos = shot_frames_++;
+  frames_.push_back(std::move(f));
+  const BufferedFrame& cur = frames_.back();
+  if (!cur.usable) return;
+
+  if (keyframes_.empty()) {
+    AddKeyframe(pos, true);
+    return;
+  }
+  const Keyframe& last = keyframes_.back();
+  const BufferedFrame& kf = At(last.pos);
+  std::vector<double> disp;
+  for (const auto& [id, u] : cur.u) {
+    auto it = kf.u.find(id);
+    if (it != kf.u.end()) disp.push_back((u - it->second).norm());
+  }
+  if (static_cast<int>(disp.size()) < options_.min_tracks) {
+    // Tracking lost inside the shot: close what we have and restart the
+    // chain here, holding the last pose (no link to measure the jump).
+    AddKeyframe(pos, true);
+    return;
+  }
+  const double shared = static_cast<double>(disp.size()) / std::max<size_t>(kf.u.size(), 1);
+  if (Median(disp) > options_.keyframe_motion || shared < options_.keyframe_min_shared ||
+      pos - last.pos >= options_.keyframe_max_gap) {
+    AddKeyframe(pos, false);
+  }
+}
+
+void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
+  Keyframe k;
+  k.pos = pos;
+  if (keyframes_.empty()) {
+    // Start of the shot's chain: identity at the origin (or the last pose).
+    k.cam.log_focal = prior_log_focal_;
+    if (!raw_.empty()) k.cam = raw_.back().cam;
+    k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
+    k.fixed = true;
+    k.chain_start = true;
+    keyframes_.push_back(k);
+    return;
+  }
+  const Keyframe& a = keyframes_.back();
+  if (force_static) {
+    // Chain broken: solve what we have, then restart from here.
+    ProcessWindow(true);
+    keyframes_.clear();
+    frames_.erase(frames_.begin(), frames_.begin() + (pos - buffer_start_));
+    buffer_start_ = pos;
+    k.cam = raw_.empty() ? BaCamera{} : raw_.back().cam;
+    k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
+    k.fixed = true;
+    k.fixed_focal = focal_observed_;
+    k.chain_start = true;
+    k.chain_start = true;
+    keyframes_.push_back(k);
+    return;
+  }
+  const BufferedFrame& fa = At(a.pos);
+  const BufferedFrame& fb = At(pos);
+  std::vector<long> ids;
+  std::vector<Eigen::Vector2d> u1, u2;
+  for (const auto& [id, u] : fb.u) {
+    auto it = fa.u.find(id);
+    if (it == fa.u.end()) continue;
+    ids.push_back(id);
+    u1.push_back(it->second);
+    u2.push_back(u);
+  }
+  const double fa_norm = std::exp(a.cam.log_focal);
+  const TwoViewResult tv = SelectTwoViewModel(u1, u2, fa_norm, options_.two_view);
+  k.cam = a.cam;
+  k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
+  if (!tv.valid) {
+    k.model = MotionModel::kStatic;
+    k.inlier_ratio = 0;
+    keyframes_.push_back(k);
+    return;
+  }
+  for (size_t i = 0; i < ids.size(); ++i)
+    if (!tv.inliers[i]) outlier_tracks_.insert(ids[i]);
+  k.model = tv.model;
+  k.inlier_ratio = tv.num_points ? static_cast<double>(tv.num_inliers) / tv.num_points : 0;
+  const Eigen::Matrix3d R_ba = tv.cam2_from_cam1;
+  const Eigen::Matrix3d R_wa = a.cam.world_from_cam.toRotationMatrix();
+  k.cam.world_from_cam = Eigen::Quaterniond(R_wa * R_ba.transpose()).normalized();
+  if (HasZoom(tv.model)) k.cam.log_focal = a.cam.log_focal + std::log(tv.f2 / tv.f1);
+  if (tv.model == MotionModel::kRotation || tv.model == MotionModel::kRotationZoom) {
+    if (AxisAngleDeg(Eigen::Quaterniond(R_ba), Eigen::Quaterniond::Identity()) >=
+        options_.min_rotation_for_focal_deg)
+      focal_samples_.push_back(std::log(tv.f1));
+  }
+  if (HasTranslation(tv.model)) {
+    // Scale: triangulated median depth in view a matches the scene depth so far.
+    std::vector<double> depths;
+    for (size_t i = 0; i < u1.size(); ++i) {
+      if (!tv.inliers[i]) continue;
+      const double d = TriangulateDepth(u1[i] / fa_norm, u2[i] / fa_norm, R_ba, tv.translation);
+      if (d > 0 && std::isfinite(d)) depths.push_back(d);
+    }
+    const double med = Median(depths);
+    const double scale = med > 0 ? scene_depth_ / med : 0.05 * scene_depth_;
+    const Eigen::Vector3d centre_b_in_a = -R_ba.transpose() * tv.translation;
+    k.cam.center = a.cam.center + R_wa * centre_b_in_a * scale;
+  }
+  keyframes_.push_back(k);
+  if (pos - keyframes_.front().pos >= options_.window_frames && keyframes_.size() >= 4) {
+    ProcessWindow(false);
+  }
+}
+
+void TrackCameraEstimator::ProcessWindow(bool final) {
+  if (keyframes_.empty()) return;
+  const int n = static_cast<int>(keyframes_.size());
+  WindowReport report;
+  report.shot = shot_;
+  report.keyframes = n;
+  report.first_frame = At(keyframes_.front().pos).tracks.index;
+
+  // --- labels: promote short runs between two more general equal neighbours.
+  for (int i = 1; i < n; ++i) {
+    if (keyframes_[i].fixed) continue;
+    for (int len = 1; len <= 2 && i + len < n; ++len) {
+      const MotionModel left = keyframes_[i - 1].model, right = keyframes_[i + len].model;
+      if (keyframes_[i - 1].chain_start) break;  // it has no interval of its own
+      bool run_same = true;
+      for (int j = i; j < i + len; ++j) run_same &= keyframes_[j].model == keyframes_[i].model;
+      if (run_same && left == right && left != keyframes_[i].model &&
+          IsAtLeastAsGeneral(left, keyframes_[i].model)) {
+        for (int j = i; j < i + len; ++j) keyframes_[j].model = left;
+        break;
+      }
+    }
+  }
+
+  // --- cameras with the models' sharing.
+  auto build_cameras = [&](bool zoom_in_general) {
+    std::vector<BaCamera> cams(n);
+    for (int i = 0; i < n; ++i) {
+      cams[i] = keyframes_[i].cam;
+      cams[i].fixed = keyframes_[i].fixed;
+      cams[i].fixed_focal = keyframes_[i].fixed_focal;
+      cams[i].rotation_source = cams[i].center_source = cams[i].focal_source = -1;
+      if (i == 0 || keyframes_[i].fixed) continue;
+      MotionModel m = keyframes_[i].model;
+      if (zoom_in_general && m == MotionModel::kGeneral) m = MotionModel::kGeneralZoom;
+      if (!HasRotation(m)) cams[i].rotation_source = i - 1;
+      if (!HasTranslation(m)) cams[i].center_source = i - 1;
+      if (!HasZoom(m)) cams[i].focal_source = i - 1;
+    }
+    // Shared blocks start from the source's value.
+    for (int i = 1; i < n; ++i) {
+      if (cams[i].rotation_source >= 0) cams[i].world_from_cam = cams[i - 1].world_from_cam;
+      if (cams[i].center_source >= 0) cams[i].center = cams[i - 1].center;
+      if (cams[i].focal_source >= 0) cams[i].log_focal = cams[i - 1].log_focal;
+    }
+    return cams;
+  };
+  bool has_translation = false, has_general = false;
+  for (int i = 1; i < n; ++i) {
+    has_translation |= HasTranslation(keyframes_[i].model);
+    has_general |= keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
+  }
+  // Focal initialisation from rotation pairs that turned enough (first window only).
+  if (!focal_observed_ && !focal_samples_.empty() && keyframes_[0].pos == 0 && !keyframes_[1 < n ? 1 : 0].fixed) {
+    const double shift = Median(focal_samples_) - keyframes_[0].cam.log_focal;
+    for (auto& k : keyframes_) k.cam.log_focal += shift;
+  }
+  double max_turn = 0;
+  for (const auto& k : keyframes_)
+    max_turn = std::max(max_turn, AxisAngleDeg(k.cam.world_from_cam, keyframes_[0].cam.world_from_cam));
+  const bool focal_observable = focal_observed_ || max_turn >= options_.min_rotation_for_focal_deg;
+  report.focal_observable = focal_observable;
+
+  // --- points: tracks seen by >= 2 keyframes, longest first.
+  std::map<long, std::vector<int>> seen;  // track -> keyframes
+  for (int i = 0; i < n; ++i)
+    for (const auto& [id, u] : At(keyframes_[i].pos).u)
+      if (!outlier_tracks_.count(id)) seen[id].push_back(i);
+  std::vector<std::pair<int, long>> order;
+  for (const auto& [id, kfs] : seen)
+    if (kfs.size() >= 2) order.push_back({-static_cast<int>(kfs.size()), id});
+  std::sort(order.begin(), order.end());
+  if (static_cast<int>(order.size()) > options_.max_points) order.resize(options_.max_points);
+
+  std::vector<BaCamera> cams = build_cameras(false);
+  std::vector<BaPoint> points;
+  std::vector<BaObservation> obs;
+  std::map<long, int> point_of_track;
+  for (const auto& [neg, id] : order) {
+    const auto& kfs = seen[id];
+    const BaCamera& ca = cams[kfs[0]];
+    const Eigen::Vector2d ua = At(keyframes_[kfs[0]].pos).u.at(id);
+    const double fa = std::exp(ca.log_focal);
+    const Eigen::Vector3d ray_a = (ca.world_from_cam * Eigen::Vector3d(ua.x() / fa, ua.y() / fa, 1)).normalized();
+    double rho = 0;
+    if (has_translation) {
+      // Midpoint triangulation with the most distant observing keyframe.
+      int best = -1;
+      double best_base = 0;
+      for (int j : kfs) {
+        const double base = (cams[j].center - ca.center).norm();
+        if (base > best_base) {
+          best_base = base;
+          best = j;
+        }
+      }
+      if (best >= 0) {
+        const BaCamera& cb = cams[best];
+        const Eigen::Vector2d ub = At(keyframes_[best].pos).u.at(id);
+        const double fb = std::exp(cb.log_focal);
+        const Eigen::Vector3d ray_b = (cb.world_from_cam * Eigen::Vector3d(ub.x() / fb, ub.y() / fb, 1)).normalized();
+        const Eigen::Vector3d w = cb.center - ca.center;
+        const double bb = ray_a.dot(ray_b), d1 = ray_a.dot(w), d2 = ray_b.dot(w);
+        const double den = 1 - bb * bb;
+        if (den > 1e-8) {
+          const double lambda = (d1 - bb * d2) / den;
+          if (lambda > 0 && std::isfinite(lambda)) rho = 1 / lambda;
+        }
+      }
+      if (!(rho > 0)) rho = 0.2 / scene_depth_;
+    }
+    BaPoint p;
+    p.anchor = ca.center;
+    p.homogeneous = Eigen::Vector4d(ray_a.x(), ray_a.y(), ray_a.z(), rho).normalized();
+    point_of_track[id] = static_cast<int>(points.size());
+    for (int j : kfs) obs.push_back({j, static_cast<int>(points.size()), At(keyframes_[j].pos).u.at(id)});
+    points.push_back(p);
+  }
+
+  BaOptions ba;
+  ba.huber_scale = 1.0 / 960;
+  ba.focal_prior_log = prior_log_focal_;
+  ba.fix_first_focal = !focal_observable;
+  ba.use_depth = has_translation;
+  ba.max_iterations = options_.ba_iterations;
+  ba.num_threads = options_.num_threads;
+  // Scale gauge: unless two fixed keyframes with distinct centres pin it.
+  const bool scale_pinned = n >= 2 && keyframes_[0].fixed && keyframes_[1].fixed &&
+                            (cams[1].center - cams[0].center).norm() > 1e-9;
+  if (has_translation && !scale_pinned) {
+    for (int i = 1; i < n; ++i) {
+      if (HasTranslation(keyframes_[i].model)) {
+        const double d = (cams[i].center - cams[i - 1].center).norm();
+        if (d > 1e-9) {
+          ba.scale_a = i - 1;
+          ba.scale_b = i;
+          ba.scale_distance = d;
+        }
+        break;
+      }
+    }
+  }
+
+  auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
+    BaSummary s = SolveBundle(c, p, *o, ba);
+    if (!s.success) return s;
+    // Drop gross outliers (beyond 3 Huber scales) and polish.
+    const auto errs = ObservationErrors(*c, *p, *o, ba.use_depth);
+    std::vector<BaObservation> kept;
+    for (size_t i = 0; i < o->size(); ++i)
+      if (std::isfinite(errs[i]) && errs[i] < 3 * ba.huber_scale) kept.push_back((*o)[i]);
+    if (kept.size() < o->size() && kept.size() > 10) {
+      *o = kept;
+      BaOptions polish = ba;
+      polish.max_iterations = std::max(5, ba.max_iterations / 3);
+      const BaSummary s2 = SolveBundle(c, p, *o, polish);
+      if (s2.success) {
+        s.rms_after = s2.rms_after;
+        s.num_observations = s2.num_observations;
+      }
+    }
+    return s;
+  };
+
+  std::vector<BaPoint> pts = points;
+  std::vector<BaObservation> ob = obs;
+  BaSummary summary = solve(&cams, &pts, &ob);
+  if (summary.success && has_general) {
+    // BIC: does a per-keyframe focal in the general segments pay for itself?
+    std::vector<BaCamera> cams_z = build_cameras(true);
+    std::vector<BaPoint> pts_z = points;
+    std::vector<BaObservation> ob_z = obs;
+    const BaSummary sz = solve(&cams_z, &pts_z, &ob_z);
+    if (sz.success) {
+      int extra = 0;
+      for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
+      const auto e0 = ObservationErrors(cams, pts, obs, true);
+      const auto e1 = ObservationErrors(cams_z, pts_z, obs, true);
+      std::vector<double> abs1;
+      for (double e : e1)
+        if (std::isfinite(e)) abs1.push_back(e);
+      const double sigma = std::max(Median(abs1) / 1.1774, options_.two_view.noise_floor);
+      auto chi2 = [&](const std::vector<double>& e) {
+        double s = 0;
+        for (double v : e) s += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
+        return s;
+      };
+      const double m = 2.0 * obs.size();
+      const double bic0 = chi2(e0), bic1 = chi2(e1) + extra * std::log(std::max(m, 2.0));
+      if (bic1 < bic0) {
+        cams = cams_z;
+        pts = pts_z;
+        ob = ob_z;
+        summary = sz;
+        report.zoom_by_bic = true;
+        for (int i = 1; i < n; ++i)
+          if (keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed)
+            keyframes_[i].model = MotionModel::kGeneralZoom;
+      }
+    }
+  }
+  if (summary.success) {
+    for (int i = 0; i < n; ++i) {
+      keyframes_[i].cam.world_from_cam = cams[i].world_from_cam;
+      keyframes_[i].cam.center = cams[i].center;
+      keyframes_[i].cam.log_focal = cams[i].log_focal;
+    }
+    points = pts;
+    if (focal_observable) focal_observed_ = true;
+  }
+  report.points = static_cast<int>(points.size());
+  report.observations = summary.num_observations;
+  report.rms_px = summary.rms_after * width_;
+
+  // --- units: median depth seen from the first keyframe with depth.
+  auto depths_from = [&](const BaCamera& cam) {
+    std::vector<double> depths;
+    for (const auto& p : points) {
+      if (!(p.homogeneous(3) > 1e-12)) continue;
+      const Eigen::Vector3d X = p.anchor + p.homogeneous.head<3>() / p.homogeneous(3);
+      const double z = (cam.world_from_cam.conjugate() * (X - cam.center)).z();
+      if (z > 0 && std::isfinite(z)) depths.push_back(z);
+    }
+    return depths;
+  };
+  if (has_translation && summary.success) {
+    const BaCamera origin = keyframes_[0].cam;
+    const double m = Median(depths_from(origin));
+    if (!scale_set_ && m > 0) {
+      const double k = 1 / m;  // scale about the first keyframe's centre
+      for (auto& kf : keyframes_) kf.cam.center = origin.center + (kf.cam.center - origin.center) * k;
+      for (auto& p : points) {
+        p.anchor = origin.center + (p.anchor - origin.center) * k;
+        p.homogeneous(3) /= k;
+        p.homogeneous.normalize();
+      }
+      scale_set_ = true;
+    }
+    const double last = Median(depths_from(keyframes_.back().cam));
+    if (last > 0) scene_depth_ = last;
+  }
+
+  // --- frames of the window: keyframes as solved, the others pose-only.
+  const int emit_end = final ? buffer_start_ + static_cast<int>(frames_.size())
+                             : keyframes_[n - 2].pos;  // exclusive
+  const int emit_begin = raw_.empty() ? 0 : raw_.back().meta.index - frames_.front().tracks.index + buffer_start_ + 1;
+  std::vector<BaPoint> rpoints = points;
+  int ki = 0;
+  for (int pos = emit_begin; pos < emit_end; ++pos) {
+    const BufferedFrame& f = At(pos);
+    RawPose out;
+    out.meta = f.tracks;
+    while (ki + 1 < n && keyframes_[ki + 1].pos <= pos) ++ki;
+    if (pos < keyframes_[0].pos) {  // before the chain starts (blank lead-in)
+      out.cam = keyframes_[0].cam;
+      out.model = MotionModel::kStatic;
+      out.confidence = 0.05;
+      raw_.push_back(out);
+      continue;
+    }
+    const Keyframe& a = keyframes_[ki];
+    if (pos == a.pos) {
+      out.cam = a.cam;
+      out.model = ki == 0 && n > 1 ? keyframes_[1].model : a.model;
+      if (a.fixed && ki == 0 && n > 1) out.model = keyframes_[1].model;
+      out.confidence = Clamp01(a.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
+                       std::exp(-0.5 * std::pow(report.rms_px * 960.0 / width_ / 2.0, 2)) *
+                       (focal_observable ? 1.0 : 0.8);
+      if (!summary.success) out.confidence *= 0.3;
+      raw_.push_back(out);
+      continue;
+    }
+    if (ki + 1 >= n || !f.usable) {
+      // After the last keyframe (end of shot) or unusable: hold the previous pose.
+      out.cam = raw_.empty() ? a.cam : raw_.back().cam;
+      out.model = raw_.empty() ? a.model : raw_.back().model;
+      out.confidence = 0.1;
+      if (f.usable && ki + 1 >= n) {
+        // Trailing frames with tracks: pose-only solve with the last model's freedoms.
+        out.model = a.model;
+      } else {
+        raw_.push_back(out);
+        continue;
+      }
+    }
+    const Keyframe& b = ki + 1 < n ? keyframes_[ki + 1] : keyframes_[ki];
+    const double t = b.pos > a.pos ? static_cast<double>(pos - a.pos) / (b.pos - a.pos) : 0;
+    out.cam.world_from_cam = a.cam.world_from_cam.slerp(t, b.cam.world_from_cam);
+    out.cam.center = (1 - t) * a.cam.center + t * b.cam.center;
+    out.cam.log_focal = (1 - t) * a.cam.log_focal + t * b.cam.log_focal;
+    out.cam.rotation_source = out.cam.center_source = out.cam.focal_source = -1;
+    out.model = ki + 1 < n ? b.model : a.model;
+    std::vector<BaObservation> fobs;
+    for (const auto& [id, u] : f.u) {
+      auto it = point_of_track.find(id);
+      if (it != point_of_track.end()) fobs.push_back({0, it->second, u});
+    }
+    PoseFreedoms fr;
+    fr.rotation = HasRotation(out.model);
+    fr.center = HasTranslation(out.model);
+    fr.focal = HasZoom(out.model);
+    double rms_px = report.rms_px;
+    if (static_cast<int>(fobs.size()) >= options_.min_tracks && summary.success &&
+        (fr.rotation || fr.center || fr.focal)) {
+      BaOptions po = ba;
+      po.max_iterations = 10;
+      BaCamera cam = out.cam;
+      const BaSummary ps = SolvePose(&cam, fr, rpoints, fobs, po);
+      if (ps.success && cam.world_from_cam.coeffs().allFinite() && cam.center.allFinite() &&
+          std::isfinite(cam.log_focal)) {
+        out.cam = cam;
+        rms_px = ps.rms_after * width_;
+      }
+    }
+    out.confidence = Clamp01(b.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
+                     std::exp(-0.5 * std::pow(rms_px * 960.0 / width_ / 2.0, 2)) *
+                     (focal_observable ? 1.0 : 0.8);
+    if (!summary.success) out.confidence *= 0.3;
+    raw_.push_back(out);
+  }
+  report.last_frame = raw_.empty() ? report.first_frame : raw_.back().meta.index;
+  reports_.push_back(report);
+  if (final) return;
+
+  // --- next window: overlap of two keyframes, held constant.
+  Keyframe k0 = keyframes_[n - 2], k1 = keyframes_[n - 1];
+  k0.fixed = k1.fixed = true;
+  k0.fixed_focal = k1.fixed_focal = true;
+  k0.chain_start = k1.chain_start = false;
+  keyframes_ = {k0, k1};
+  const int drop = k0.pos - buffer_start_;
+  frames_.erase(frames_.begin(), frames_.begin() + drop);
+  buffer_start_ = k0.pos;
+  outlier_tracks_.clear();
+}
+
+void TrackCameraEstimator::FinishShot() {
+  if (shot_ < 0) return;
+  if (!keyframes_.empty()) {
+    ProcessWindow(true);
+  } else {
+    // No usable frame in the whole shot: identity, prior focal, no confidence.
+    for (const auto& f : frames_) {
+      RawPose out;
+      out.meta = f.tracks;
+      out.cam.log_focal = prior_log_focal_;
+      raw_.push_back(out);
+    }
+  }
+  keyframes_.clear();
+  frames_.clear();
+  const int n = static_cast<int>(raw_.size());
+  // Smoothing per segment, only on the freedoms the segment's model has.
+  std::vector<Eigen::Quaterniond> q(n);
+  std::vector<Eigen::Vector3d> c(n);
+  std::vector<double> lf(n);
+  for (int i = 0; i < n; ++i) {
+    q[i] = raw_[i].cam.world_from_cam;
+    c[i] = raw_[i].cam.center;
+    lf[i] = raw_[i].cam.log_focal;
+  }
+  if (options_.smooth && options_.smooth_sigma_frames > 0) {
+    for (int s = 0; s < n;) {
+      int e = s;
+      while (e + 1 < n && raw_[e + 1].model == raw_[s].model) ++e;
+      const MotionModel m = raw_[s].model;
+      // Include the neighbour frames so that segment ends stay continuous.
+      const int lo = std::max(0, s - 1), hi = std::min(n - 1, e + 1);
+      auto sub = [&](auto& v) { return std::vector<std::decay_t<decltype(v[0])>>(v.begin() + lo, v.begin() + hi + 1); };
+      if (HasRotation(m)) {
+        const auto sm = SmoothRotations(sub(q), options_.smooth_sigma_frames);
+        for (int i = s; i <= e; ++i) q[i] = sm[i - lo];
+      }
+      if (HasTranslation(m)) {
+        const auto sm = SmoothVectors(sub(c), options_.smooth_sigma_frames);
+        for (int i = s; i <= e; ++i) c[i] = sm[i - lo];
+      }
+      if (HasZoom(m)) {
+        const auto sm = SmoothScalars(sub(lf), options_.smooth_sigma_frames);
+        for (int i = s; i <= e; ++i) lf[i] = sm[i - lo];
+      }
+      s = e + 1;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const RawPose& r = raw_[i];
+    CameraFrame cf;
+    cf.frame = r.meta.index;
+    cf.time_s = r.meta.time_s;
+    const Eigen::Matrix3d R_cv = q[i].normalized().toRotationMatrix();
+    cf.world_from_cam = CanonicalQuaternion(Eigen::Quaterniond(kFlip * R_cv * kFlip));
+    cf.center = kFlip * c[i] + Eigen::Vector3d::Zero();  // + 0 turns -0 into 0
+    cf.center = cf.center.unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+    const double focal_px = std::exp(lf[i]) * width_;
+    cf.focal_px = focal_px;
+    cf.fov_deg = FovDegFromFocalPx(focal_px, width_);
+    cf.shot = shot_;
+    cf.model = MotionModelName(r.model);
+    cf.confidence = Clamp01(r.confidence);
+    path_.frames.push_back(cf);
+  }
+  raw_.clear();
+}
+
+CameraPath TrackCameraEstimator::Finish() {
+  FinishShot();
+  shot_ = -1;
+  return path_;
+}
+
+}  // namespace hapcine

@@ -1,0 +1,124 @@
+#pragma once
+// Feature tracks in, camera path out — the streaming core of the estimator,
+// independent of video decoding (tests feed synthetic FrameTracks).
+//
+// Per shot:
+//  1. Keyframes: a frame becomes a keyframe when the median track motion
+//     since the last keyframe exceeds `keyframe_motion`, when too few of its
+//     tracks survive, or after `keyframe_max_gap` frames.
+//  2. Each keyframe interval gets the simplest motion model that explains it
+//     (GRIC, model_selection.h) and an initial relative pose from that model.
+//     Isolated labels between two more general neighbours are promoted.
+//  3. Every `window_frames` frames (and at the end of the shot) the window's
+//     keyframes are bundle-adjusted (bundle_adjustment.h) with the parameter
+//     sharing the models dictate; the window overlaps the previous one by two
+//     keyframes, held constant, so memory is flat in video length.
+//     General windows are solved twice, with constant and with per-keyframe
+//     focal, and BIC decides "general" vs "general+zoom".
+//  4. Frames between keyframes get a pose-only solve against the window's
+//     points, with only the model's freedoms.
+//  5. At the end of the shot: zero-phase smoothing per segment, conversion to
+//     the file's OpenGL convention, units of median scene depth.
+
+#include <deque>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/camera_path.h"
+#include "estimate/bundle_adjustment.h"
+#include "estimate/model_selection.h"
+#include "estimate/motion_model.h"
+#include "extract/tracks.h"
+
+namespace hapcine {
+
+struct TrackEstimatorOptions {
+  double prior_hfov_deg = 50;        // focal prior (horizontal FOV) where focal is not observable
+  int window_frames = 120;           // frames per bundle-adjustment window (long shots)
+  int max_points = 300;              // points per window (the longest tracks)
+  double keyframe_motion = 0.02;     // median track motion for a new keyframe, fraction of width
+  double keyframe_min_shared = 0.7;  // fraction of the last keyframe's tracks still alive
+  int keyframe_max_gap = 6;          // frames; a keyframe at least this often
+  int min_tracks = 12;               // fewer usable tracks: the frame holds the previous pose
+  double min_rotation_for_focal_deg = 3;  // optical-axis turn needed to self-calibrate the focal
+  bool smooth = true;                // zero-phase smoothing of the final path
+  double smooth_sigma_frames = 1.5;  // Gaussian sigma of that smoothing, frames
+  int ba_iterations = 40;            // Ceres iterations per window solve
+  int num_threads = 1;               // Ceres threads
+  TwoViewOptions two_view;           // model selection
+  void Check() const;                // throws UsageError
+};
+
+// Per-window diagnostics, for logs and tests.
+struct WindowReport {
+  int shot = 0;
+  int first_frame = 0, last_frame = 0;
+  int keyframes = 0, points = 0, observations = 0;
+  double rms_px = 0;                 // after BA, pixels of the decoded frame
+  bool focal_observable = false;
+  bool zoom_by_bic = false;          // general segments were upgraded to general+zoom
+};
+
+class TrackCameraEstimator {
+ public:
+  // width, height: decoded frame size (tracks are in its pixels).
+  TrackCameraEstimator(int width, int height, const TrackEstimatorOptions& options);
+  // Frames in order. Emits finished frames into the path as windows close.
+  void AddFrame(const FrameTracks& tracks);
+  // Closes the last shot and returns every frame (metadata: width, height).
+  CameraPath Finish();
+  int frames_done() const { return static_cast<int>(path_.frames.size()); }
+  const std::vector<WindowReport>& reports() const { return reports_; }
+
+ private:
+  struct BufferedFrame {
+    FrameTracks tracks;
+    std::map<long, Eigen::Vector2d> u;  // normalised coordinates by track id
+    bool usable = false;
+  };
+  struct Keyframe {
+    int pos = 0;                     // shot-relative frame position
+    BaCamera cam;                    // OpenCV world of the shot
+    MotionModel model = MotionModel::kStatic;  // of the interval ending here
+    double inlier_ratio = 1;
+    bool fixed = false;              // pose constant in the window's BA
+    bool fixed_focal = false;        // focal constant too (overlap with the previous window)
+    bool chain_start = false;        // first keyframe of a chain: no interval of its own
+  };
+  struct RawPose {
+    FrameTracks meta;                // index, time, shot, quality (points cleared)
+    BaCamera cam;
+    MotionModel model = MotionModel::kStatic;
+    double confidence = 0;
+  };
+
+  void StartShot(int shot);
+  void FinishShot();
+  void ProcessWindow(bool final);
+  void AddKeyframe(int pos, bool force_static);
+  const BufferedFrame& At(int pos) const { return frames_[pos - buffer_start_]; }
+  Eigen::Vector2d Normalise(const Eigen::Vector2d& px) const;
+
+  int width_, height_;
+  TrackEstimatorOptions options_;
+  double prior_log_focal_;
+  CameraPath path_;
+  std::vector<WindowReport> reports_;
+
+  // Current shot.
+  int shot_ = -1;
+  int shot_frames_ = 0;              // frames seen in the shot
+  std::deque<BufferedFrame> frames_; // from buffer_start_ on
+  int buffer_start_ = 0;
+  std::vector<Keyframe> keyframes_;  // of the current window
+  std::vector<RawPose> raw_;         // emitted raw poses of the shot
+  std::set<long> outlier_tracks_;
+  std::vector<double> focal_samples_;  // log f from rotation pairs with enough turn
+  bool focal_observed_ = false;
+  bool scale_set_ = false;
+  double scene_depth_ = 1;
+};
+
+}  // namespace hapcine

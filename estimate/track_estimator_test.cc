@@ -1,0 +1,188 @@
+#include "estimate/track_estimator.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <iostream>
+
+#include "core/rotation.h"
+#include "estimate/test_scene.h"
+
+namespace hapcine {
+namespace {
+
+using testing::Ease;
+using testing::MakeFrameTracks;
+using testing::RandomPoints;
+using testing::SceneCamera;
+
+constexpr int kW = 960, kH = 540;
+
+struct SimRun {
+  CameraPath path;
+  std::vector<SceneCamera> truth;
+  double mean_rot_err_deg = 0;
+  double max_abs_translation = 0;
+  std::map<std::string, int> models;
+};
+
+SimRun Simulate(int frames, const std::function<SceneCamera(int)>& camera_at,
+             const std::vector<Eigen::Vector3d>& pts, double noise_px,
+             const std::function<bool(int)>& blank = {}, TrackEstimatorOptions opt = {}) {
+  TrackCameraEstimator est(kW, kH, opt);
+  std::mt19937 rng(42);
+  SimRun run;
+  for (int i = 0; i < frames; ++i) {
+    const SceneCamera cam = camera_at(i);
+    run.truth.push_back(cam);
+    FrameTracks ft = MakeFrameTracks(i, 25, cam, pts, kW, kH, noise_px, 0.0, &rng);
+    if (blank && blank(i)) {
+      ft.points.clear();
+      ft.blank = true;
+    }
+    est.AddFrame(ft);
+  }
+  run.path = est.Finish();
+  double sum = 0;
+  for (int i = 0; i < frames; ++i) {
+    const CameraFrame& f = run.path.frames[i];
+    sum += AngleBetweenDeg(f.world_from_cam, run.truth[i].world_from_cam);
+    run.max_abs_translation = std::max(run.max_abs_translation, f.center.cwiseAbs().maxCoeff());
+    ++run.models[*f.model];
+  }
+  run.mean_rot_err_deg = sum / frames;
+  return run;
+}
+
+SceneCamera PanCamera(int i, double total_deg, double focal_px) {
+  SceneCamera c;
+  const double a = i < 15 ? 0 : i >= 75 ? 1 : Ease(i - 15, 60);
+  PanTiltRoll ptr;
+  ptr.pan_deg = total_deg * a;
+  ptr.tilt_deg = -0.3 * total_deg * a;
+  c.world_from_cam = QuaternionFromPanTiltRoll(ptr);
+  c.focal_px = focal_px;
+  return c;
+}
+
+TEST(TrackEstimator, PanIsRotationWithZeroTranslationAndCalibratedFocal) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 1);
+  const SimRun run = Simulate(90, [](int i) { return PanCamera(i, 20, 800); }, pts, 0.3);
+  ASSERT_EQ(run.path.frames.size(), 90u);
+  EXPECT_EQ(run.max_abs_translation, 0.0);  // exactly
+  EXPECT_LT(run.mean_rot_err_deg, 0.1);
+  EXPECT_GT(run.models.at("rotation"), 40);
+  EXPECT_EQ(run.models.count("general"), 0u);
+  EXPECT_NEAR(*run.path.frames[45].focal_px / 800, 1.0, 0.02);
+  EXPECT_EQ(run.path.frames[0].world_from_cam.w(), 1.0);
+  for (const auto& f : run.path.frames) {
+    ASSERT_TRUE(f.confidence.has_value());
+    EXPECT_GE(*f.confidence, 0.0);
+    EXPECT_LE(*f.confidence, 1.0);
+  }
+}
+
+TEST(TrackEstimator, ZoomIsZoomWithExactZeroTranslation) {
+  const auto pts = RandomPoints(800, 3, 30, 0.8, 2);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.focal_px = 800 * (1 + 0.4 * (i < 10 ? 0 : i >= 70 ? 1 : Ease(i - 10, 60)));
+    return c;
+  };
+  const SimRun run = Simulate(80, cam_at, pts, 0.3);
+  EXPECT_EQ(run.max_abs_translation, 0.0);
+  EXPECT_GT(run.models.at("zoom"), 30);
+  EXPECT_EQ(run.models.count("general"), 0u);
+  const double ratio = *run.path.frames[79].focal_px / *run.path.frames[0].focal_px;
+  EXPECT_NEAR(ratio / 1.4, 1.0, 0.005);
+  EXPECT_LT(run.mean_rot_err_deg, 0.05);
+}
+
+TEST(TrackEstimator, TravelingIsGeneralAndMovesSideways) {
+  const auto pts = RandomPoints(1500, 3, 12, 1.2, 3);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.center = Eigen::Vector3d(2.0 * (i < 10 ? 0 : i >= 70 ? 1 : Ease(i - 10, 60)), 0, 0);
+    c.focal_px = 800;
+    return c;
+  };
+  const SimRun run = Simulate(80, cam_at, pts, 0.3);
+  EXPECT_GT(run.models.at("general"), 30);
+  EXPECT_LT(run.mean_rot_err_deg, 0.1);
+  const Eigen::Vector3d end = run.path.frames[79].center;
+  EXPECT_GT(end.x(), 0);
+  EXPECT_LT(std::abs(end.y()) + std::abs(end.z()), 0.05 * end.x());
+  // Straight-line path: mid point at half of the way (after scale).
+  EXPECT_NEAR(run.path.frames[40].center.x() / end.x(), run.truth[40].center.x() / 2.0, 0.02);
+}
+
+TEST(TrackEstimator, BlankFramesHoldThePoseWithLowConfidence) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun run = Simulate(90, [](int i) { return PanCamera(i, 20, 800); }, pts, 0.3,
+                           [](int i) { return i >= 40 && i < 43; });
+  ASSERT_EQ(run.path.frames.size(), 90u);
+  for (const auto& f : run.path.frames) {
+    EXPECT_TRUE(f.world_from_cam.coeffs().allFinite());
+    EXPECT_TRUE(f.center.allFinite());
+  }
+  EXPECT_LT(*run.path.frames[41].confidence, 0.2);
+  EXPECT_LT(run.mean_rot_err_deg, 0.5);
+}
+
+TEST(TrackEstimator, EmptyAndAllBlankInputsGiveValidFrames) {
+  TrackCameraEstimator est(kW, kH, {});
+  for (int i = 0; i < 5; ++i) {
+    FrameTracks ft;
+    ft.index = i;
+    ft.time_s = i * 0.04;
+    ft.blank = true;
+    est.AddFrame(ft);
+  }
+  const CameraPath path = est.Finish();
+  ASSERT_EQ(path.frames.size(), 5u);
+  for (const auto& f : path.frames) EXPECT_EQ(ValidateCameraFrame(f), "");
+}
+
+TEST(TrackEstimator, ErrorDegradesSmoothlyWithNoise) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 5);
+  double previous = 0;
+  for (double noise : {0.0, 0.5, 1.0, 2.0}) {
+    const SimRun run = Simulate(90, [](int i) { return PanCamera(i, 20, 800); }, pts, noise);
+    std::cout << "noise " << noise << " px: mean rotation error " << run.mean_rot_err_deg
+              << " deg, focal " << *run.path.frames[45].focal_px << " px (truth 800), models:";
+    for (const auto& [m, count] : run.models) std::cout << " " << m << "=" << count;
+    std::cout << "\n";
+    EXPECT_LT(run.mean_rot_err_deg, 0.02 + 0.1 * noise) << noise;
+    EXPECT_LT(run.mean_rot_err_deg, previous + 0.1) << noise;  // no cliff
+    previous = run.mean_rot_err_deg;
+  }
+}
+
+TEST(TrackEstimator, ShotCutRestartsAtTheOrigin) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 6);
+  TrackCameraEstimator est(kW, kH, {});
+  std::mt19937 rng(1);
+  for (int i = 0; i < 60; ++i) {
+    FrameTracks ft = MakeFrameTracks(i, 25, PanCamera(i + 20, 20, 800), pts, kW, kH, 0.3, 0, &rng);
+    if (i == 30) ft.boundary = ShotBoundary::kCut;
+    ft.shot = i < 30 ? 0 : 1;
+    est.AddFrame(ft);
+  }
+  const CameraPath path = est.Finish();
+  ASSERT_EQ(path.frames.size(), 60u);
+  EXPECT_EQ(*path.frames[30].shot, 1);
+  EXPECT_LT(AngleBetweenDeg(path.frames[30].world_from_cam, Eigen::Quaterniond::Identity()), 1e-9);
+}
+
+TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
+  TrackEstimatorOptions o;
+  o.prior_hfov_deg = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.window_frames = 2;
+  EXPECT_THROW(o.Check(), UsageError);
+  EXPECT_NO_THROW(TrackEstimatorOptions{}.Check());
+}
+
+}  // namespace
+}  // namespace hapcine

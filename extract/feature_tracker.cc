@@ -1,0 +1,328 @@
+// FeatureTracker: shot detection, then pyramidal KLT with a forward-backward
+// check between consecutive working images, grid top-up detections, and ORB
+// re-linking when tracking collapses. See feature_tracker.h / docs/extract.md.
+//
+// Per frame cost: one pyramid (with derivatives) built once and used three
+// times (backward check now, forward flow next frame); two LK passes over the
+// live tracks; corner detection only when the track count fell below 90% of
+// max_tracks; ORB only on collapse.
+
+#include "extract/feature_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <string>
+#include <unordered_set>
+
+#include "core/error.h"
+#include "extract/descriptor_relinker.h"
+#include "extract/grid_detector.h"
+#include "extract/shot_detector.h"
+
+namespace hapcine {
+
+void TrackerOptions::Check() const {
+  if (max_tracks < 10) throw UsageError("max_tracks must be at least 10");
+  if (grid_cols < 1 || grid_rows < 1 || grid_cols > 64 || grid_rows > 64)
+    throw UsageError("grid_cols and grid_rows must be in 1..64");
+  if (!(min_distance_px >= 1)) throw UsageError("min_distance_px must be >= 1");
+  if (klt_window < 5 || klt_window > 101 || klt_window % 2 == 0)
+    throw UsageError("klt_window must be odd, 5..101");
+  if (pyramid_levels < 1 || pyramid_levels > 8) throw UsageError("pyramid_levels must be 1..8");
+  if (!(fb_threshold_px > 0)) throw UsageError("fb_threshold_px must be > 0");
+  if (!(cut_threshold > 0 && cut_threshold <= 1))
+    throw UsageError("cut_threshold must be in (0, 1]");
+  if (!(blank_luma >= 0 && blank_luma < 255)) throw UsageError("blank_luma must be in [0, 255)");
+  if (!(blank_stddev >= 0)) throw UsageError("blank_stddev must be >= 0");
+}
+
+namespace {
+
+// A collapse: fewer than this fraction of last frame's tracks survived.
+constexpr double kCollapseFraction = 0.3;
+// Below this many live tracks there is nothing to "collapse" from.
+constexpr size_t kMinTracksForCollapse = 20;
+// A frame is a good keyframe for recovery when this fraction survived.
+constexpr double kGoodSurvival = 0.7;
+// Quality cap for frames inside a suspected fade/dissolve.
+constexpr double kTransitionQualityCap = 0.25;
+
+}  // namespace
+
+struct FeatureTracker::Impl {
+  explicit Impl(const TrackerOptions& o)
+      : options(o), shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}) {}
+
+  TrackerOptions options;
+  ShotDetector shots;
+  DescriptorRelinker relinker;
+  bool first = true;
+  int shot = 0;
+  long next_id = 0;
+  std::vector<cv::Mat> prev_pyramid;
+  std::vector<cv::Mat> spare_pyramid;  // buffers reused for the next pyramid
+  size_t tracks_after_detect = 0;      // live tracks right after the last top-up
+  int frames_since_detect = 0;
+  cv::Size prev_size;
+  std::vector<cv::Point2f> prev_points;
+  std::vector<long> prev_ids;
+
+  void DropTracks() {
+    prev_pyramid.clear();
+    prev_points.clear();
+    prev_ids.clear();
+    relinker.Clear();
+  }
+
+  cv::Size Window() const { return {options.klt_window, options.klt_window}; }
+
+  // New corners on the half-resolution pyramid level (4x cheaper than the
+  // full working image; KLT does not need corners at full resolution, any
+  // well-textured window tracks). pyrDown keeps the even rows and columns,
+  // so level-1 pixel q sits exactly on level-0 pixel 2q.
+  void TopUp(const cv::Mat& gray, const std::vector<cv::Mat>& pyramid,
+             std::vector<cv::Point2f>* points, std::vector<long>* ids) {
+    GridDetectorOptions detect;
+    detect.grid_cols = options.grid_cols;
+    detect.grid_rows = options.grid_rows;
+    detect.per_cell = (options.max_tracks + options.grid_cols * options.grid_rows - 1) /
+                      (options.grid_cols * options.grid_rows);
+    const size_t n0 = points->size();
+    const int max_new = options.max_tracks - static_cast<int>(n0);
+    // pyramid = {level0, derivatives0, level1, derivatives1, ...}
+    const bool half = pyramid.size() >= 3 && gray.cols >= 320 && gray.rows >= 180;
+    if (half) {
+      const cv::Mat& level1 = pyramid[2];
+      detect.min_distance_px = options.min_distance_px / 2;
+      detect.border_px = std::max(2, options.klt_window / 8);
+      std::vector<cv::Point2f> existing;
+      existing.reserve(n0);
+      for (const cv::Point2f& p : *points) existing.emplace_back(p.x / 2, p.y / 2);
+      std::vector<cv::Point2f> fresh;
+      DetectGridCorners(level1, existing, max_new, detect, &fresh);
+      for (const cv::Point2f& q : fresh) points->emplace_back(2 * q.x, 2 * q.y);
+    } else {
+      detect.min_distance_px = options.min_distance_px;
+      detect.border_px = std::max(4, options.klt_window / 4);
+      DetectGridCorners(gray, *points, max_new, detect, points);
+    }
+    for (size_t i = n0; i < points->size(); ++i) ids->push_back(next_id++);
+  }
+
+  // Descriptor matches land on whole-pixel corners of the current frame;
+  // KLT from the keyframe point, started at the match, puts each re-linked
+  // track at the sub-pixel position of the *same* physical point, with a
+  // forward-backward check (also started at the known answer).
+  void RefineRelinked(const std::vector<cv::Mat>& pyramid, cv::Size size, RelinkResult* r) const {
+    std::vector<cv::Mat> key_pyramid;
+    const int max_level = std::min(1, options.pyramid_levels - 1);
+    cv::buildOpticalFlowPyramid(relinker.key_gray(), key_pyramid, Window(), max_level, true);
+    const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    std::vector<cv::Point2f> refined = r->points, back = r->key_points;
+    std::vector<unsigned char> ok_f, ok_b;
+    std::vector<float> err;
+    cv::calcOpticalFlowPyrLK(key_pyramid, pyramid, r->key_points, refined, ok_f, err, Window(),
+                             max_level, criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
+    cv::calcOpticalFlowPyrLK(pyramid, key_pyramid, refined, back, ok_b, err, Window(), max_level,
+                             criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
+    const double fb2 = options.fb_threshold_px * options.fb_threshold_px;
+    size_t kept = 0;
+    for (size_t i = 0; i < refined.size(); ++i) {
+      const cv::Point2f moved = refined[i] - r->points[i];
+      const cv::Point2f e = back[i] - r->key_points[i];
+      const cv::Point2f& p = refined[i];
+      if (!ok_f[i] || !ok_b[i] || !(moved.dot(moved) <= 9.0) || !(e.dot(e) <= fb2) ||
+          !(p.x >= 0 && p.y >= 0 && p.x <= size.width - 1 && p.y <= size.height - 1))
+        continue;
+      r->points[kept] = p;
+      r->ids[kept] = r->ids[i];
+      r->key_points[kept] = r->key_points[i];
+      ++kept;
+    }
+    r->points.resize(kept);
+    r->ids.resize(kept);
+    r->key_points.resize(kept);
+  }
+
+  // RANSAC homography from -> points; keeps its inliers if they are a clear
+  // majority (>= 8 and >= half), else drops everything.
+  static void KeepMutuallyConsistent(const std::vector<cv::Point2f>& from,
+                                     std::vector<cv::Point2f>* points, std::vector<long>* ids) {
+    std::vector<unsigned char> inlier;
+    cv::Mat h;
+    if (points->size() >= 8) h = cv::findHomography(from, *points, cv::RANSAC, 2.0, inlier);
+    size_t n_in = 0;
+    for (unsigned char b : inlier) n_in += b != 0;
+    if (h.empty() || n_in < 8 || 2 * n_in < points->size()) {
+      points->clear();
+      ids->clear();
+      return;
+    }
+    size_t kept = 0;
+    for (size_t i = 0; i < points->size(); ++i) {
+      if (!inlier[i]) continue;
+      (*points)[kept] = (*points)[i];
+      (*ids)[kept] = (*ids)[i];
+      ++kept;
+    }
+    points->resize(kept);
+    ids->resize(kept);
+  }
+
+  // KLT from the previous pyramid to `pyramid`, forward then backward.
+  void Track(const std::vector<cv::Mat>& pyramid, cv::Size size, std::vector<cv::Point2f>* points,
+             std::vector<long>* ids, std::vector<cv::Point2f>* from) {
+    points->clear();
+    ids->clear();
+    from->clear();
+    if (prev_points.empty() || prev_pyramid.empty() || prev_size != size) return;
+    const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    const int max_level = options.pyramid_levels - 1;
+    std::vector<cv::Point2f> forward, backward;
+    std::vector<unsigned char> ok_f, ok_b;
+    std::vector<float> err;
+    cv::calcOpticalFlowPyrLK(prev_pyramid, pyramid, prev_points, forward, ok_f, err, Window(),
+                             max_level, criteria);
+    cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid, forward, backward, ok_b, err, Window(),
+                             max_level, criteria);
+    const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
+    const float max_x = static_cast<float>(size.width - 1),
+                max_y = static_cast<float>(size.height - 1);
+    for (size_t i = 0; i < prev_points.size(); ++i) {
+      if (!ok_f[i] || !ok_b[i]) continue;
+      const cv::Point2f& p = forward[i];
+      if (!(p.x >= 0 && p.y >= 0 && p.x <= max_x && p.y <= max_y)) continue;
+      const cv::Point2f e = backward[i] - prev_points[i];
+      if (!(e.x * e.x + e.y * e.y <= fb2)) continue;  // also rejects NaN
+      points->push_back(p);
+      ids->push_back(prev_ids[i]);
+      from->push_back(prev_points[i]);
+    }
+  }
+
+  FrameTracks Process(const Frame& frame) {
+    if (frame.gray.empty() || frame.gray.type() != CV_8UC1)
+      throw Error("frame " + std::to_string(frame.index), "tracker needs a CV_8UC1 gray image");
+    FrameTracks out;
+    out.index = frame.index;
+    out.time_s = frame.time_s;
+    const ShotDecision decision = shots.Update(frame);
+    if (first) {
+      out.boundary = ShotBoundary::kStart;
+      first = false;
+    } else if (decision.boundary != ShotBoundary::kNone) {
+      out.boundary = decision.boundary;
+      ++shot;
+      DropTracks();
+    }
+    out.shot = shot;
+    out.blank = decision.blank;
+    out.transition = decision.transition;
+    if (decision.blank) {
+      DropTracks();
+      return out;
+    }
+
+    const cv::Size size = frame.gray.size();
+    std::vector<cv::Mat> pyramid = std::move(spare_pyramid);
+    cv::buildOpticalFlowPyramid(frame.gray, pyramid, Window(), options.pyramid_levels - 1, true);
+
+    std::vector<cv::Point2f> points, from;
+    std::vector<long> ids;
+    const bool had_tracks = !prev_points.empty();
+    const size_t before = prev_points.size();
+    Track(pyramid, size, &points, &ids, &from);
+    size_t survived = points.size();
+
+    size_t relinked = 0;
+    const bool collapsed =
+        had_tracks && before >= kMinTracksForCollapse && survived < kCollapseFraction * before;
+    RelinkResult r;
+    if (collapsed && options.descriptor_recovery && relinker.has_keyframe()) {
+      r = relinker.Relink(frame.gray, 2 * options.max_tracks);
+      if (!r.points.empty()) RefineRelinked(pyramid, size, &r);
+    }
+    if (collapsed) {
+      // The few KLT "survivors" of a collapse are suspect: LK can converge
+      // to a look-alike patch in both directions. Keep those that agree with
+      // the recovered motion, or, without one, with each other.
+      if (!r.current_from_key.empty())
+        relinker.KeepConsistent(r.current_from_key, 3.0, &points, &ids);
+      else
+        KeepMutuallyConsistent(from, &points, &ids);
+      survived = points.size();
+    }
+    if (!r.points.empty()) {
+      std::unordered_set<long> alive(ids.begin(), ids.end());
+      for (size_t i = 0; i < r.points.size(); ++i) {
+        if (alive.count(r.ids[i])) continue;
+        points.push_back(r.points[i]);
+        ids.push_back(r.ids[i]);
+        alive.insert(r.ids[i]);
+        ++relinked;
+      }
+      out.recovered = relinked > 0;
+    }
+
+    // Top up when well below max_tracks and either the count fell since the
+    // last top-up (tracks died) or a while has passed (new texture may have
+    // come into view). Low-texture pictures never reach max_tracks; without
+    // this they would pay for a full detection every frame.
+    const size_t verified = points.size();
+    ++frames_since_detect;
+    if (points.size() < 0.9 * options.max_tracks &&
+        (!had_tracks || points.size() < 0.9 * tracks_after_detect || frames_since_detect >= 8)) {
+      TopUp(frame.gray, pyramid, &points, &ids);
+      tracks_after_detect = points.size();
+      frames_since_detect = 0;
+    }
+
+    // Quality: verified (tracked or re-linked) share of the wanted tracks;
+    // on a shot's first tracked frame nothing can be verified yet, so the
+    // detections count.
+    const size_t counted = had_tracks ? verified : points.size();
+    out.quality = std::min(1.0, static_cast<double>(counted) / options.max_tracks);
+    if (decision.transition) out.quality = std::min(out.quality, kTransitionQualityCap);
+
+    // Keyframe for recovery: the last frame where tracking was healthy.
+    const bool healthy = had_tracks ? (before > 0 && survived >= kGoodSurvival * before &&
+                                       survived >= kMinTracksForCollapse)
+                                    : points.size() >= kMinTracksForCollapse;
+    if (healthy || (out.recovered && relinked >= kMinTracksForCollapse))
+      relinker.SetKeyframe(frame.gray, points, ids);
+
+    // Output in decoded-frame pixels (pixel-centre convention).
+    const double sx =
+        frame.decoded_width > 0 ? double(size.width) / frame.decoded_width : frame.scale;
+    const double sy =
+        frame.decoded_height > 0 ? double(size.height) / frame.decoded_height : frame.scale;
+    out.points.reserve(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+      TrackPoint tp;
+      tp.track_id = ids[i];
+      tp.px = Eigen::Vector2d((points[i].x + 0.5) / sx - 0.5, (points[i].y + 0.5) / sy - 0.5);
+      out.points.push_back(tp);
+    }
+
+    spare_pyramid = std::move(prev_pyramid);
+    prev_pyramid = std::move(pyramid);
+    prev_size = size;
+    prev_points = std::move(points);
+    prev_ids = std::move(ids);
+    return out;
+  }
+};
+
+FeatureTracker::FeatureTracker(const TrackerOptions& options) {
+  options.Check();
+  impl_ = std::make_unique<Impl>(options);
+}
+
+FeatureTracker::~FeatureTracker() = default;
+
+FrameTracks FeatureTracker::Process(const Frame& frame) { return impl_->Process(frame); }
+
+}  // namespace hapcine

@@ -1,0 +1,365 @@
+#include "extract/feature_tracker.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "core/error.h"
+#include "extract/test_frames.h"
+
+namespace hapcine {
+namespace {
+
+using testing::MakeFrame;
+using testing::NoiseTexture;
+using testing::Shifted;
+
+const cv::Size kDecoded(640, 480);
+
+std::map<long, Eigen::Vector2d> ById(const FrameTracks& t) {
+  std::map<long, Eigen::Vector2d> m;
+  for (const auto& p : t.points) m[p.track_id] = p.px;
+  return m;
+}
+
+TrackerOptions SmallOptions() {
+  TrackerOptions o;
+  o.max_tracks = 300;
+  return o;
+}
+
+// Sub-pixel translations, tracked on a half-size working image, come back in
+// decoded pixels to better than 0.1 px.
+TEST(FeatureTrackerTest, TranslationIsTrackedToATenthOfAPixel) {
+  // Exact rendering: warpAffine would add its own 1/32-px quantisation.
+  FeatureTracker tracker(SmallOptions());
+  std::vector<FrameTracks> out;
+  std::vector<cv::Point2d> shift;
+  for (int i = 0; i < 10; ++i) {
+    shift.emplace_back(1.37 * i, -0.61 * i);
+    const cv::Mat texture_from_decoded =
+        (cv::Mat_<double>(2, 3) << 1, 0, -shift[i].x, 0, 1, -shift[i].y);
+    out.push_back(tracker.Process(
+        MakeFrame(testing::AnalyticTexture(kDecoded, texture_from_decoded, 1), i, 0.5)));
+  }
+  EXPECT_EQ(out[0].boundary, ShotBoundary::kStart);
+  EXPECT_GT(out[0].points.size(), 250u);
+  const auto first = ById(out[0]);
+  for (int i = 1; i < 10; ++i) {
+    EXPECT_EQ(out[i].boundary, ShotBoundary::kNone);
+    EXPECT_EQ(out[i].shot, 0);
+    EXPECT_FALSE(out[i].blank);
+    EXPECT_GT(out[i].quality, 0.8);
+    int checked = 0, good = 0;
+    double sum_err = 0;
+    for (const auto& [id, px] : ById(out[i])) {
+      auto it = first.find(id);
+      if (it == first.end()) continue;
+      const Eigen::Vector2d moved = px - it->second;
+      const double err = (moved - Eigen::Vector2d(shift[i].x, shift[i].y)).norm();
+      sum_err += err;
+      ++checked;
+      good += err < 0.1;
+    }
+    ASSERT_GT(checked, 200) << "frame " << i;
+    EXPECT_LT(sum_err / checked, 0.075) << "frame " << i;
+    EXPECT_GT(good, 0.9 * checked) << "frame " << i;
+  }
+}
+
+// Rotation about the decoded image centre, 2 degrees a frame: every step
+// moves the tracks as the rotation says. (Translational KLT follows the
+// gradient-weighted centre of its window, which rotates about the window
+// centre, so a track drifts ~0.1 px a frame against its physical point.)
+TEST(FeatureTrackerTest, FollowsRotationAboutTheCentre) {
+  const cv::Point2d c((kDecoded.width - 1) / 2.0, (kDecoded.height - 1) / 2.0);
+  auto texture_from_decoded = [&](double deg) {
+    // texture = R(-deg) (decoded - c): the picture turns by +deg on screen
+    // (y down: positive = clockwise).
+    const double a = -deg * M_PI / 180;
+    const double ca = std::cos(a), sa = std::sin(a);
+    return cv::Mat((cv::Mat_<double>(2, 3) << ca, -sa, -(ca * c.x - sa * c.y), sa, ca,
+                    -(sa * c.x + ca * c.y)));
+  };
+  FeatureTracker tracker(SmallOptions());
+  const double step = 2.0 * M_PI / 180;
+  std::map<long, Eigen::Vector2d> prev;
+  for (int i = 0; i < 8; ++i) {
+    const FrameTracks t = tracker.Process(
+        MakeFrame(testing::AnalyticTexture(kDecoded, texture_from_decoded(2.0 * i), 2), i, 0.5));
+    std::vector<double> errors;
+    for (const auto& p : t.points) {
+      auto it = prev.find(p.track_id);
+      if (it == prev.end()) continue;
+      const Eigen::Vector2d d(it->second.x() - c.x, it->second.y() - c.y);
+      const Eigen::Vector2d want(std::cos(step) * d.x() - std::sin(step) * d.y() + c.x,
+                                 std::sin(step) * d.x() + std::cos(step) * d.y() + c.y);
+      errors.push_back((p.px - want).norm());
+    }
+    if (i > 0) {
+      ASSERT_GT(errors.size(), 200u) << i;
+      std::sort(errors.begin(), errors.end());
+      EXPECT_LT(errors[errors.size() / 2], 0.15) << i;
+      EXPECT_LT(errors[errors.size() * 9 / 10], 0.4) << i;
+    }
+    prev = ById(t);
+  }
+}
+
+// The working -> decoded mapping, checked exactly: a picture mirror-symmetric
+// about x = (W - 1) / 2 gives mirrored detections (x, y) and (W - 1 - x, y).
+// Dropping the half-pixel terms would put pairs at x + x' = W - 2. (Working
+// images narrower than 320 px, where corners are detected at full working
+// resolution; wider ones detect on pyrDown's level, which is not symmetric.)
+TEST(FeatureTrackerTest, PixelCentreMappingKeepsMirrorSymmetry) {
+  cv::Mat half = NoiseTexture({320, 480}, 14);
+  cv::Mat mirrored, image;
+  cv::flip(half, mirrored, 1);
+  cv::hconcat(half, mirrored, image);  // 640 x 480, symmetric
+  for (double scale : {0.25, 0.375}) {
+    FeatureTracker tracker(SmallOptions());
+    const FrameTracks t = tracker.Process(MakeFrame(image, 0, scale));
+    ASSERT_GT(t.points.size(), 50u);
+    int paired = 0;
+    for (const auto& p : t.points) {
+      for (const auto& q : t.points) {
+        if (std::abs(p.px.x() + q.px.x() - (kDecoded.width - 1)) < 1e-3 &&
+            std::abs(p.px.y() - q.px.y()) < 1e-3) {
+          ++paired;
+          break;
+        }
+      }
+    }
+    EXPECT_GT(paired, 0.8 * t.points.size()) << "scale " << scale;
+  }
+}
+
+// Points whose patch changed (an occluder appeared) fail forward-backward and
+// are dropped; the rest continue.
+TEST(FeatureTrackerTest, ForwardBackwardRejectsCorruptedPoints) {
+  const cv::Mat texture = NoiseTexture({1000, 800}, 3);
+  const cv::Mat other = NoiseTexture({1000, 800}, 4);
+  FeatureTracker tracker(SmallOptions());
+  const FrameTracks t0 = tracker.Process(MakeFrame(Shifted(texture, 0, 0, kDecoded), 0, 0.5));
+  cv::Mat next = Shifted(texture, 2.0, 1.0, kDecoded);
+  const cv::Rect patch(200, 150, 200, 160);
+  Shifted(other, 0, 0, kDecoded)(patch).copyTo(next(patch));
+  const FrameTracks t1 = tracker.Process(MakeFrame(next, 1, 0.5));
+  const auto after = ById(t1);
+  int inside = 0, inside_kept = 0, outside = 0, outside_kept = 0;
+  for (const auto& p : t0.points) {
+    const bool in = p.px.x() > patch.x + 12 && p.px.x() < patch.br().x - 12 &&
+                    p.px.y() > patch.y + 12 && p.px.y() < patch.br().y - 12;
+    const bool far = p.px.x() < patch.x - 30 || p.px.x() > patch.br().x + 30 ||
+                     p.px.y() < patch.y - 30 || p.px.y() > patch.br().y + 30;
+    const bool kept = after.count(p.track_id) > 0;
+    if (in) {
+      ++inside;
+      inside_kept += kept;
+    } else if (far) {
+      ++outside;
+      outside_kept += kept;
+      if (kept) {
+        const Eigen::Vector2d moved = after.at(p.track_id) - p.px;
+        EXPECT_NEAR(moved.x(), 2.0, 0.15);
+        EXPECT_NEAR(moved.y(), 1.0, 0.15);
+      }
+    }
+  }
+  ASSERT_GT(inside, 10);
+  EXPECT_LT(inside_kept, 0.1 * inside + 1);
+  EXPECT_GT(outside_kept, 0.9 * outside);
+  // New detections fill the patch with fresh ids.
+  EXPECT_GT(t1.points.size(), 0.9 * 300);
+}
+
+TEST(FeatureTrackerTest, DetectionsAreSpreadOverTheGrid) {
+  TrackerOptions o;
+  o.max_tracks = 480;
+  o.grid_cols = 8;
+  o.grid_rows = 6;
+  FeatureTracker tracker(o);
+  const FrameTracks t = tracker.Process(MakeFrame(NoiseTexture(kDecoded, 5), 0, 1.0));
+  std::vector<int> count(48, 0);
+  for (const auto& p : t.points) {
+    const int cx = std::min(7, static_cast<int>(p.px.x() * 8 / kDecoded.width));
+    const int cy = std::min(5, static_cast<int>(p.px.y() * 6 / kDecoded.height));
+    ++count[cy * 8 + cx];
+  }
+  for (int c : count) {
+    EXPECT_GE(c, 5);
+    EXPECT_LE(c, 10);
+  }
+  // Ids are unique.
+  std::set<long> ids;
+  for (const auto& p : t.points) EXPECT_TRUE(ids.insert(p.track_id).second);
+}
+
+// A jump of 40% of the width between two frames: KLT cannot follow, ORB
+// matching re-links the old ids at the right places.
+TEST(FeatureTrackerTest, RecoversAfterALargeJumpWithTheOldIds) {
+  const cv::Mat texture = NoiseTexture({1600, 800}, 6);
+  FeatureTracker tracker(SmallOptions());
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 4; ++i)
+    out.push_back(
+        tracker.Process(MakeFrame(Shifted(texture, -1.0 * i, 0, kDecoded, {700, 100}), i, 0.5)));
+  const double jump = -0.4 * kDecoded.width;
+  const FrameTracks after =
+      tracker.Process(MakeFrame(Shifted(texture, -3.0 + jump, 0, kDecoded, {700, 100}), 4, 0.5));
+  EXPECT_TRUE(after.recovered);
+  EXPECT_EQ(after.shot, 0);
+  const auto before = ById(out[3]);
+  int relinked = 0;
+  for (const auto& p : after.points) {
+    auto it = before.find(p.track_id);
+    if (it == before.end()) continue;
+    ++relinked;
+    EXPECT_NEAR(p.px.x() - it->second.x(), jump, 0.2);
+    EXPECT_NEAR(p.px.y() - it->second.y(), 0, 0.2);
+  }
+  EXPECT_GE(relinked, 15);
+  // Without recovery the old ids are gone.
+  TrackerOptions no_recovery = SmallOptions();
+  no_recovery.descriptor_recovery = false;
+  FeatureTracker plain(no_recovery);
+  FrameTracks last;
+  for (int i = 0; i < 4; ++i)
+    last = plain.Process(MakeFrame(Shifted(texture, -1.0 * i, 0, kDecoded, {700, 100}), i, 0.5));
+  const auto ids_before = ById(last);
+  const FrameTracks jumped =
+      plain.Process(MakeFrame(Shifted(texture, -3.0 + jump, 0, kDecoded, {700, 100}), 4, 0.5));
+  EXPECT_FALSE(jumped.recovered);
+  int wrongly_kept = 0;
+  for (const auto& p : jumped.points) {
+    auto it = ids_before.find(p.track_id);
+    if (it != ids_before.end() && std::abs(p.px.x() - it->second.x() - jump) > 2) ++wrongly_kept;
+  }
+  EXPECT_LE(wrongly_kept, 3);
+}
+
+TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
+  const cv::Mat a = NoiseTexture({1000, 800}, 7, {0.8, 0.0, -0.6});
+  const cv::Mat b = NoiseTexture({1000, 800}, 8, {-0.6, 0.2, 0.8});
+  FeatureTracker tracker(SmallOptions());
+  long max_id = -1;
+  for (int i = 0; i < 20; ++i) {
+    const cv::Mat& tex = i < 10 ? a : b;
+    const FrameTracks t =
+        tracker.Process(MakeFrame(Shifted(tex, 1.5 * i, 0.5 * i, kDecoded), i, 0.5));
+    if (i == 10) {
+      EXPECT_EQ(t.boundary, ShotBoundary::kCut);
+      EXPECT_EQ(t.shot, 1);
+      for (const auto& p : t.points) EXPECT_GT(p.track_id, max_id);
+      EXPECT_GT(t.points.size(), 250u);
+    } else {
+      EXPECT_EQ(t.boundary, i == 0 ? ShotBoundary::kStart : ShotBoundary::kNone) << i;
+      EXPECT_EQ(t.shot, i < 10 ? 0 : 1);
+    }
+    for (const auto& p : t.points) max_id = std::max(max_id, p.track_id);
+  }
+}
+
+TEST(FeatureTrackerTest, BlankFramesAreFlaggedAndNotTracked) {
+  const cv::Mat a = NoiseTexture({1000, 800}, 9);
+  FeatureTracker tracker(SmallOptions());
+  const cv::Mat black(kDecoded, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int i = 0; i < 3; ++i) {
+    const FrameTracks t = tracker.Process(MakeFrame(black, i, 0.5));
+    EXPECT_TRUE(t.blank);
+    EXPECT_TRUE(t.points.empty());
+    EXPECT_EQ(t.quality, 0);
+    EXPECT_EQ(t.shot, 0);
+  }
+  // Content after leading black is still shot 0 (nothing to separate from).
+  const FrameTracks t = tracker.Process(MakeFrame(Shifted(a, 0, 0, kDecoded), 3, 0.5));
+  EXPECT_FALSE(t.blank);
+  EXPECT_EQ(t.shot, 0);
+  EXPECT_EQ(t.boundary, ShotBoundary::kNone);
+  EXPECT_GT(t.points.size(), 250u);
+  // A flat grey frame is blank too.
+  const FrameTracks g =
+      tracker.Process(MakeFrame(cv::Mat(kDecoded, CV_8UC3, cv::Scalar(128, 128, 128)), 4, 0.5));
+  EXPECT_TRUE(g.blank);
+  EXPECT_TRUE(g.points.empty());
+}
+
+TEST(FeatureTrackerTest, FadeThroughBlackSplitsShots) {
+  const cv::Mat a = NoiseTexture({1000, 800}, 10, {0.5, 0.0, -0.5});
+  const cv::Mat b = NoiseTexture({1000, 800}, 11, {-0.5, 0.0, 0.5});
+  FeatureTracker tracker(SmallOptions());
+  // 0-9 A, 10-19 fade out, 20-22 black, 23-32 fade in B, 33-40 B.
+  std::vector<FrameTracks> out;
+  for (int i = 0; i <= 40; ++i) {
+    double gain = 1;
+    const cv::Mat* tex = &a;
+    if (i >= 10 && i < 20) gain = 1 - (i - 9) / 10.0;
+    if (i >= 20 && i < 23) gain = 0;
+    if (i >= 23) tex = &b;
+    if (i >= 23 && i < 33) gain = (i - 22) / 10.0;
+    cv::Mat img = Shifted(*tex, 1.0 * i, 0, kDecoded);
+    img.convertTo(img, -1, gain, 0);
+    out.push_back(tracker.Process(MakeFrame(img, i, 0.5)));
+  }
+  int fades = 0, cuts = 0;
+  for (const auto& t : out) {
+    fades += t.boundary == ShotBoundary::kFade;
+    cuts += t.boundary == ShotBoundary::kCut;
+  }
+  EXPECT_EQ(cuts, 0);
+  EXPECT_EQ(fades, 1);
+  for (int i = 20; i < 23; ++i) EXPECT_TRUE(out[i].blank) << i;
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(out[i].shot, 0);
+  for (int i = 33; i <= 40; ++i) EXPECT_EQ(out[i].shot, 1);
+  // Mid-fade frames are either blank or low quality.
+  for (int i = 15; i < 28; ++i)
+    EXPECT_TRUE(out[i].blank || out[i].quality <= 0.25) << "frame " << i;
+  EXPECT_GT(out[40].quality, 0.8);
+}
+
+TEST(FeatureTrackerTest, DissolveIsAGradualBoundary) {
+  const cv::Mat a = NoiseTexture({1000, 800}, 12, {0.8, 0.0, -0.6});
+  const cv::Mat b = NoiseTexture({1000, 800}, 13, {-0.6, 0.2, 0.8});
+  FeatureTracker tracker(SmallOptions());
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 36; ++i) {
+    const double w = std::clamp((i - 10) / 12.0, 0.0, 1.0);  // 10..22 dissolve
+    cv::Mat img;
+    cv::addWeighted(Shifted(a, 1.0 * i, 0, kDecoded), 1 - w, Shifted(b, 0, 1.0 * i, kDecoded), w, 0,
+                    img);
+    out.push_back(tracker.Process(MakeFrame(img, i, 0.5)));
+  }
+  int fades = 0, cuts = 0, first_fade = -1;
+  for (const auto& t : out) {
+    if (t.boundary == ShotBoundary::kFade && first_fade < 0) first_fade = t.index;
+    fades += t.boundary == ShotBoundary::kFade;
+    cuts += t.boundary == ShotBoundary::kCut;
+  }
+  EXPECT_EQ(cuts, 0);
+  EXPECT_EQ(fades, 1);
+  EXPECT_GE(first_fade, 12);
+  EXPECT_LE(first_fade, 26);
+  EXPECT_EQ(out.back().shot, 1);
+}
+
+TEST(FeatureTrackerTest, RejectsBadInputAndOptions) {
+  FeatureTracker tracker;
+  Frame empty;
+  EXPECT_THROW(tracker.Process(empty), Error);
+  TrackerOptions o;
+  o.klt_window = 20;
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o = {};
+  o.fb_threshold_px = 0;
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o = {};
+  o.max_tracks = 0;
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
+}
+
+}  // namespace
+}  // namespace hapcine

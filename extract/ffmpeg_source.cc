@@ -1,0 +1,330 @@
+// FrameSource over FFmpeg: demux (libavformat) -> decode (libavcodec, frame
+// threads) -> scale straight to the working size in gray and BGR (libswscale,
+// one pass each, no extra resize) -> rotate by the display matrix.
+//
+// Streaming: one AVPacket and one AVFrame are reused for the whole file, so
+// memory does not grow with the video's length. Times come from the
+// container (best_effort_timestamp), so variable frame rate comes out right.
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "extract/video_sources.h"
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libavutil/display.h>
+#include <libavutil/pixdesc.h>
+#include <libswscale/swscale.h>
+}
+
+namespace hapcine {
+namespace {
+
+std::string AvError(int err) {
+  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
+  av_strerror(err, buf, sizeof(buf));
+  return buf;
+}
+
+// Clockwise rotation (0/90/180/270) that makes the frame display upright,
+// the same reading as the ffmpeg CLI's autorotate.
+int DisplayRotationDeg(const AVStream* stream) {
+  const uint8_t* matrix = av_stream_get_side_data(stream, AV_PKT_DATA_DISPLAYMATRIX, nullptr);
+  if (!matrix) return 0;
+  const double ccw = av_display_rotation_get(reinterpret_cast<const int32_t*>(matrix));
+  if (!std::isfinite(ccw)) return 0;
+  double cw = -ccw;
+  cw -= 360.0 * std::floor(cw / 360.0);  // [0, 360)
+  const int quarter = static_cast<int>(std::lround(cw / 90.0)) % 4;
+  return quarter * 90;
+}
+
+// Rows of a cv::Mat handed to swscale should start 16-byte aligned, or
+// swscale falls back to slow paths (and says so on stderr).
+bool RowsAligned(const cv::Mat& m) {
+  return (reinterpret_cast<uintptr_t>(m.data) % 16 == 0) && (m.step % 16 == 0);
+}
+
+class FfmpegSource : public FrameSource {
+ public:
+  FfmpegSource(const std::string& path, const FrameSourceOptions& options) : options_(options) {
+    info_.path = path;
+    try {
+      Open();
+    } catch (...) {
+      Close();
+      throw;
+    }
+  }
+  ~FfmpegSource() override { Close(); }
+
+  const VideoInfo& info() const override { return info_; }
+
+  bool Next(Frame* out) override {
+    if (finished_) return false;
+    for (;;) {
+      const int r = avcodec_receive_frame(dec_, frame_);
+      if (r == 0) {
+        Convert(out);
+        av_frame_unref(frame_);
+        ++decoded_;
+        return true;
+      }
+      if (r == AVERROR_EOF) return Finish();
+      if (r != AVERROR(EAGAIN)) {
+        // A decoder error after draining started (truncated or corrupt tail):
+        // keep what was decoded, stop cleanly.
+        if (draining_) return Finish();
+        ++bad_packets_;
+        CheckBadPackets();
+        continue;
+      }
+      if (draining_) return Finish();  // EAGAIN while draining: nothing left
+      FeedOnePacket();
+    }
+  }
+
+ private:
+  void Open() {
+    const std::string& path = info_.path;
+    if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_ERROR);
+    int r = avformat_open_input(&fmt_, path.c_str(), nullptr, nullptr);
+    if (r < 0) throw Error(path, "not a media file FFmpeg can read (" + AvError(r) + ")");
+    // The "tty" demuxer turns any .txt/.ans file into ANSI-art video.
+    if (fmt_->iformat && std::strcmp(fmt_->iformat->name, "tty") == 0)
+      throw Error(path, "not a media file (text)");
+    r = avformat_find_stream_info(fmt_, nullptr);
+    if (r < 0) throw Error(path, "cannot read stream information (" + AvError(r) + ")");
+
+    stream_index_ = PickVideoStream();
+    AVStream* st = fmt_->streams[stream_index_];
+    const AVCodecParameters* par = st->codecpar;
+    info_.codec = avcodec_get_name(par->codec_id);
+    const AVCodec* codec = avcodec_find_decoder(par->codec_id);
+    if (!codec)
+      throw Error(path,
+                  "unsupported video codec '" + info_.codec + "' (no decoder in this FFmpeg)");
+    CheckSize(par->width, par->height);
+
+    dec_ = avcodec_alloc_context3(codec);
+    if (!dec_) throw Error(path, "out of memory (decoder context)");
+    r = avcodec_parameters_to_context(dec_, par);
+    if (r < 0) throw Error(path, "bad codec parameters (" + AvError(r) + ")");
+    dec_->pkt_timebase = st->time_base;
+    dec_->thread_count = options_.decode_threads;  // 0 = automatic
+    dec_->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
+    r = avcodec_open2(dec_, codec, nullptr);
+    if (r < 0) throw Error(path, "cannot open " + info_.codec + " decoder (" + AvError(r) + ")");
+
+    pkt_ = av_packet_alloc();
+    frame_ = av_frame_alloc();
+    if (!pkt_ || !frame_) throw Error(path, "out of memory (packet/frame)");
+
+    time_base_s_ = av_q2d(st->time_base);
+    if (st->start_time != AV_NOPTS_VALUE) start_pts_ = st->start_time;
+    const AVRational rate = av_guess_frame_rate(fmt_, st, nullptr);
+    info_.fps = (rate.num > 0 && rate.den > 0) ? av_q2d(rate) : 0;
+    if (st->duration != AV_NOPTS_VALUE && st->duration > 0)
+      info_.duration_s = st->duration * time_base_s_;
+    else if (fmt_->duration != AV_NOPTS_VALUE && fmt_->duration > 0)
+      info_.duration_s = static_cast<double>(fmt_->duration) / AV_TIME_BASE;
+    if (st->nb_frames > 0)
+      info_.frame_count = st->nb_frames;
+    else if (info_.duration_s > 0 && info_.fps > 0)
+      info_.frame_count = std::lround(info_.duration_s * info_.fps);
+    info_.rotation_deg = DisplayRotationDeg(st);
+    const bool swap = info_.rotation_deg == 90 || info_.rotation_deg == 270;
+    info_.width = swap ? par->height : par->width;
+    info_.height = swap ? par->width : par->height;
+  }
+
+  int PickVideoStream() {
+    const std::string& path = info_.path;
+    const int best = av_find_best_stream(fmt_, AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
+    auto usable = [&](int i) {
+      const AVStream* s = fmt_->streams[i];
+      return s->codecpar->codec_type == AVMEDIA_TYPE_VIDEO &&
+             !(s->disposition & AV_DISPOSITION_ATTACHED_PIC);
+    };
+    if (best >= 0 && usable(best)) return best;
+    for (unsigned i = 0; i < fmt_->nb_streams; ++i)
+      if (usable(static_cast<int>(i))) return static_cast<int>(i);
+    bool has_audio = false;
+    for (unsigned i = 0; i < fmt_->nb_streams; ++i)
+      has_audio |= fmt_->streams[i]->codecpar->codec_type == AVMEDIA_TYPE_AUDIO;
+    throw Error(path, has_audio ? "no video stream (audio only)" : "no video stream");
+  }
+
+  void CheckSize(int w, int h) const {
+    if (w <= 0 || h <= 0) throw Error(info_.path, "video has no valid frame size");
+    if (w > kMaxFrameSidePx || h > kMaxFrameSidePx)
+      throw Error(info_.path, "absurd frame size " + std::to_string(w) + "x" + std::to_string(h) +
+                                  " (limit " + std::to_string(kMaxFrameSidePx) + " px per side)");
+  }
+
+  void FeedOnePacket() {
+    for (;;) {
+      const int r = av_read_frame(fmt_, pkt_);
+      if (r < 0) {  // end of file, or a read error on a truncated file
+        avcodec_send_packet(dec_, nullptr);
+        draining_ = true;
+        return;
+      }
+      if (pkt_->stream_index != stream_index_) {
+        av_packet_unref(pkt_);
+        continue;
+      }
+      const int s = avcodec_send_packet(dec_, pkt_);
+      av_packet_unref(pkt_);
+      if (s < 0 && s != AVERROR(EAGAIN)) {  // corrupt packet: skip it
+        ++bad_packets_;
+        CheckBadPackets();
+      }
+      return;
+    }
+  }
+
+  void CheckBadPackets() const {
+    if (decoded_ == 0 && bad_packets_ > 200)
+      throw Error(info_.path, "cannot decode any video frame (" + info_.codec + " data corrupt)");
+  }
+
+  bool Finish() {
+    finished_ = true;
+    if (decoded_ == 0) throw Error(info_.path, "no video frame could be decoded");
+    return false;
+  }
+
+  double FrameTime() {
+    int64_t pts = frame_->best_effort_timestamp;
+    if (pts == AV_NOPTS_VALUE) pts = frame_->pts;
+    double t;
+    if (pts == AV_NOPTS_VALUE) {
+      t = decoded_ == 0 ? 0.0 : last_time_s_ + (info_.fps > 0 ? 1.0 / info_.fps : 1.0 / 24);
+    } else {
+      if (start_pts_ == AV_NOPTS_VALUE) start_pts_ = pts;
+      t = (pts - start_pts_) * time_base_s_;
+    }
+    // Broken files repeat or reorder timestamps; keep times increasing.
+    if (decoded_ > 0 && !(t > last_time_s_))
+      t = last_time_s_ + (info_.fps > 0 ? 1.0 / info_.fps : 1.0 / 24);
+    last_time_s_ = t;
+    return t;
+  }
+
+  // Scales frame_ into `dst` (type CV_8UC1 or CV_8UC3, preallocated at the
+  // working size) with a cached swscale context.
+  void Scale(SwsContext** ctx, AVPixelFormat dst_format, int flags, cv::Mat* dst) {
+    const int fw = frame_->width, fh = frame_->height;
+    *ctx = sws_getCachedContext(*ctx, fw, fh, static_cast<AVPixelFormat>(frame_->format), dst->cols,
+                                dst->rows, dst_format, flags, nullptr, nullptr, nullptr);
+    if (!*ctx)
+      throw Error(info_.path, std::string("cannot convert pixel format ") +
+                                  av_get_pix_fmt_name(static_cast<AVPixelFormat>(frame_->format)));
+    cv::Mat target = *dst;
+    cv::Mat padded;
+    if (!RowsAligned(*dst)) {  // scale into an aligned buffer, then copy
+      const int row_bytes = dst->cols * static_cast<int>(dst->elemSize());
+      padded.create(dst->rows, (row_bytes + 31) / 32 * 32, CV_8UC1);
+      target = cv::Mat(dst->rows, dst->cols, dst->type(), padded.data, padded.step);
+    }
+    uint8_t* planes[4] = {target.data, nullptr, nullptr, nullptr};
+    int strides[4] = {static_cast<int>(target.step), 0, 0, 0};
+    sws_scale(*ctx, frame_->data, frame_->linesize, 0, fh, planes, strides);
+    if (target.data != dst->data) target.copyTo(*dst);
+  }
+
+  // The caller's previous image buffer if nobody else holds it (saves a
+  // fresh allocation, i.e. page faults, per frame), else a new one.
+  static cv::Mat Reuse(cv::Mat* previous, cv::Size size, int type) {
+    cv::Mat m;
+    if (previous->u && previous->u->refcount == 1 && previous->isContinuous() &&
+        previous->size() == size && previous->type() == type &&
+        previous->data == previous->datastart)
+      m = *previous;
+    previous->release();
+    if (m.empty()) m.create(size, type);
+    return m;
+  }
+
+  void Convert(Frame* out) {
+    const int fw = frame_->width, fh = frame_->height;
+    CheckSize(fw, fh);
+    const cv::Size work = WorkingSize(fw, fh, options_.max_working_side);
+    const bool rotate = info_.rotation_deg != 0;
+    cv::Mat gray = rotate ? cv::Mat(work, CV_8UC1) : Reuse(&out->gray, work, CV_8UC1);
+    // Gray feeds the tracker: proper bilinear filtering (antialiased when
+    // shrinking). BGR only feeds shot statistics and previews: the fast
+    // path, which roughly halves its cost.
+    Scale(&gray_sws_, AV_PIX_FMT_GRAY8, SWS_BILINEAR, &gray);
+    cv::Mat bgr;
+    if (options_.want_color) {
+      bgr = rotate ? cv::Mat(work, CV_8UC3) : Reuse(&out->bgr, work, CV_8UC3);
+      Scale(&bgr_sws_, AV_PIX_FMT_BGR24, SWS_FAST_BILINEAR, &bgr);
+    }
+    int dec_w = fw, dec_h = fh;
+    if (info_.rotation_deg != 0) {
+      const int code = info_.rotation_deg == 90    ? cv::ROTATE_90_CLOCKWISE
+                       : info_.rotation_deg == 180 ? cv::ROTATE_180
+                                                   : cv::ROTATE_90_COUNTERCLOCKWISE;
+      cv::Mat g, b;
+      cv::rotate(gray, g, code);
+      gray = g;
+      if (!bgr.empty()) {
+        cv::rotate(bgr, b, code);
+        bgr = b;
+      }
+      if (info_.rotation_deg != 180) std::swap(dec_w, dec_h);
+    }
+    out->index = static_cast<int>(decoded_);
+    out->time_s = FrameTime();
+    out->gray = gray;
+    out->bgr = bgr;
+    out->decoded_width = dec_w;
+    out->decoded_height = dec_h;
+    out->scale = dec_w >= dec_h ? static_cast<double>(gray.cols) / dec_w
+                                : static_cast<double>(gray.rows) / dec_h;
+  }
+
+  void Close() {
+    if (gray_sws_) sws_freeContext(gray_sws_);
+    if (bgr_sws_) sws_freeContext(bgr_sws_);
+    gray_sws_ = bgr_sws_ = nullptr;
+    av_frame_free(&frame_);
+    av_packet_free(&pkt_);
+    avcodec_free_context(&dec_);
+    avformat_close_input(&fmt_);
+  }
+
+  FrameSourceOptions options_;
+  VideoInfo info_;
+  AVFormatContext* fmt_ = nullptr;
+  AVCodecContext* dec_ = nullptr;
+  AVPacket* pkt_ = nullptr;
+  AVFrame* frame_ = nullptr;
+  SwsContext* gray_sws_ = nullptr;
+  SwsContext* bgr_sws_ = nullptr;
+  int stream_index_ = -1;
+  double time_base_s_ = 0;
+  int64_t start_pts_ = AV_NOPTS_VALUE;
+  double last_time_s_ = 0;
+  long decoded_ = 0;
+  long bad_packets_ = 0;
+  bool draining_ = false;
+  bool finished_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSource> OpenFfmpegSource(const std::string& path,
+                                              const FrameSourceOptions& options) {
+  return std::make_unique<FfmpegSource>(path, options);
+}
+
+}  // namespace hapcine

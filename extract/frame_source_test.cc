@@ -1,0 +1,250 @@
+#include "extract/frame_source.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+
+namespace hapcine {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Small videos are made with the ffmpeg CLI on the fly, once per test run.
+class FrameSourceTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("hapcine_extract_test_" + std::to_string(::getpid())));
+    fs::create_directories(*dir_);
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(*dir_, ec);
+    delete dir_;
+  }
+  static std::string Path(const std::string& name) { return (*dir_ / name).string(); }
+  // Runs ffmpeg quietly; returns the output path.
+  static std::string Make(const std::string& name, const std::string& args) {
+    const std::string out = Path(name);
+    if (!fs::exists(out)) {
+      const std::string cmd =
+          "ffmpeg -nostdin -hide_banner -loglevel error -y " + args + " '" + out + "'";
+      EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    }
+    return out;
+  }
+  static std::vector<Frame> ReadAll(const std::string& path, const FrameSourceOptions& o = {}) {
+    auto source = OpenFrameSource(path, o);
+    std::vector<Frame> frames;
+    Frame f;
+    while (source->Next(&f)) frames.push_back(f);
+    return frames;
+  }
+  static std::string Testsrc() {
+    return Make("testsrc.mp4",
+                "-f lavfi -i testsrc=size=320x240:rate=24 -t 1 -c:v libx264 -pix_fmt yuv420p");
+  }
+  static void ExpectError(const std::string& path, const std::string& reason_part) {
+    try {
+      ReadAll(path);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), path);
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos);
+      EXPECT_NE(e.reason().find(reason_part), std::string::npos) << e.what();
+    }
+  }
+  static fs::path* dir_;
+};
+fs::path* FrameSourceTest::dir_ = nullptr;
+
+TEST_F(FrameSourceTest, DecodesAllFramesWithMonotoneTimes) {
+  const std::string path = Testsrc();
+  auto source = OpenFrameSource(path, {});
+  EXPECT_EQ(source->info().width, 320);
+  EXPECT_EQ(source->info().height, 240);
+  EXPECT_NEAR(source->info().fps, 24, 1e-6);
+  EXPECT_EQ(source->info().codec, "h264");
+  EXPECT_EQ(source->info().rotation_deg, 0);
+  std::vector<Frame> frames;
+  Frame f;
+  while (source->Next(&f)) frames.push_back(f);
+  EXPECT_FALSE(source->Next(&f));  // stays at the end
+  ASSERT_EQ(frames.size(), 24u);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i].index, static_cast<int>(i));
+    EXPECT_NEAR(frames[i].time_s, i / 24.0, 1e-3);
+    EXPECT_EQ(frames[i].gray.type(), CV_8UC1);
+    EXPECT_EQ(frames[i].bgr.type(), CV_8UC3);
+    EXPECT_EQ(frames[i].gray.size(), cv::Size(320, 240));  // smaller than 960: kept
+    EXPECT_DOUBLE_EQ(frames[i].scale, 1.0);
+  }
+}
+
+TEST_F(FrameSourceTest, ScalesToWorkingSizeInGrayAndColour) {
+  FrameSourceOptions o;
+  o.max_working_side = 160;
+  o.decode_threads = 2;
+  const auto frames = ReadAll(Testsrc(), o);
+  ASSERT_EQ(frames.size(), 24u);
+  EXPECT_EQ(frames[0].gray.size(), cv::Size(160, 120));
+  EXPECT_EQ(frames[0].bgr.size(), cv::Size(160, 120));
+  EXPECT_DOUBLE_EQ(frames[0].scale, 0.5);
+  EXPECT_EQ(frames[0].decoded_width, 320);
+  EXPECT_EQ(frames[0].decoded_height, 240);
+  // Gray agrees with the colour image's luma (same scaling, same frame).
+  cv::Mat luma;
+  cv::cvtColor(frames[5].bgr, luma, cv::COLOR_BGR2GRAY);
+  EXPECT_LT(cv::norm(luma, frames[5].gray, cv::NORM_L1) / luma.total(), 12.0);
+  o.want_color = false;
+  const auto gray_only = ReadAll(Testsrc(), o);
+  EXPECT_TRUE(gray_only[0].bgr.empty());
+}
+
+TEST_F(FrameSourceTest, BlackIsBlackInGray) {
+  // Limited-range video: black (Y=16) must come out near 0 for blank tests.
+  const auto frames = ReadAll(Make("black.mp4",
+                                   "-f lavfi -i color=c=black:s=64x48:r=10 -t 0.3 "
+                                   "-c:v libx264 -pix_fmt yuv420p"));
+  ASSERT_FALSE(frames.empty());
+  EXPECT_LT(cv::mean(frames[0].gray)[0], 4.0);
+}
+
+TEST_F(FrameSourceTest, VariableFrameRateTimesComeFromTheContainer) {
+  // 12 frames at 1/24 s, then 12 at 1/12 s.
+  const std::string path =
+      Make("vfr.mkv",
+           "-f lavfi -i testsrc=size=160x120:rate=24 -frames:v 24 "
+           "-vf \"setpts='if(lt(N,12),N,12+2*(N-12))'\" -fps_mode vfr -c:v libx264");
+  const auto frames = ReadAll(path);
+  ASSERT_EQ(frames.size(), 24u);
+  for (int i = 0; i < 24; ++i) {
+    const double want = i < 12 ? i / 24.0 : 0.5 + (i - 12) / 12.0;
+    EXPECT_NEAR(frames[i].time_s, want, 2e-3) << "frame " << i;
+  }
+}
+
+TEST_F(FrameSourceTest, HonoursDisplayRotation) {
+  // White box in the top-left corner of a black 320x240 frame. The "rotate=90"
+  // tag means 90 degrees counter-clockwise for display (ffprobe: rotation=90;
+  // the ffmpeg CLI puts the box bottom-left), i.e. 270 clockwise.
+  const std::string plain =
+      Make("box.mp4",
+           "-f lavfi -i color=c=black:s=320x240:r=10 -t 0.5 "
+           "-vf drawbox=x=0:y=0:w=80:h=60:color=white:t=fill -c:v libx264 -pix_fmt yuv420p");
+  const std::string rotated =
+      Make("box_rot90.mp4", "-i '" + plain + "' -c copy -metadata:s:v rotate=90");
+  auto source = OpenFrameSource(rotated, {});
+  EXPECT_EQ(source->info().rotation_deg, 270);
+  EXPECT_EQ(source->info().width, 240);
+  EXPECT_EQ(source->info().height, 320);
+  Frame f;
+  ASSERT_TRUE(source->Next(&f));
+  ASSERT_EQ(f.gray.size(), cv::Size(240, 320));
+  EXPECT_EQ(f.decoded_width, 240);
+  EXPECT_EQ(f.decoded_height, 320);
+  EXPECT_GT(cv::mean(f.gray(cv::Rect(10, 320 - 70, 40, 60)))[0], 200);  // bottom-left: box
+  EXPECT_LT(cv::mean(f.gray(cv::Rect(10, 10, 40, 60)))[0], 30);         // top-left: black
+  EXPECT_LT(cv::mean(f.gray(cv::Rect(240 - 50, 10, 40, 60)))[0], 30);   // top-right: black
+  EXPECT_EQ(f.bgr.size(), cv::Size(240, 320));
+}
+
+TEST_F(FrameSourceTest, BadInputsNameTheFile) {
+  ExpectError(Path("does_not_exist.mp4"), "no such file");
+  const std::string empty = Path("empty.mp4");
+  std::ofstream(empty).close();
+  ExpectError(empty, "empty file");
+  const std::string text = Path("notes.mp4");
+  std::ofstream(text) << "this is not a video, just some words\n";
+  ExpectError(text, "not a media file");
+  const std::string txt = Path("notes.txt");
+  std::ofstream(txt) << "plain text that the tty demuxer would happily play\n";
+  ExpectError(txt, "not a media file");
+  ExpectError(Make("tone.m4a", "-f lavfi -i sine=frequency=440:duration=0.5 -c:a aac"),
+              "no video stream");
+  // 20000 px wide raw video: a corrupt or hostile header as far as we care.
+  ExpectError(Make("wide.nut",
+                   "-f lavfi -i color=c=gray:s=20000x8:r=5 -frames:v 1 "
+                   "-c:v rawvideo -pix_fmt gray"),
+              "absurd frame size");
+}
+
+TEST_F(FrameSourceTest, TruncatedFileDecodesWhatItCanThenStops) {
+  const std::string full = Make("long.mkv",
+                                "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
+                                "-g 12 -pix_fmt yuv420p");
+  const auto all = ReadAll(full);
+  ASSERT_EQ(all.size(), 48u);
+  const std::string cut = Path("cut.mkv");
+  fs::copy_file(full, cut, fs::copy_options::overwrite_existing);
+  fs::resize_file(cut, fs::file_size(full) / 2);
+  const auto part = ReadAll(cut);
+  EXPECT_GT(part.size(), 5u);
+  EXPECT_LT(part.size(), 48u);
+  for (size_t i = 1; i < part.size(); ++i) EXPECT_GT(part[i].time_s, part[i - 1].time_s);
+  // Only the header survives: no frame at all is an error.
+  const std::string stub = Path("stub.mkv");
+  fs::copy_file(full, stub, fs::copy_options::overwrite_existing);
+  fs::resize_file(stub, 600);
+  ExpectError(stub, "");
+}
+
+TEST_F(FrameSourceTest, ImageFolderAndPattern) {
+  const fs::path folder = *dir_ / "images";
+  fs::create_directories(folder);
+  for (int i = 1; i <= 5; ++i) {
+    cv::Mat img(100, 200, CV_8UC3, cv::Scalar(10 * i, 20 * i, 30 * i));
+    char name[32];
+    std::snprintf(name, sizeof(name), "img_%03d.png", i);
+    cv::imwrite((folder / name).string(), img);
+  }
+  std::ofstream(folder / "readme.txt") << "ignored\n";
+  FrameSourceOptions o;
+  o.max_working_side = 100;
+  o.image_sequence_fps = 10;
+  for (const std::string& path : {folder.string(), (folder / "img_%03d.png").string()}) {
+    auto source = OpenFrameSource(path, o);
+    EXPECT_EQ(source->info().width, 200);
+    EXPECT_EQ(source->info().height, 100);
+    std::vector<Frame> frames;
+    Frame f;
+    while (source->Next(&f)) frames.push_back(f);
+    ASSERT_EQ(frames.size(), 5u) << path;
+    for (int i = 0; i < 5; ++i) {
+      EXPECT_NEAR(frames[i].time_s, i / 10.0, 1e-12);
+      EXPECT_EQ(frames[i].gray.size(), cv::Size(100, 50));
+      EXPECT_DOUBLE_EQ(frames[i].scale, 0.5);
+      EXPECT_NEAR(frames[i].bgr.at<cv::Vec3b>(10, 10)[2], 30 * (i + 1), 1);
+    }
+  }
+  ExpectError((folder / "nothing_%05d.png").string(), "no image matches");
+  ExpectError((folder / "bad_%s.png").string(), "conversion");
+  const fs::path empty_folder = *dir_ / "no_images";
+  fs::create_directories(empty_folder);
+  ExpectError(empty_folder.string(), "no image files");
+}
+
+TEST(FrameSourceOptionsTest, Check) {
+  FrameSourceOptions o;
+  EXPECT_NO_THROW(o.Check());
+  o.max_working_side = -1;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.decode_threads = -2;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.image_sequence_fps = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+}
+
+}  // namespace
+}  // namespace hapcine

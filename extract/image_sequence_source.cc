@@ -1,0 +1,181 @@
+// FrameSource over still images: a folder (every image file in it, sorted by
+// name) or a printf pattern ("shots/img_%05d.png", first index 0 or 1 as
+// ffmpeg's image2 demuxer would find it, up to 4). Image files carry no
+// timestamps: frame i is at i / image_sequence_fps seconds.
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "extract/video_sources.h"
+
+namespace hapcine {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool HasImageExtension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const char* kExts[] = {".png",  ".jpg", ".jpeg", ".bmp", ".tif", ".tiff",
+                                ".webp", ".pgm", ".ppm",  ".pnm", ".exr", ".jp2"};
+  for (const char* e : kExts)
+    if (ext == e) return true;
+  return false;
+}
+
+// `pattern` has been checked to hold exactly one %d-style (int) conversion.
+std::string Format(const std::string& pattern, long i) {
+  char buf[4096];
+  const int n = std::snprintf(buf, sizeof(buf), pattern.c_str(), static_cast<int>(i));
+  if (n < 0 || n >= static_cast<int>(sizeof(buf))) return {};
+  return buf;
+}
+
+class ImageSequenceSource : public FrameSource {
+ public:
+  ImageSequenceSource(const std::string& path, const FrameSourceOptions& options)
+      : options_(options) {
+    info_.path = path;
+    info_.fps = options.image_sequence_fps;
+    info_.codec = "image";
+    if (path.find('%') != std::string::npos) {
+      pattern_ = path;
+      ValidatePattern();
+      for (long first = 0; first <= 4; ++first) {
+        if (fs::exists(Format(pattern_, first))) {
+          next_index_ = first;
+          break;
+        }
+      }
+      if (next_index_ < 0) throw Error(path, "no image matches the pattern (tried indices 0..4)");
+    } else {
+      std::error_code ec;
+      for (const auto& entry : fs::directory_iterator(path, ec))
+        if (entry.is_regular_file() && HasImageExtension(entry.path()))
+          files_.push_back(entry.path().string());
+      if (ec) throw Error(path, "cannot list folder (" + ec.message() + ")");
+      if (files_.empty()) throw Error(path, "folder holds no image files");
+      std::sort(files_.begin(), files_.end());
+      info_.frame_count = static_cast<long>(files_.size());
+      info_.duration_s = files_.size() / info_.fps;
+    }
+    // Read the first image now so that a bad sequence fails at open time.
+    if (!ReadNext(&first_)) throw Error(path, "no readable image");
+    info_.width = first_.cols;
+    info_.height = first_.rows;
+    have_first_ = true;
+  }
+
+  const VideoInfo& info() const override { return info_; }
+
+  bool Next(Frame* out) override {
+    cv::Mat image;
+    if (have_first_) {
+      image = first_;
+      first_.release();
+      have_first_ = false;
+    } else if (!ReadNext(&image)) {
+      return false;
+    }
+    const cv::Size work = WorkingSize(image.cols, image.rows, options_.max_working_side);
+    cv::Mat bgr;
+    if (work == image.size())
+      bgr = image;
+    else
+      cv::resize(image, bgr, work, 0, 0, cv::INTER_AREA);
+    cv::cvtColor(bgr, out->gray, cv::COLOR_BGR2GRAY);
+    out->bgr = options_.want_color ? bgr : cv::Mat();
+    out->index = emitted_;
+    out->time_s = emitted_ / info_.fps;
+    out->decoded_width = image.cols;
+    out->decoded_height = image.rows;
+    out->scale = image.cols >= image.rows ? static_cast<double>(work.width) / image.cols
+                                          : static_cast<double>(work.height) / image.rows;
+    ++emitted_;
+    return true;
+  }
+
+ private:
+  // Exactly one conversion of the form %d / %5d / %05d (an int), else
+  // snprintf would read arguments that are not there.
+  void ValidatePattern() const {
+    int conversions = 0;
+    for (size_t i = 0; i < pattern_.size(); ++i) {
+      if (pattern_[i] != '%') continue;
+      if (i + 1 < pattern_.size() && pattern_[i + 1] == '%') {
+        ++i;
+        continue;
+      }
+      size_t j = i + 1;
+      while (j < pattern_.size() && std::isdigit(static_cast<unsigned char>(pattern_[j]))) ++j;
+      if (j >= pattern_.size() || pattern_[j] != 'd')
+        throw Error(info_.path, "image pattern must use an integer conversion like %05d");
+      ++conversions;
+      i = j;
+    }
+    if (conversions != 1)
+      throw Error(info_.path, "image pattern must contain exactly one conversion like %05d");
+  }
+
+  // Path of the next image, or empty at the end.
+  std::string NextPath() {
+    if (!pattern_.empty()) {
+      std::string p = Format(pattern_, next_index_);
+      if (p.empty() || !fs::exists(p)) return {};
+      ++next_index_;
+      return p;
+    }
+    if (next_file_ >= files_.size()) return {};
+    return files_[next_file_++];
+  }
+
+  bool ReadNext(cv::Mat* image) {
+    const std::string p = NextPath();
+    if (p.empty()) return false;
+    std::error_code ec;
+    if (fs::file_size(p, ec) == 0) throw Error(p, "empty image file (0 bytes)");
+    *image = cv::imread(p, cv::IMREAD_COLOR);
+    if (image->empty()) throw Error(p, "not an image OpenCV can read");
+    if (image->cols > kMaxFrameSidePx || image->rows > kMaxFrameSidePx)
+      throw Error(p, "absurd image size");
+    if (emitted_ + (have_first_ ? 1 : 0) > 0 && info_.width > 0 &&
+        (image->cols != info_.width || image->rows != info_.height))
+      throw Error(p, "image size " + std::to_string(image->cols) + "x" +
+                         std::to_string(image->rows) + " differs from the sequence's " +
+                         std::to_string(info_.width) + "x" + std::to_string(info_.height));
+    return true;
+  }
+
+  FrameSourceOptions options_;
+  VideoInfo info_;
+  std::string pattern_;
+  long next_index_ = -1;
+  std::vector<std::string> files_;
+  size_t next_file_ = 0;
+  cv::Mat first_;
+  bool have_first_ = false;
+  int emitted_ = 0;
+};
+
+}  // namespace
+
+bool IsImageSequencePath(const std::string& path) {
+  if (path.find('%') != std::string::npos) return true;
+  std::error_code ec;
+  return fs::is_directory(path, ec);
+}
+
+std::unique_ptr<FrameSource> OpenImageSequence(const std::string& path,
+                                               const FrameSourceOptions& options) {
+  return std::make_unique<ImageSequenceSource>(path, options);
+}
+
+}  // namespace hapcine

@@ -1,0 +1,70 @@
+#pragma once
+// Shot boundaries from colour statistics, one frame at a time (causal).
+//
+//  - Blank frames: mean luma < blank_luma or luma std-dev < blank_stddev
+//    (black, white flash, flat grey), measured on a 128-px-wide point-sampled thumbnail.
+//  - Hard cut: the Bhattacharyya distance between consecutive HSV histograms
+//    (16 hue x 4 saturation x 8 value bins; a 64-bin luma histogram when the
+//    frame has no colour) exceeds an adaptive threshold
+//        T_cut = max(cut_threshold, mean + 6 std)
+//    over the last 30 distances of the shot, so busy footage raises it.
+//  - Gradual transitions, twin comparison (Zhang, Kankanhalli & Smoliar 1993):
+//    a run of frames whose distance exceeds
+//        T_low = max(0.1 cut_threshold, mean + 3 std)
+//    is a candidate; if, when the run ends, the frame before the run and the
+//    frame after it differ by more than cut_threshold, a kFade boundary is
+//    reported on the first frame after the run. Frames in a run are flagged
+//    `transition`. A run needs 3 calm frames of the shot before it (so a
+//    fade-in right after black is not a second boundary) and is abandoned
+//    after 90 frames (slow drift, not a transition).
+//  - Fades through black: blank frames belong to the current shot; the first
+//    non-blank frame after them starts a new shot (kFade) if the shot had
+//    content before the black. That first frame is flagged `transition` (it
+//    is usually the start of a fade-in).
+
+#include <deque>
+#include <opencv2/core.hpp>
+
+#include "extract/frame_source.h"
+#include "extract/tracks.h"
+
+namespace hapcine {
+
+struct ShotDetectorOptions {
+  double cut_threshold = 0.5;  // Bhattacharyya distance floor for a hard cut
+  double blank_luma = 16;      // mean luma (0..255) under which a frame is blank
+  double blank_stddev = 4;     // luma std-dev under which a frame is blank
+};
+
+struct ShotDecision {
+  ShotBoundary boundary = ShotBoundary::kNone;  // kCut / kFade start a new shot here
+  bool blank = false;
+  bool transition = false;  // inside a candidate gradual transition
+  double distance = 0;      // histogram distance to the previous frame
+  double mean_luma = 0;
+  double luma_stddev = 0;
+};
+
+class ShotDetector {
+ public:
+  explicit ShotDetector(const ShotDetectorOptions& options = {}) : options_(options) {}
+  // Frames in order. The first frame never reports a boundary (the caller
+  // marks it kStart).
+  ShotDecision Update(const Frame& frame);
+
+ private:
+  void StartShot();
+
+  ShotDetectorOptions options_;
+  cv::Mat prev_hist_;              // last non-blank frame's histogram
+  std::deque<double> recent_;      // calm distances of the current shot
+  bool shot_has_content_ = false;  // a non-blank frame was seen in this shot
+  bool in_blank_run_ = false;
+  int calm_frames_ = 0;  // non-transition frames in this shot
+  bool candidate_ = false;
+  bool candidate_allowed_boundary_ = false;
+  int candidate_len_ = 0;
+  cv::Mat candidate_start_hist_;
+};
+
+}  // namespace hapcine

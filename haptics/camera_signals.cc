@@ -1,0 +1,111 @@
+#include "haptics/camera_signals.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "core/error.h"
+#include "core/rotation.h"
+
+namespace hapcine {
+namespace {
+
+constexpr double kAbsurdPosition = 1e6;
+
+// Adds multiples of 2 pi so that consecutive samples differ by less than pi.
+void Unwrap(std::vector<double>* v) {
+  for (size_t i = 1; i < v->size(); ++i) {
+    double d = (*v)[i] - (*v)[i - 1];
+    while (d > kPi) {
+      (*v)[i] -= 2 * kPi;
+      d -= 2 * kPi;
+    }
+    while (d < -kPi) {
+      (*v)[i] += 2 * kPi;
+      d += 2 * kPi;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<ShotRange> SplitShots(const CameraPath& path) {
+  std::vector<ShotRange> shots;
+  int current = 0;
+  for (size_t i = 0; i < path.frames.size(); ++i) {
+    const auto& f = path.frames[i];
+    const int s = f.shot ? *f.shot : (shots.empty() ? 0 : current);
+    if (shots.empty() || s != current) {
+      shots.push_back(ShotRange{s, i, i});
+      current = s;
+    } else {
+      shots.back().last = i;
+    }
+  }
+  return shots;
+}
+
+CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
+                                 double reference_depth_u) {
+  CameraSignals s;
+  const auto& f0 = path.frames[shot.first];
+  const Eigen::Matrix3d cam0_from_world = f0.world_from_cam.toRotationMatrix().transpose();
+  const double tan0 = std::tan(DegToRad(f0.fov_deg) / 2);
+  for (size_t i = shot.first; i <= shot.last; ++i) {
+    const auto& f = path.frames[i];
+    s.time_s.push_back(f.time_s);
+    s.position_u.push_back(cam0_from_world * (f.center - f0.center));
+    const Eigen::Quaterniond rel(cam0_from_world * f.world_from_cam.toRotationMatrix());
+    const PanTiltRoll ptr = PanTiltRollFromQuaternion(rel);
+    s.tilt_rad.push_back(DegToRad(ptr.tilt_deg));
+    s.pan_rad.push_back(DegToRad(ptr.pan_deg));
+    s.roll_rad.push_back(DegToRad(ptr.roll_deg));
+    const double ratio = tan0 / std::tan(DegToRad(f.fov_deg) / 2);
+    s.zoom_forward_u.push_back(reference_depth_u * (ratio - 1.0));
+    s.log_zoom.push_back(std::log(ratio));
+  }
+  Unwrap(&s.pan_rad);
+  Unwrap(&s.roll_rad);
+  return s;
+}
+
+double ReferenceDepthFor(const CameraPath& path, double fallback) {
+  for (const char* key : {"subject_distance_m", "reference_depth"}) {
+    auto it = path.metadata.find(key);
+    if (it == path.metadata.end()) continue;
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    if (end != it->second.c_str() && std::isfinite(v) && v > 0) return v;
+  }
+  return fallback;
+}
+
+void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s) {
+  if (path.frames.empty()) throw Error(source, "camera path has no frames");
+  auto where = [&](size_t i) {
+    return source + ": frame " + std::to_string(path.frames[i].frame) + " (data row " +
+           std::to_string(i + 1) + ")";
+  };
+  for (size_t i = 0; i < path.frames.size(); ++i) {
+    const auto& f = path.frames[i];
+    const std::string bad = ValidateCameraFrame(f);
+    if (!bad.empty()) throw Error(where(i), bad);
+    if (!(f.center.cwiseAbs().maxCoeff() <= kAbsurdPosition)) {
+      throw Error(where(i), "camera position beyond 1e6 units (absurd)");
+    }
+    if (i > 0 && !(f.time_s > path.frames[i - 1].time_s)) {
+      throw Error(where(i), "time_s is not increasing");
+    }
+  }
+  for (const ShotRange& r : SplitShots(path)) {
+    for (size_t i = r.first + 1; i <= r.last; ++i) {
+      const double gap = path.frames[i].time_s - path.frames[i - 1].time_s;
+      if (gap > max_gap_s) {
+        throw Error(where(i), "time gap of " + std::to_string(gap) + " s inside shot " +
+                                  std::to_string(r.shot) + " (more than " +
+                                  std::to_string(max_gap_s) + " s: missing frames?)");
+      }
+    }
+  }
+}
+
+}  // namespace hapcine

@@ -1,0 +1,63 @@
+#pragma once
+// The camera parameters of Equation 1, C = [x, y, z, phi, theta, psi, gamma],
+// per frame and relative to the first frame of each shot, in the seat frame.
+//
+// The seat frame is the camera frame at the shot's first frame (camera +X
+// right -> seat +X right, +Y up -> up, +Z backward -> backward), so a camera
+// path in any world frame (ground truth) or in the estimator's frame (first
+// frame at the origin) gives the same signals.
+//   position_u   R_wc0^T (c - c0), in the path's units (metres for ground
+//                truth, median scene depth of the shot's first frame for
+//                estimated paths)
+//   tilt/pan/roll_rad  phi (about X), theta (about Y), psi (about Z) of the
+//                relative rotation R_wc0^T R_wc, decomposed as in
+//                core/rotation.h and unwrapped over the shot (no +-2 pi jumps)
+//   zoom_forward_u  gamma: the zoom as an "equivalent forward distance": the
+//                distance the camera would have to move BACKWARD to cancel the
+//                zoom's magnification of a subject at reference_depth,
+//                  gamma = D * (tan(fov0/2) / tan(fov/2) - 1),
+//                positive for a zoom-in (narrowing FOV). A dolly zoom that
+//                keeps a subject at distance D the same size has
+//                gamma(t) = -(forward travel)(t) exactly, which is what
+//                makes the cinematic model produce no movement for Vertigo.
+
+#include <string>
+#include <vector>
+
+#include "core/camera_path.h"
+
+namespace hapcine {
+
+struct ShotRange {
+  int shot = 0;      // value of the `shot` column (0 when absent)
+  size_t first = 0;  // first frame index into CameraPath::frames
+  size_t last = 0;   // last frame index (inclusive)
+};
+
+// Splits a path into runs of equal `shot` (frames without a shot value
+// continue the previous run; a path without the column is one shot).
+std::vector<ShotRange> SplitShots(const CameraPath& path);
+
+struct CameraSignals {
+  std::vector<double> time_s;
+  std::vector<Eigen::Vector3d> position_u;
+  std::vector<double> tilt_rad, pan_rad, roll_rad;
+  std::vector<double> zoom_forward_u;
+  std::vector<double> log_zoom;  // ln(tan(fov0/2)/tan(fov/2)), unit-free
+  size_t size() const { return time_s.size(); }
+};
+
+// Signals for frames [shot.first, shot.last] relative to shot.first.
+CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
+                                 double reference_depth_u);
+
+// Reference depth D used by gamma: the metadata key `subject_distance_m`
+// (ground truth in metres) or `reference_depth` when present and positive,
+// else `fallback` (1.0: estimated paths are in median-depth units).
+double ReferenceDepthFor(const CameraPath& path, double fallback);
+
+// Checks beyond ReadCameraPath's: |position| <= 1e6, time gaps inside a shot
+// <= max_gap_s. Throws Error("<source>: frame N (data row R)", reason).
+void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s);
+
+}  // namespace hapcine

@@ -1,0 +1,164 @@
+#include "haptics/cinematic_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace hapcine {
+namespace {
+
+Eigen::Matrix3d Rotation(double tilt, double pan, double roll) {
+  // Equation 5's order: Rx(phi) Ry(theta) Rz(psi).
+  return (Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()))
+      .toRotationMatrix();
+}
+
+// Largest coordinate of any R_A over the shot for rotation gain m.
+double MaxRotationOffset(const CameraSignals& s, const SeatGeometry& seat, double m) {
+  double peak = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const Eigen::Matrix3d r = Rotation(m * s.tilt_rad[i], m * s.pan_rad[i], m * s.roll_rad[i]) -
+                              Eigen::Matrix3d::Identity();
+    for (int a = 0; a < kNumActuators; ++a) {
+      peak = std::max(peak, (r * seat.FromCenter(a)).cwiseAbs().maxCoeff());
+    }
+  }
+  return peak;
+}
+
+CinematicScale ScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
+                            const CinematicOptions& o) {
+  const double usable = seat.usable_half_m;
+  double peak_t = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    peak_t =
+        std::max({peak_t, s.position_u[i].cwiseAbs().maxCoeff(), std::abs(s.zoom_forward_u[i])});
+  }
+  const double k =
+      peak_t > usable / o.max_translation_gain ? usable / peak_t : o.max_translation_gain;
+  // Rotation gain: the first m on a grid where the offset exceeds the usable
+  // range, refined by bisection (R is not monotone in m for large angles,
+  // hence the grid rather than a bisection over the whole interval).
+  constexpr int kGrid = 64;
+  double lo = 0, hi = -1;
+  for (int j = 1; j <= kGrid; ++j) {
+    const double m = o.max_rotation_gain * j / kGrid;
+    if (MaxRotationOffset(s, seat, m) > usable) {
+      hi = m;
+      break;
+    }
+    lo = m;
+  }
+  double m = lo;
+  if (hi > 0) {
+    for (int it = 0; it < 40; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (MaxRotationOffset(s, seat, mid) > usable ? hi : lo) = mid;
+    }
+    m = lo;
+  }
+  CinematicScale c;
+  c.kx = c.ky = c.kz = c.sz = k;
+  c.mx = c.my = c.mz = m;
+  return c;
+}
+
+}  // namespace
+
+const CinematicScale& CinematicScaling::ForShot(size_t i) const {
+  if (per_shot.empty()) throw Error("", "cinematic scaling has no shots");
+  return per_shot[std::min(i, per_shot.size() - 1)];
+}
+
+void CinematicOptions::Check() const {
+  if (!(reference_depth_u >= 0 && std::isfinite(reference_depth_u))) {
+    throw UsageError("reference depth must be >= 0 (0 = automatic)");
+  }
+  if (!(max_translation_gain > 0 && max_translation_gain <= 100)) {
+    throw UsageError("max translation gain must be in (0, 100] m per unit");
+  }
+  if (!(max_rotation_gain > 0 && max_rotation_gain <= 10)) {
+    throw UsageError("max rotation gain must be in (0, 10]");
+  }
+}
+
+ActuatorFrame CinematicDisplacement(const Eigen::Vector3d& p, double tilt, double pan, double roll,
+                                    double zoom_forward_u, const CinematicScale& c,
+                                    const SeatGeometry& seat) {
+  const Eigen::Vector3d t(c.kx * p.x(), c.ky * p.y(), c.kz * p.z());
+  const Eigen::Vector3d f(0, 0, -c.sz * zoom_forward_u);  // zoom-in -> forward (-Z)
+  const Eigen::Matrix3d r =
+      Rotation(c.mx * tilt, c.my * pan, c.mz * roll) - Eigen::Matrix3d::Identity();
+  ActuatorFrame out;
+  for (int a = 0; a < kNumActuators; ++a) {
+    const Eigen::Vector3d ra = r * seat.FromCenter(a);
+    const double nt = t.norm(), nr = ra.norm(), nf = f.norm();
+    const double sum = nt + nr + nf;
+    out[a] = sum > 0 ? Eigen::Vector3d((nt * t + nr * ra + nf * f) / sum) : Eigen::Vector3d::Zero();
+  }
+  return out;
+}
+
+std::vector<CameraSignals> CinematicShotSignals(const CameraPath& path,
+                                                const std::vector<ShotRange>& shots,
+                                                const CinematicOptions& o,
+                                                const WashoutOptions& w) {
+  const double depth = o.reference_depth_u > 0 ? o.reference_depth_u : ReferenceDepthFor(path, 1.0);
+  std::vector<CameraSignals> out;
+  for (const ShotRange& r : shots) {
+    CameraSignals s = ExtractShotSignals(path, r, depth);
+    if (w.high_pass) {
+      std::vector<double> ch(s.size());
+      for (int k = 0; k < 3; ++k) {
+        for (size_t i = 0; i < s.size(); ++i) ch[i] = s.position_u[i][k];
+        HighPassInPlace(s.time_s, &ch, w.tau_s, w.order);
+        for (size_t i = 0; i < s.size(); ++i) s.position_u[i][k] = ch[i];
+      }
+      for (auto* v : {&s.tilt_rad, &s.pan_rad, &s.roll_rad, &s.zoom_forward_u, &s.log_zoom}) {
+        HighPassInPlace(s.time_s, v, w.tau_s, w.order);
+      }
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeometry& seat,
+                                         const CinematicOptions& o, const WashoutOptions& w) {
+  const auto shots = SplitShots(path);
+  const auto signals = CinematicShotSignals(path, shots, o, w);
+  CinematicScaling scaling;
+  for (const auto& s : signals) scaling.per_shot.push_back(ScaleForShot(s, seat, o));
+  if (o.per_film_scaling && !scaling.per_shot.empty()) {
+    CinematicScale film = scaling.per_shot[0];
+    for (const auto& c : scaling.per_shot) {
+      film.kx = film.ky = film.kz = film.sz = std::min(film.kx, c.kx);
+      film.mx = film.my = film.mz = std::min(film.mx, c.mx);
+    }
+    for (auto& c : scaling.per_shot) c = film;
+  }
+  return scaling;
+}
+
+std::vector<ActuatorFrame> CinematicFrames(const CameraPath& path, const SeatGeometry& seat,
+                                           const CinematicOptions& o, const WashoutOptions& w,
+                                           const CinematicScaling& scaling) {
+  const auto shots = SplitShots(path);
+  const auto signals = CinematicShotSignals(path, shots, o, w);
+  std::vector<ActuatorFrame> out;
+  out.reserve(path.frames.size());
+  for (size_t k = 0; k < shots.size(); ++k) {
+    const CameraSignals& s = signals[k];
+    const CinematicScale& c = scaling.ForShot(k);
+    for (size_t i = 0; i < s.size(); ++i) {
+      out.push_back(CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i],
+                                          s.roll_rad[i], s.zoom_forward_u[i], c, seat));
+    }
+  }
+  return out;
+}
+
+}  // namespace hapcine

@@ -1,0 +1,221 @@
+#include "haptics/haptic_models.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/csv.h"
+#include "core/error.h"
+#include "haptics/camera_signals.h"
+#include "haptics/keyframes.h"
+
+namespace hapcine {
+namespace {
+
+// Per-frame values of the cinematic model resampled at the output times:
+// linear inside a shot, held from a shot's last frame until the next cut.
+std::vector<ActuatorFrame> ResampleFrames(const CameraPath& path,
+                                          const std::vector<ShotRange>& shots,
+                                          const std::vector<ActuatorFrame>& per_frame,
+                                          const std::vector<double>& time_s) {
+  std::vector<ActuatorFrame> out(time_s.size());
+  size_t k = 0;  // current shot
+  size_t i = 0;  // current frame
+  for (size_t n = 0; n < time_s.size(); ++n) {
+    const double t = time_s[n];
+    while (k + 1 < shots.size() && path.frames[shots[k + 1].first].time_s <= t) ++k;
+    const ShotRange& s = shots[k];
+    i = std::max(i, s.first);
+    while (i + 1 <= s.last && path.frames[i + 1].time_s <= t) ++i;
+    if (i >= s.last || t <= path.frames[i].time_s) {
+      out[n] = per_frame[i];
+    } else {
+      const double ta = path.frames[i].time_s, tb = path.frames[i + 1].time_s;
+      const double w = (t - ta) / (tb - ta);
+      for (int a = 0; a < kNumActuators; ++a) {
+        out[n][a] = (1 - w) * per_frame[i][a] + w * per_frame[i + 1][a];
+      }
+    }
+  }
+  return out;
+}
+
+std::string JoinScales(const CinematicScaling& s, bool rotation) {
+  std::ostringstream out;
+  for (size_t i = 0; i < s.per_shot.size(); ++i) {
+    if (i) out << ";";
+    out << FormatDouble(rotation ? s.per_shot[i].mx : s.per_shot[i].kx);
+  }
+  return out.str();
+}
+
+}  // namespace
+
+const char* HapticModelName(HapticModel m) {
+  switch (m) {
+    case HapticModel::kCinematic:
+      return "cinematic";
+    case HapticModel::kSemantic:
+      return "semantic";
+    case HapticModel::kRandom:
+      return "random";
+    case HapticModel::kNone:
+      return "none";
+  }
+  return "?";
+}
+
+HapticModel HapticModelFromName(const std::string& name) {
+  for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom,
+                        HapticModel::kNone}) {
+    if (name == HapticModelName(m)) return m;
+  }
+  throw UsageError("unknown haptic model '" + name +
+                   "' (expected cinematic, semantic, random or none)");
+}
+
+void HapticOptions::Check() const {
+  seat.Check();
+  if (!(rate_hz == 0 || (rate_hz >= 10 && rate_hz <= 10000))) {
+    throw UsageError("rate must be in [10, 10000] Hz");
+  }
+  washout.Check();
+  cinematic.Check();
+  semantic.Check();
+  classifier.Check();
+  RandomOptions r;
+  r.cutoff_hz = random_cutoff_hz;
+  r.Check();
+  if (!(max_gap_s > 0)) throw UsageError("max gap must be > 0 s");
+  if (!keyframes_file.empty() && model != HapticModel::kSemantic) {
+    throw UsageError("keyframes only apply to the semantic model");
+  }
+}
+
+HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
+  o.Check();
+  ValidatePathForHaptics(path, o.source.empty() ? "camera path" : o.source, o.max_gap_s);
+  const double rate = o.OutputRateHz();
+  const double t0 = path.frames.front().time_s;
+  const double t1 = path.frames.back().time_s;
+  const size_t n = static_cast<size_t>(std::floor((t1 - t0) * rate + 1e-9)) + 1;
+  std::vector<double> time_s(n);
+  for (size_t i = 0; i < n; ++i) time_s[i] = t0 + static_cast<double>(i) / rate;
+
+  const std::vector<ShotRange> shots = SplitShots(path);
+  std::vector<double> cut_times;
+  for (size_t k = 1; k < shots.size(); ++k) cut_times.push_back(path.frames[shots[k].first].time_s);
+
+  HapticTrack track;
+  track.rate_hz = rate;
+  track.model = HapticModelName(o.model);
+  track.source = o.source;
+  std::vector<ActuatorFrame> frames;
+  std::vector<CameraEffect> effects;
+  switch (o.model) {
+    case HapticModel::kNone:
+      frames.resize(n);
+      for (auto& f : frames)
+        for (auto& v : f) v.setZero();
+      break;
+    case HapticModel::kCinematic: {
+      const CinematicScaling scaling =
+          o.cinematic_scaling ? *o.cinematic_scaling
+                              : ComputeCinematicScaling(path, o.seat, o.cinematic, o.washout);
+      const auto per_frame = CinematicFrames(path, o.seat, o.cinematic, o.washout, scaling);
+      frames = ResampleFrames(path, shots, per_frame, time_s);
+      track.metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
+      track.metadata["cinematic_m"] = JoinScales(scaling, true);
+      track.metadata["reference_depth"] =
+          FormatDouble(o.cinematic.reference_depth_u > 0 ? o.cinematic.reference_depth_u
+                                                         : ReferenceDepthFor(path, 1.0));
+      break;
+    }
+    case HapticModel::kSemantic: {
+      const std::vector<EffectSegment> segs = o.keyframes_file.empty()
+                                                  ? ClassifyEffects(path, o.classifier)
+                                                  : ReadKeyframesFile(o.keyframes_file);
+      frames = SemanticFrames(time_s, segs, o.seat, o.semantic, &effects);
+      track.metadata["effects_from"] = o.keyframes_file.empty() ? "classifier" : o.keyframes_file;
+      track.metadata["effect_segments"] = std::to_string(segs.size());
+      break;
+    }
+    case HapticModel::kRandom: {
+      RandomOptions r;
+      r.seed = o.seed;
+      r.cutoff_hz = o.random_cutoff_hz;
+      frames = RandomFrames(n, rate, o.seat, r);
+      track.metadata["seed"] = std::to_string(o.seed);
+      track.metadata["cutoff_hz"] = FormatDouble(o.random_cutoff_hz);
+      break;
+    }
+  }
+  ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &frames);
+  const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &frames);
+  const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &frames);
+  // The high-pass acts on camera signals, i.e. on the cinematic model only.
+  const bool high_pass = o.washout.high_pass && o.model == HapticModel::kCinematic;
+  track.metadata["washout"] = high_pass ? "highpass" : "off";
+  if (high_pass) {
+    track.metadata["washout_tau_s"] = FormatDouble(o.washout.tau_s);
+    track.metadata["washout_order"] = std::to_string(o.washout.order);
+  }
+  track.metadata["max_step_m"] = FormatDouble(o.washout.max_speed_m_s / rate);
+  track.metadata["rate_limited_samples"] = std::to_string(limited);
+  track.metadata["clamped_samples"] = std::to_string(clamped);
+
+  const bool has_shot_column = std::any_of(path.frames.begin(), path.frames.end(),
+                                           [](const CameraFrame& f) { return f.shot.has_value(); });
+  track.samples.resize(n);
+  size_t k = 0;
+  for (size_t i = 0; i < n; ++i) {
+    HapticSample& s = track.samples[i];
+    s.time_s = time_s[i];
+    for (int a = 0; a < kNumActuators; ++a) s.pos_m[a] = frames[i][a];
+    if (has_shot_column) {
+      while (k + 1 < shots.size() && path.frames[shots[k + 1].first].time_s <= time_s[i]) ++k;
+      s.shot = shots[k].shot;
+    }
+    if (!effects.empty()) s.effect = EffectName(effects[i]);
+  }
+  return track;
+}
+
+HapticDifference HapticTrackDifference(const HapticTrack& a, const HapticTrack& b) {
+  HapticDifference d;
+  if (a.samples.empty() || b.samples.empty()) return d;
+  const double lo = b.samples.front().time_s, hi = b.samples.back().time_s;
+  double sum_sq[kNumActuators] = {0, 0, 0};
+  size_t hint = 0;
+  Eigen::Vector3d pb[kNumActuators];
+  for (const HapticSample& s : a.samples) {
+    if (s.time_s < lo - 1e-9 || s.time_s > hi + 1e-9) continue;
+    b.Sample(s.time_s, pb, &hint);
+    for (int k = 0; k < kNumActuators; ++k) {
+      const double e = (s.pos_m[k] - pb[k]).norm();
+      sum_sq[k] += e * e;
+      d.max_m[k] = std::max(d.max_m[k], e);
+    }
+    ++d.num_samples;
+  }
+  if (d.num_samples > 0) {
+    for (int k = 0; k < kNumActuators; ++k) d.rms_m[k] = std::sqrt(sum_sq[k] / d.num_samples);
+  }
+  return d;
+}
+
+std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath& reference,
+                                                               const CameraPath& other,
+                                                               HapticOptions o) {
+  if (o.model == HapticModel::kCinematic && !o.cinematic_scaling) {
+    o.Check();
+    ValidatePathForHaptics(reference, o.source.empty() ? "reference camera path" : o.source,
+                           o.max_gap_s);
+    o.cinematic_scaling = ComputeCinematicScaling(reference, o.seat, o.cinematic, o.washout);
+  }
+  HapticTrack a = MakeHapticTrack(reference, o);
+  HapticTrack b = MakeHapticTrack(other, o);
+  return {std::move(a), std::move(b)};
+}
+
+}  // namespace hapcine

@@ -1,0 +1,78 @@
+#pragma once
+// Camera path in, haptic track out: the one entry point of the models.
+//
+//   MakeHapticTrack(path, options)
+//     1. validates the path (camera_signals.h: absurd positions, gaps > 1 s
+//        inside a shot),
+//     2. samples the media clock of the path at rate_hz from its first to
+//        its last frame,
+//     3. runs the chosen model per shot: cinematic (Eq. 2-6 with washout
+//        and scaling), semantic (Table 2 metaphors on hand-placed keyframes
+//        or on automatically classified segments), random (0.5 Hz low-pass
+//        noise), none (all zeros),
+//     4. applies the film-level safety of washout.h: crossfades at cuts, a
+//        per-sample step limit and a final clamp (counted in the metadata).
+//
+// Also here: the difference between two tracks (for `hapcine eval`) and a
+// helper that makes two tracks with the same cinematic scaling.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "core/camera_path.h"
+#include "core/haptic_track.h"
+#include "haptics/cinematic_model.h"
+#include "haptics/effect_classifier.h"
+#include "haptics/random_model.h"
+#include "haptics/seat_geometry.h"
+#include "haptics/semantic_model.h"
+#include "haptics/washout.h"
+
+namespace hapcine {
+
+enum class HapticModel { kCinematic, kSemantic, kRandom, kNone };
+const char* HapticModelName(HapticModel m);  // "cinematic", "semantic", "random", "none"
+HapticModel HapticModelFromName(const std::string& name);  // throws UsageError
+
+struct HapticOptions {
+  HapticModel model = HapticModel::kCinematic;
+  SeatGeometry seat;           // geometry, workspace, default rate
+  double rate_hz = 0;          // output rate; 0 = seat.rate_hz (1000 Hz)
+  uint64_t seed = 1;           // random model
+  WashoutOptions washout;      // high-pass, cut ramps, speed limit
+  CinematicOptions cinematic;  // reference depth, gain caps, scaling scope
+  // Fixed cinematic factors (e.g. computed from another path); when unset
+  // they are computed from this path (the paper's pre-processing pass).
+  std::optional<CinematicScaling> cinematic_scaling;
+  SemanticOptions semantic;       // pattern period, release
+  ClassifierOptions classifier;   // automatic effect segments
+  std::string keyframes_file;     // semantic: hand-placed effects; "" = classify
+  double random_cutoff_hz = 0.5;  // random: low-pass cutoff (the paper: 0.5 Hz)
+  double max_gap_s = 1.0;         // reject time gaps longer than this inside a shot
+  std::string source;             // written as the track's `source`; names errors
+  double OutputRateHz() const { return rate_hz > 0 ? rate_hz : seat.rate_hz; }
+  void Check() const;  // throws UsageError
+};
+
+HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& options);
+
+// Per actuator (indexed by Actuator) RMS and largest distance |a(t) - b(t)|
+// in metres, over the samples of `a` inside the time range of `b` (b is
+// interpolated). num_samples = 0 when the tracks do not overlap.
+struct HapticDifference {
+  double rms_m[kNumActuators] = {0, 0, 0};
+  double max_m[kNumActuators] = {0, 0, 0};
+  size_t num_samples = 0;
+};
+HapticDifference HapticTrackDifference(const HapticTrack& a, const HapticTrack& b);
+
+// Tracks of `reference` and `other` made with the SAME cinematic scaling
+// (computed from `reference`, unless options already fix it), so that their
+// difference measures the camera paths, not two different normalisations.
+std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath& reference,
+                                                               const CameraPath& other,
+                                                               HapticOptions options);
+
+}  // namespace hapcine

@@ -1,0 +1,251 @@
+#include "haptics/haptic_models.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "core/error.h"
+#include "haptics/test_paths_for_test.h"
+
+namespace hapcine {
+namespace {
+
+using testing::MakeEffectPath;
+
+double MaxCoord(const HapticTrack& t) {
+  double m = 0;
+  for (const auto& s : t.samples)
+    for (const auto& a : s.pos_m) m = std::max(m, a.cwiseAbs().maxCoeff());
+  return m;
+}
+
+double MaxStep(const HapticTrack& t) {
+  double m = 0;
+  for (size_t i = 1; i < t.samples.size(); ++i) {
+    for (int a = 0; a < kNumActuators; ++a) {
+      m = std::max(m, (t.samples[i].pos_m[a] - t.samples[i - 1].pos_m[a]).cwiseAbs().maxCoeff());
+    }
+  }
+  return m;
+}
+
+// A film: three shots, 60 s: a 25 s traveling drift (never stops), a 20 s
+// shot with a zoom-in then a dutch angle, a 15 s crane; 25 fps, `shot` column.
+CameraPath MakeFilm() {
+  CameraPath path;
+  path.metadata["fps"] = "25";
+  const double fps = 25;
+  int frame = 0;
+  auto add = [&](double t, int shot, const Eigen::Vector3d& c, const PanTiltRoll& ptr, double fov) {
+    CameraFrame f;
+    f.frame = frame++;
+    f.time_s = t;
+    f.center = c;
+    f.world_from_cam = QuaternionFromPanTiltRoll(ptr);
+    f.fov_deg = fov;
+    f.shot = shot;
+    path.frames.push_back(f);
+  };
+  for (int i = 0; i < 25 * fps; ++i) {  // shot 0: 0.8 units/s sideways, forever
+    add(i / fps, 0, Eigen::Vector3d(0.8 * i / fps, 0, 0), PanTiltRoll{}, 50);
+  }
+  for (int i = 0; i < 20 * fps; ++i) {  // shot 1 (a different world frame)
+    const double t = i / fps;
+    PanTiltRoll ptr{30, 0, t > 10 ? 3.0 * (t - 10) : 0};
+    const double fov = t < 8 ? 50 - 3 * t : 26;
+    add(25 + t, 1, Eigen::Vector3d(5, 1, -3), ptr, fov);
+  }
+  for (int i = 0; i < 15 * fps; ++i) {  // shot 2
+    const double t = i / fps;
+    add(45 + t, 2, Eigen::Vector3d(0, 0.3 * t, 0), PanTiltRoll{0, -t, 0}, 40);
+  }
+  return path;
+}
+
+TEST(HapticModels, NoneIsAllZeroAtTheRate) {
+  HapticOptions o;
+  o.model = HapticModel::kNone;
+  o.source = "clip.camera.csv";
+  const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o);
+  EXPECT_EQ(t.model, "none");
+  EXPECT_EQ(t.source, "clip.camera.csv");
+  EXPECT_DOUBLE_EQ(t.rate_hz, 1000);
+  EXPECT_EQ(t.samples.size(), 7001u);  // 0 .. 7 s inclusive
+  EXPECT_NEAR(t.samples.back().time_s, 7.0, 1e-9);
+  EXPECT_EQ(MaxCoord(t), 0.0);
+  EXPECT_FALSE(t.samples[0].shot.has_value());  // the path had no shot column
+}
+
+TEST(HapticModels, EveryModelMakesAValidTrack) {
+  for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom,
+                        HapticModel::kNone}) {
+    HapticOptions o;
+    o.model = m;
+    o.rate_hz = 200;
+    const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kDutchAngle), o);
+    EXPECT_EQ(t.samples.size(), 1401u);
+    EXPECT_LE(MaxCoord(t), o.seat.usable_half_m + 1e-12) << HapticModelName(m);
+    EXPECT_EQ(t.metadata.at("clamped_samples"), "0");
+    std::stringstream ss;
+    WriteHapticTrack(t, ss);
+    const HapticTrack back = ReadHapticTrack(ss, "x");
+    EXPECT_EQ(back.samples.size(), t.samples.size());
+    EXPECT_EQ(back.model, HapticModelName(m));
+    if (m != HapticModel::kNone && m != HapticModel::kRandom) {
+      EXPECT_GT(MaxCoord(t), 0.02) << HapticModelName(m);
+    }
+  }
+}
+
+TEST(HapticModels, SemanticFromClassifierLabelsTheEffectColumn) {
+  HapticOptions o;
+  o.model = HapticModel::kSemantic;
+  const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kZoomIn), o);
+  ASSERT_TRUE(t.samples[3500].effect.has_value());
+  EXPECT_EQ(*t.samples[3500].effect, "zoom_in");
+  EXPECT_EQ(*t.samples[100].effect, "none");
+  EXPECT_LT(t.samples[3250].pos_m[2].z(), -0.01);  // walking forward
+}
+
+TEST(HapticModels, SemanticFromKeyframesFile) {
+  const std::string file = std::string(HAPCINE_BINARY_DIR) + "/haptic_models_test_fx.csv";
+  {
+    std::ofstream out(file);
+    out << "start_s,end_s,effect,intensity\n2,4,inferiority,0.5\n";
+  }
+  HapticOptions o;
+  o.model = HapticModel::kSemantic;
+  o.keyframes_file = file;
+  const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o);
+  EXPECT_NEAR(t.samples[4000].pos_m[0].y(), -0.5 * o.seat.usable_half_m, 1e-9);
+  EXPECT_EQ(*t.samples[3000].effect, "tilting");
+  std::remove(file.c_str());
+  EXPECT_THROW(MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o), Error);
+  o.model = HapticModel::kCinematic;
+  EXPECT_THROW(o.Check(), UsageError);  // keyframes are for the semantic model
+}
+
+TEST(HapticModels, FilmStaysInTheWorkspaceAndNeverJumps) {
+  const CameraPath film = MakeFilm();
+  HapticOptions o;
+  o.source = "film.camera.csv";
+  const HapticTrack t = MakeHapticTrack(film, o);
+  EXPECT_NEAR(t.duration_s(), 59.96, 1e-6);
+  const double max_step_bound = o.washout.max_speed_m_s / o.OutputRateHz();  // 0.5 mm
+  EXPECT_LE(MaxCoord(t), o.seat.usable_half_m + 1e-12);
+  EXPECT_LE(MaxStep(t), max_step_bound + 1e-15);
+  EXPECT_EQ(t.metadata.at("clamped_samples"), "0");
+  // The shot column is carried through.
+  EXPECT_EQ(*t.samples[10000].shot, 0);
+  EXPECT_EQ(*t.samples[30000].shot, 1);
+  EXPECT_EQ(*t.samples[50000].shot, 2);
+  // Around each cut the motion is smooth: the largest step within 0.5 s after
+  // the cut is below the crossfade's own bound (1.875 * 0.09 m / 0.5 s).
+  for (double cut : {25.0, 45.0}) {
+    const size_t c = static_cast<size_t>(cut * 1000);
+    double m = 0;
+    for (size_t i = c - 5; i < c + 500; ++i) {
+      for (int a = 0; a < kNumActuators; ++a) {
+        m = std::max(m, (t.samples[i + 1].pos_m[a] - t.samples[i].pos_m[a]).cwiseAbs().maxCoeff());
+      }
+    }
+    EXPECT_LE(m, 1.875 * 0.09 / 0.5 / 1000 + 1e-9) << cut;
+  }
+  // Measured, for docs/haptics.md.
+  double max_acc = 0;
+  for (size_t i = 2; i < t.samples.size(); ++i) {
+    for (int a = 0; a < kNumActuators; ++a) {
+      const Eigen::Vector3d acc =
+          (t.samples[i].pos_m[a] - 2 * t.samples[i - 1].pos_m[a] + t.samples[i - 2].pos_m[a]) * 1e6;
+      max_acc = std::max(max_acc, acc.cwiseAbs().maxCoeff());
+    }
+  }
+  std::cout << "[ film ] max |coord| " << MaxCoord(t) << " m, max step " << MaxStep(t)
+            << " m, max accel " << max_acc << " m/s^2, rate-limited samples "
+            << t.metadata.at("rate_limited_samples") << "\n";
+  // Without the washout the drift holds at the edge of the usable range but
+  // still never leaves it.
+  o.washout.high_pass = false;
+  const HapticTrack raw = MakeHapticTrack(film, o);
+  EXPECT_LE(MaxCoord(raw), o.seat.usable_half_m + 1e-12);
+  EXPECT_LE(MaxStep(raw), max_step_bound + 1e-15);
+  EXPECT_EQ(raw.metadata.at("clamped_samples"), "0");
+  EXPECT_NEAR(raw.samples[24900].pos_m[0].x(), o.seat.usable_half_m, 1e-3);
+  // With the (second-order) washout the 25 s drift has returned close to
+  // the centre by the end of the shot instead of being pinned at the edge.
+  EXPECT_LT(std::abs(t.samples[24900].pos_m[0].x()), 0.1 * o.seat.usable_half_m);
+}
+
+TEST(HapticModels, RejectsBadPaths) {
+  HapticOptions o;
+  o.source = "bad.camera.csv";
+  CameraPath gap = MakeEffectPath(CameraEffect::kTraveling);
+  for (size_t i = 100; i < gap.frames.size(); ++i) gap.frames[i].time_s += 2.0;
+  try {
+    MakeHapticTrack(gap, o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.camera.csv: frame 100"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("time gap"), std::string::npos);
+  }
+  // The same gap at a shot boundary is fine.
+  for (size_t i = 0; i < gap.frames.size(); ++i) gap.frames[i].shot = i < 100 ? 0 : 1;
+  EXPECT_NO_THROW(MakeHapticTrack(gap, o));
+  CameraPath absurd = MakeEffectPath(CameraEffect::kTraveling);
+  absurd.frames[5].center.x() = 2e6;
+  EXPECT_THROW(MakeHapticTrack(absurd, o), Error);
+  CameraPath nan = MakeEffectPath(CameraEffect::kTraveling);
+  nan.frames[5].center.y() = std::nan("");
+  EXPECT_THROW(MakeHapticTrack(nan, o), Error);
+  CameraPath back = MakeEffectPath(CameraEffect::kTraveling);
+  back.frames[5].time_s = back.frames[4].time_s;
+  EXPECT_THROW(MakeHapticTrack(back, o), Error);
+  EXPECT_THROW(MakeHapticTrack(CameraPath(), o), Error);
+  // A single frame is a valid (still) path.
+  CameraPath one = MakeEffectPath(CameraEffect::kTraveling);
+  one.frames.resize(1);
+  EXPECT_EQ(MakeHapticTrack(one, o).samples.size(), 1u);
+  EXPECT_THROW(HapticModelFromName("cinema"), UsageError);
+}
+
+TEST(HapticModels, DifferenceOfTracks) {
+  HapticOptions o;
+  const CameraPath path = MakeEffectPath(CameraEffect::kTraveling);
+  const HapticTrack a = MakeHapticTrack(path, o);
+  HapticDifference d = HapticTrackDifference(a, a);
+  EXPECT_EQ(d.num_samples, a.samples.size());
+  for (int k = 0; k < kNumActuators; ++k) EXPECT_EQ(d.max_m[k], 0.0);
+  HapticTrack b = a;
+  for (auto& s : b.samples) s.pos_m[1] += Eigen::Vector3d(0.003, 0, 0.004);  // 5 mm
+  d = HapticTrackDifference(a, b);
+  EXPECT_NEAR(d.rms_m[1], 0.005, 1e-12);
+  EXPECT_NEAR(d.max_m[1], 0.005, 1e-12);
+  EXPECT_EQ(d.rms_m[0], 0.0);
+  EXPECT_EQ(HapticTrackDifference(a, HapticTrack()).num_samples, 0u);
+}
+
+TEST(HapticModels, ComparableTracksShareTheScaling) {
+  // An "estimate" that travels 20 % too far: with its own scaling it would
+  // also fill the workspace and look perfect; with the reference's scaling
+  // the difference shows.
+  const CameraPath ref = MakeEffectPath(CameraEffect::kTraveling, 1.0);
+  const CameraPath est = MakeEffectPath(CameraEffect::kTraveling, 1.2);
+  HapticOptions o;
+  o.washout.high_pass = false;
+  const HapticDifference own =
+      HapticTrackDifference(MakeHapticTrack(ref, o), MakeHapticTrack(est, o));
+  EXPECT_LT(own.max_m[0], 1e-9);
+  const auto [a, b] = MakeComparableHapticTracks(ref, est, o);
+  const HapticDifference same = HapticTrackDifference(a, b);
+  // The estimate runs 20 % ahead (0.054 p vs 0.045 p at progress p) until the
+  // clamp stops it at 0.048: the largest gap is 0.2 * 0.048 / 1.2 = 8 mm.
+  EXPECT_NEAR(same.max_m[0], 0.2 * 0.048 / 1.2, 1e-4);
+  EXPECT_GT(std::stoi(b.metadata.at("clamped_samples")), 0);
+}
+
+}  // namespace
+}  // namespace hapcine

@@ -1,0 +1,32 @@
+#pragma once
+// Export of a haptic track to the MPEG-I Haptics interchange format
+// (.hjif, ISO/IEC 23090-31, JSON, Main profile) so that the tracks can be
+// used outside this project. See docs/haptics.md for the mapping:
+//   one perception per actuator (head, left hand, right hand), modality
+//   "Position"; one channel per axis (x, y, z); one Curve band per channel
+//   holding one "Basis" effect whose keyframes are the positions sampled at
+//   keyframe_rate_hz (relative_position in ticks of `timescale` from the
+//   effect's position, amplitude_modulation = position_m / gain, with the
+//   channel gain = the workspace half range, so amplitudes lie in [-1, 1]).
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/haptic_track.h"
+
+namespace hapcine {
+
+struct HjifOptions {
+  double keyframe_rate_hz = 100;  // keyframes per second per channel
+  int timescale = 1000;           // ticks per second (positions are in ticks)
+  double gain_m = 0.05;           // metres of amplitude 1.0 (workspace half range)
+  std::string description;        // free text; default names the track's source/model
+  std::string date;               // YYYY-MM-DD; "" = today (UTC)
+  void Check() const;             // throws UsageError
+};
+
+nlohmann::json HapticTrackToHjif(const HapticTrack& track, const HjifOptions& options);
+// Atomic write (temporary file + rename).
+void WriteHjifFile(const HapticTrack& track, const std::string& path, const HjifOptions& options);
+
+}  // namespace hapcine

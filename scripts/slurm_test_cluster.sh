@@ -1,0 +1,312 @@
+#!/usr/bin/env bash
+# A real single-node Slurm cluster (munged + slurmctld + slurmd, Debian 12
+# packages, no systemd, no cgroups) for testing `hapcine batch --slurm`.
+#
+#   slurm_test_cluster.sh up DIR      start a cluster whose files all live in DIR;
+#                                     prints the SLURM_CONF to export
+#   slurm_test_cluster.sh down DIR    stop it (by the pids in DIR's pid files)
+#   slurm_test_cluster.sh test HAPCINE_EXE
+#                                     the ctest test (label slurm): start a
+#                                     cluster, run a small library locally and as
+#                                     a job array, check both give the same
+#                                     outputs, re-run (everything skipped), stop
+#
+# Exit codes of `test`: 0 passed, 1 failed, 77 skipped (Slurm not installed or
+# not startable here, e.g. not root); the reason is printed. Daemons are
+# stopped on every path (trap), never by name. Set HAPCINE_SLURM_KEEP=1 to keep
+# the temporary folder for inspection.
+set -euo pipefail
+
+SKIP=77
+log() { echo "slurm_test_cluster: $*" >&2; }
+skip() { log "SKIP: $*"; exit $SKIP; }
+fail() { log "FAIL: $*"; exit 1; }
+
+# ---------------------------------------------------------------- cluster ---
+
+# Stops what DIR's pid files name; waits up to 5 s, then SIGKILL.
+cluster_down() {
+  local dir=$1 f pid i
+  for f in "$dir/slurmd.pid" "$dir/slurmctld.pid" "$dir/munge/munged.pid"; do
+    [ -s "$f" ] || continue
+    pid=$(cat "$f" 2>/dev/null || true)
+    [[ "$pid" =~ ^[0-9]+$ ]] || continue
+    kill "$pid" 2>/dev/null || continue
+    for i in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -9 "$pid" 2>/dev/null || true
+    rm -f "$f"
+  done
+}
+
+free_port() {  # a TCP port nobody listens on, from a range unlikely to clash
+  local p
+  for _ in $(seq 50); do
+    p=$((20000 + RANDOM % 20000))
+    if ! (exec 3<>"/dev/tcp/127.0.0.1/$p") 2>/dev/null; then echo "$p"; return; fi
+  done
+  echo 26817
+}
+
+# Starts the cluster in DIR (must exist). Returns 77 with a reason if this
+# machine cannot run it.
+cluster_up() {
+  local dir=$1
+  for prog in munged munge slurmctld slurmd sinfo sbatch squeue; do
+    command -v "$prog" >/dev/null || { log "$prog not installed (run scripts/install_deps.sh)"; return $SKIP; }
+  done
+  [ "$(id -u)" -eq 0 ] || { log "needs root to start slurmd/slurmctld and munged"; return $SKIP; }
+  getent passwd munge >/dev/null || { log "no 'munge' user (munge package incomplete)"; return $SKIP; }
+  [ -r /etc/munge/munge.key ] || { log "no /etc/munge/munge.key"; return $SKIP; }
+
+  # munged refuses sockets in folders others can write or cannot reach.
+  chmod 755 "$dir"
+  mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/log"
+  chown munge:munge "$dir/munge"
+  chmod 755 "$dir/munge"
+  local socket=$dir/munge/munge.socket
+  if ! runuser -u munge -- munged --socket="$socket" --pid-file="$dir/munge/munged.pid" \
+        --log-file="$dir/munge/munged.log" --seed-file="$dir/munge/munged.seed" \
+        >"$dir/log/munged.out" 2>&1; then
+    log "munged did not start: $(tail -n1 "$dir/log/munged.out")"
+    return $SKIP
+  fi
+  munge -n -S "$socket" | unmunge -S "$socket" >/dev/null 2>&1 \
+    || { log "munge credential round-trip failed"; return $SKIP; }
+
+  local cpus ctld_port d_port
+  cpus=$(nproc)
+  ctld_port=$(free_port)
+  d_port=$(free_port)
+  [ "$d_port" != "$ctld_port" ] || d_port=$((ctld_port + 1))
+  cat >"$dir/slurm.conf" <<EOF
+# Single-node test cluster written by scripts/slurm_test_cluster.sh
+ClusterName=hapcinetest
+SlurmctldHost=localhost
+SlurmctldPort=$ctld_port
+SlurmdPort=$d_port
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$socket
+StateSaveLocation=$dir/state
+SlurmdSpoolDir=$dir/spool
+SlurmctldPidFile=$dir/slurmctld.pid
+SlurmdPidFile=$dir/slurmd.pid
+SlurmctldLogFile=$dir/log/slurmctld.log
+SlurmdLogFile=$dir/log/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+MpiDefault=none
+MailProg=/bin/true
+ReturnToService=2
+NodeName=localhost NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
+PartitionName=test Nodes=localhost Default=YES MaxTime=INFINITE State=UP
+EOF
+  export SLURM_CONF=$dir/slurm.conf
+  if ! slurmctld >"$dir/log/slurmctld.out" 2>&1; then
+    log "slurmctld did not start: $(tail -n1 "$dir/log/slurmctld.log" 2>/dev/null)"
+    return $SKIP
+  fi
+  if ! slurmd -N localhost >"$dir/log/slurmd.out" 2>&1; then
+    log "slurmd did not start: $(tail -n1 "$dir/log/slurmd.log" 2>/dev/null)"
+    return $SKIP
+  fi
+  local state=""
+  for _ in $(seq 150); do
+    state=$(sinfo -h -n localhost -o %T 2>/dev/null || true)
+    [ "$state" = idle ] && break
+    sleep 0.2
+  done
+  if [ "$state" != idle ]; then
+    log "node not idle after 30 s (state '$state'): $(tail -n1 "$dir/log/slurmd.log" 2>/dev/null)"
+    return $SKIP
+  fi
+  log "cluster up in $dir (node localhost, $cpus CPUs, slurmctld port $ctld_port)"
+}
+
+# ------------------------------------------------------------------- test ---
+
+# Stand-in for `hapcine estimate|haptics` (same contract as the unit tests'):
+# outputs depend only on the input bytes; bad inputs fail with one line.
+write_fake_step() {
+  cat >"$1" <<'EOF'
+#!/bin/bash
+set -u
+cmd=$1; shift
+case "$cmd" in
+  estimate)
+    in=$1; out=$3
+    sleep 0.2
+    IFS= read -r -d '' content < "$in"
+    if [[ $content == *corrupt* ]]; then echo "hapcine estimate: $in: corrupt video stream" >&2; exit 1; fi
+    if [[ $content != FAKEVIDEO* ]]; then echo "hapcine estimate: $in: no video stream found" >&2; exit 1; fi
+    printf 'frame,time_s\n%s\nhost-independent\n' "$content" > "$out" ;;
+  haptics)
+    cam=$1; model=$3; out=$5; hjif=$7
+    IFS= read -r -d '' camera < "$cam"
+    printf 'model,%s\n%s' "$model" "$camera" > "$out"
+    echo "{\"model\":\"$model\"}" > "$hjif" ;;
+  *) echo "unknown command $cmd" >&2; exit 2 ;;
+esac
+EOF
+  chmod 755 "$1"
+}
+
+make_library() {
+  local lib=$1
+  mkdir -p "$lib/sub dir"
+  for n in a.mp4 b.mov "c d.mkv" "é clip.mp4" "日本.mkv" "sub dir/e.webm"; do
+    echo "FAKEVIDEO $n" >"$lib/$n"
+  done
+  echo "FAKEVIDEO a.mp4" >"$lib/zz copy of a.mp4"   # duplicate of a.mp4
+  echo "FAKEVIDEO corrupt" >"$lib/corrupt.mp4"
+  : >"$lib/empty.mp4"
+  echo "shopping list" >"$lib/notes.mp4"
+  echo "not a video" >"$lib/readme.txt"
+}
+
+# "done skipped failed duplicate" of a summary.json
+counts() {
+  python3 -c 'import json,sys; c=json.load(open(sys.argv[1]))["counts"]; print(c["done"], c["skipped"], c["failed"], c["duplicate"])' "$1"
+}
+
+# Lists output files (relative path + checksum) of an output folder.
+outputs() {
+  (cd "$1" && find . -type f \( -name '*.camera.csv' -o -name '*.haptic.csv' -o -name '*.hjif' \) \
+     -not -path '*/.tmp/*' -print0 | sort -z | xargs -0 -r sha256sum)
+}
+
+real_pipeline_available() {
+  local exe=$1
+  "$exe" estimate --help 2>&1 | grep -q "Not implemented yet" && return 1
+  "$exe" haptics --help 2>&1 | grep -q "Not implemented yet" && return 1
+  "$exe" synth --help 2>&1 | grep -q "Not implemented yet" && return 1
+  return 0
+}
+
+run_test() {
+  local exe=${1:?usage: slurm_test_cluster.sh test HAPCINE_EXE}
+  exe=$(readlink -f "$exe")
+  [ -x "$exe" ] || fail "no executable $exe"
+  local t0=$SECONDS
+  WORK=$(mktemp -d /tmp/hapcine_slurm_XXXXXX)
+  trap 'cluster_down "$WORK/cluster"; [ "${HAPCINE_SLURM_KEEP:-0}" = 1 ] && log "kept $WORK" || rm -rf "$WORK"' EXIT
+  chmod 755 "$WORK"  # munged (user munge) must reach its socket folder
+  mkdir -p "$WORK/cluster"
+  local rc=0
+  cluster_up "$WORK/cluster" || rc=$?
+  [ $rc -eq 0 ] || { [ $rc -eq $SKIP ] && skip "Slurm cannot run here (see above)"; fail "cluster start"; }
+  export SLURM_CONF=$WORK/cluster/slurm.conf
+  local t_up=$((SECONDS - t0))
+
+  local fake=$WORK/fake-hapcine
+  write_fake_step "$fake"
+  make_library "$WORK/library"
+
+  log "local run"
+  rc=0
+  "$exe" batch "$WORK/library" -o "$WORK/local" --hapcine-exe "$fake" --jobs 2 --progress lines \
+    2>"$WORK/local.err" || rc=$?
+  [ $rc -eq 1 ] || { cat "$WORK/local.err" >&2; fail "local batch exit $rc (expected 1: 3 bad films)"; }
+  [ "$(counts "$WORK/local/summary.json")" = "6 0 3 1" ] \
+    || fail "local counts $(counts "$WORK/local/summary.json"), expected 6 done 0 skipped 3 failed 1 duplicate"
+
+  log "Slurm run: 3-task job array"
+  local t1=$SECONDS
+  rc=0
+  "$exe" batch "$WORK/library" -o "$WORK/slurm" --slurm --shards 3 --jobs 1 \
+    --hapcine-exe "$fake" 2>"$WORK/slurm.err" || rc=$?
+  cat "$WORK/slurm.err" >&2
+  [ $rc -eq 1 ] || fail "slurm batch exit $rc (expected 1: 3 bad films)"
+  local t_array=$((SECONDS - t1))
+  for i in 0 1 2; do
+    [ -s "$WORK/slurm/slurm/task-$i.status" ] || fail "task $i wrote no status file"
+    grep -q "batch: \[" "$WORK/slurm/slurm/task-$i.log" || fail "task $i log has no progress lines"
+  done
+  [ "$(counts "$WORK/slurm/summary.json")" = "6 0 3 1" ] \
+    || fail "slurm counts $(counts "$WORK/slurm/summary.json"), expected 6 0 3 1"
+  outputs "$WORK/local" >"$WORK/local.sums"
+  outputs "$WORK/slurm" >"$WORK/slurm.sums"
+  [ "$(wc -l <"$WORK/local.sums")" -eq 30 ] || fail "expected 30 output files, got $(wc -l <"$WORK/local.sums")"
+  diff "$WORK/local.sums" "$WORK/slurm.sums" >&2 || fail "Slurm outputs differ from the local run's"
+  "$exe" batch --status "$WORK/slurm" | grep -q "10 films: 6 done, 3 failed, 1 duplicate, 0 running, 0 pending" \
+    || fail "status: $("$exe" batch --status "$WORK/slurm")"
+
+  log "Slurm re-run: everything up to date must be skipped"
+  rc=0
+  "$exe" batch "$WORK/library" -o "$WORK/slurm" --slurm --shards 3 --jobs 1 \
+    --hapcine-exe "$fake" 2>"$WORK/slurm2.err" || rc=$?
+  [ $rc -eq 1 ] || { cat "$WORK/slurm2.err" >&2; fail "slurm re-run exit $rc"; }
+  [ "$(counts "$WORK/slurm/summary.json")" = "0 6 3 1" ] \
+    || fail "re-run counts $(counts "$WORK/slurm/summary.json"), expected 0 6 3 1"
+  outputs "$WORK/slurm" | diff "$WORK/local.sums" - >&2 || fail "re-run changed outputs"
+
+  if real_pipeline_available "$exe"; then
+    log "real pipeline: synth -> batch locally and on Slurm, camera paths compared"
+    mkdir -p "$WORK/real"
+    local presets
+    presets=$("$exe" synth --list 2>/dev/null | awk 'NR<=2 {print $1}' | tr '\n' ' ')
+    # shellcheck disable=SC2086  # two preset names
+    if [ -z "$presets" ] || ! "$exe" synth $presets -o "$WORK/real/lib" --width 320 --height 180 \
+          --duration-s 1 >"$WORK/real/synth.log" 2>&1; then
+      log "real pipeline: could not render synthetic clips ($(tail -n1 "$WORK/real/synth.log" 2>/dev/null)); not compared"
+    else
+      "$exe" batch "$WORK/real/lib" -o "$WORK/real/local" --jobs 2 --progress lines 2>&1 | tail -n3 >&2 || true
+      "$exe" batch "$WORK/real/lib" -o "$WORK/real/slurm" --slurm --shards 2 --jobs 1 2>&1 | tail -n3 >&2 || true
+      (cd "$WORK/real/local" && find . -name '*.camera.csv' | sort | xargs -r sha256sum) >"$WORK/real/l.sums"
+      (cd "$WORK/real/slurm" && find . -name '*.camera.csv' | sort | xargs -r sha256sum) >"$WORK/real/s.sums"
+      [ -s "$WORK/real/l.sums" ] || fail "real pipeline produced no camera path locally"
+      if diff -q "$WORK/real/l.sums" "$WORK/real/s.sums" >/dev/null; then
+        log "real pipeline: camera paths byte-identical ($(wc -l <"$WORK/real/l.sums") films)"
+      else
+        # Multi-threaded solvers may differ in the last bits: then compare numbers.
+        python3 - "$WORK/real/local" "$WORK/real/slurm" <<'PY' || fail "real camera paths differ between local and Slurm"
+import glob, os, sys
+a, b = sys.argv[1], sys.argv[2]
+fa = sorted(os.path.relpath(p, a) for p in glob.glob(a + "/*/*.camera.csv"))
+fb = sorted(os.path.relpath(p, b) for p in glob.glob(b + "/*/*.camera.csv"))
+assert fa == fb and fa, (fa, fb)
+worst = 0.0
+for rel in fa:
+    la = [l for l in open(os.path.join(a, rel)) if not l.startswith("#")]
+    lb = [l for l in open(os.path.join(b, rel)) if not l.startswith("#")]
+    assert len(la) == len(lb), rel
+    for x, y in zip(la, lb):
+        for u, v in zip(x.strip().split(","), y.strip().split(",")):
+            try:
+                worst = max(worst, abs(float(u) - float(v)) / max(1.0, abs(float(u))))
+            except ValueError:
+                assert u == v, (rel, u, v)
+print("slurm_test_cluster: real pipeline: camera paths equal within %.2g (relative)" % worst, file=sys.stderr)
+sys.exit(0 if worst < 1e-6 else 1)
+PY
+      fi
+    fi
+  else
+    log "real pipeline: estimate/haptics/synth not implemented in this build; fake steps only"
+  fi
+  log "PASS in $((SECONDS - t0)) s (cluster up ${t_up} s, first job array ${t_array} s)"
+}
+
+case "${1:-}" in
+  up)
+    [ -n "${2:-}" ] || { echo "usage: $0 up DIR" >&2; exit 2; }
+    mkdir -p "$2"
+    dir=$(readlink -f "$2")
+    rc=0
+    cluster_up "$dir" || rc=$?
+    if [ $rc -ne 0 ]; then cluster_down "$dir"; exit $rc; fi
+    echo "export SLURM_CONF=$dir/slurm.conf"
+    ;;
+  down)
+    [ -n "${2:-}" ] || { echo "usage: $0 down DIR" >&2; exit 2; }
+    cluster_down "$(readlink -f "$2")"
+    ;;
+  test) shift; run_test "$@" ;;
+  *) echo "usage: $0 up DIR | down DIR | test HAPCINE_EXE" >&2; exit 2 ;;
+esac

@@ -1,0 +1,98 @@
+#include "study/analysis.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+
+namespace hapcine::study {
+namespace {
+
+ScoreTable Score(const std::string& label, const std::vector<ParticipantResults>& results,
+                 const std::vector<std::string>& conditions, const std::string* only_clip) {
+  ScoreTable t;
+  t.label = label;
+  const size_t k = conditions.size();
+  std::map<std::string, size_t> col;
+  for (size_t c = 0; c < k; ++c) col[conditions[c]] = c;
+  for (const auto& r : results) {
+    std::vector<double> points(k, 0.0), max_points(k, 0.0);
+    for (const auto& tr : r.trials) {
+      if (only_clip && tr.clip != *only_clip) continue;
+      for (const auto& c : tr.first) max_points[col.at(c)] += 1;
+      for (const auto& c : tr.second) max_points[col.at(c)] += 1;
+      for (const auto& c : tr.chosen()) points[col.at(c)] += 1;
+    }
+    std::vector<double> s(k);
+    for (size_t c = 0; c < k; ++c) s[c] = max_points[c] > 0 ? points[c] / max_points[c] : 0;
+    t.score.push_back(s);
+  }
+  const size_t n = t.score.size();
+  t.mean.assign(k, 0);
+  t.sd.assign(k, 0);
+  for (size_t c = 0; c < k; ++c) {
+    std::vector<double> col_scores;
+    for (size_t p = 0; p < n; ++p) col_scores.push_back(t.score[p][c]);
+    double m = 0;
+    for (double v : col_scores) m += v;
+    m /= n;
+    double ss = 0;
+    for (double v : col_scores) ss += (v - m) * (v - m);
+    t.mean[c] = m;
+    t.sd[c] = n > 1 ? std::sqrt(ss / (n - 1)) : 0;
+    t.normality.push_back(ShapiroWilk(col_scores));
+  }
+  t.friedman = FriedmanTest(t.score);
+  std::vector<double> raw;
+  for (size_t a = 0; a < k; ++a)
+    for (size_t b = a + 1; b < k; ++b) {
+      PairwiseTest pt;
+      pt.a = conditions[a];
+      pt.b = conditions[b];
+      std::vector<double> x, y;
+      for (size_t p = 0; p < n; ++p) {
+        x.push_back(t.score[p][a]);
+        y.push_back(t.score[p][b]);
+      }
+      pt.wilcoxon = WilcoxonSignedRank(x, y);
+      raw.push_back(pt.wilcoxon.valid ? pt.wilcoxon.p : 1.0);
+      t.pairwise.push_back(pt);
+    }
+  const auto adj = HolmAdjust(raw);
+  for (size_t i = 0; i < adj.size(); ++i) t.pairwise[i].p_holm = adj[i];
+  return t;
+}
+
+}  // namespace
+
+StudyAnalysis AnalyzeStudy(const std::vector<ParticipantResults>& results) {
+  if (results.empty()) throw UsageError("no results files given");
+  const ParticipantResults& first = results.front();
+  StudyAnalysis a;
+  a.plan_id = first.plan_id;
+  a.conditions = first.conditions;
+  for (const auto& c : first.clips) a.clips.push_back(c.name);
+  std::set<std::string> seen;
+  for (const auto& r : results) {
+    if (r.plan_id != first.plan_id)
+      throw Error(r.source, "results of plan " + r.plan_id + ", but " + first.source +
+                                " is of plan " + first.plan_id + ": plans cannot be mixed");
+    if (r.conditions != first.conditions)
+      throw Error(r.source, "conditions differ from " + first.source);
+    bool same_clips = r.clips.size() == first.clips.size();
+    for (size_t i = 0; same_clips && i < r.clips.size(); ++i)
+      same_clips =
+          r.clips[i].name == first.clips[i].name && r.clips[i].groups == first.clips[i].groups;
+    if (!same_clips)
+      throw Error(r.source, "clips differ from " + first.source + " under the same plan id");
+    if (!seen.insert(r.participant).second)
+      throw Error(r.source, "participant " + r.participant + " appears in two results files");
+    a.participants.push_back(r.participant);
+  }
+  a.overall = Score("all", results, a.conditions, nullptr);
+  for (const auto& c : a.clips) a.per_clip.push_back(Score(c, results, a.conditions, &c));
+  return a;
+}
+
+}  // namespace hapcine::study

@@ -1,0 +1,128 @@
+#include "study/journal.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "study/json_util.h"
+
+namespace hapcine::study {
+using nlohmann::json;
+
+namespace {
+const char* const kFormat = "hapcine-study-journal";
+
+void FsyncDirectoryOf(const std::string& path) {
+  std::string dir = std::filesystem::path(path).parent_path().string();
+  if (dir.empty()) dir = ".";
+  const int dfd = open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dfd >= 0) {
+    fsync(dfd);
+    close(dfd);
+  }
+}
+}  // namespace
+
+Journal::Journal(const std::string& path, const std::string& plan_id,
+                 const std::string& participant)
+    : path_(path) {
+  std::string content;
+  bool existed = false;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      existed = true;
+      std::stringstream ss;
+      ss << in.rdbuf();
+      content = ss.str();
+    }
+  }
+  // Split into complete lines; a trailing fragment without '\n' is a write
+  // cut short by a crash.
+  size_t keep = 0;  // bytes of valid content to keep
+  std::vector<std::string> lines;
+  for (size_t pos = 0; pos < content.size();) {
+    const size_t nl = content.find('\n', pos);
+    if (nl == std::string::npos) break;
+    lines.push_back(content.substr(pos, nl - pos));
+    pos = nl + 1;
+  }
+  size_t offset = 0;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const std::string where = "line " + std::to_string(i + 1);
+    json j;
+    try {
+      j = json::parse(lines[i]);
+    } catch (const json::exception&) {
+      if (i + 1 == lines.size() && offset + lines[i].size() + 1 == content.size()) break;
+      throw Error(path + ":" + std::to_string(i + 1), "corrupt journal line (not JSON)");
+    }
+    if (i == 0) {
+      if (!j.is_object() || j.value("format", "") != kFormat)
+        throw Error(path, "not a hapcine study journal");
+      const std::string jp = StringField(j, "plan_id", path, where);
+      const std::string jpart = StringField(j, "participant", path, where);
+      if (jp != plan_id) throw Error(path, "journal belongs to plan " + jp + ", not " + plan_id);
+      if (jpart != participant)
+        throw Error(path, "journal belongs to participant " + jpart + ", not " + participant);
+    } else {
+      if (!j.is_object())
+        throw Error(path + ":" + std::to_string(i + 1), "journal record is not an object");
+      records_.push_back(std::move(j));
+    }
+    offset += lines[i].size() + 1;
+    keep = offset;
+  }
+  fd_ = open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw Error(path, std::string("cannot open journal: ") + std::strerror(errno));
+  if (keep < content.size()) {
+    // Drop the torn tail so the next record starts on a fresh line.
+    if (ftruncate(fd_, static_cast<off_t>(keep)) != 0 || fsync(fd_) != 0)
+      throw Error(path, std::string("cannot truncate torn journal tail: ") + std::strerror(errno));
+  }
+  if (lseek(fd_, 0, SEEK_END) < 0) throw Error(path, std::string("seek: ") + std::strerror(errno));
+  if (keep == 0) {
+    if (content.size() > 0 && existed && lines.size() > 0)
+      throw Error(path, "journal header is corrupt");
+    WriteLine(json{{"format", kFormat},
+                   {"version", 1},
+                   {"plan_id", plan_id},
+                   {"participant", participant},
+                   {"created_utc", UtcNow()}}
+                  .dump());
+    FsyncDirectoryOf(path);
+  }
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) close(fd_);
+}
+
+void Journal::WriteLine(const std::string& line) {
+  const std::string data = line + "\n";
+  size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = write(fd_, data.data() + done, data.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw Error(path_, std::string("journal write failed: ") + std::strerror(errno));
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (fsync(fd_) != 0)
+    throw Error(path_, std::string("journal fsync failed: ") + std::strerror(errno));
+}
+
+void Journal::Append(const json& record) {
+  WriteLine(record.dump());
+  records_.push_back(record);
+}
+
+}  // namespace hapcine::study

@@ -1,0 +1,137 @@
+#include "study/results.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "study/json_util.h"
+
+namespace hapcine::study {
+using nlohmann::json;
+
+namespace {
+const char* const kFormat = "hapcine-study-results";
+constexpr int kVersion = 1;
+
+std::string Key(const std::string& clip, const std::vector<std::string>& a,
+                const std::vector<std::string>& b) {
+  return clip + "|" + json(a).dump() + "|" + json(b).dump();
+}
+}  // namespace
+
+json ResultsToJson(const ParticipantResults& r) {
+  json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["plan_id"] = r.plan_id;
+  j["participant"] = r.participant;
+  j["device"] = r.device;
+  j["conditions"] = r.conditions;
+  j["clips"] = json::array();
+  for (const auto& c : r.clips) j["clips"].push_back({{"name", c.name}, {"groups", c.groups}});
+  j["training_condition"] = r.training_condition;
+  j["started_utc"] = r.started_utc;
+  j["completed_utc"] = r.completed_utc;
+  j["trials"] = json::array();
+  for (const auto& t : r.trials)
+    j["trials"].push_back({{"index", t.index},
+                           {"clip", t.clip},
+                           {"first", t.first},
+                           {"second", t.second},
+                           {"choice", t.choice},
+                           {"response_time_s", t.response_time_s},
+                           {"answered_utc", t.answered_utc}});
+  return j;
+}
+
+void WriteResultsFile(const ParticipantResults& r, const std::string& path) {
+  AtomicFile out(path);
+  out.stream() << ResultsToJson(r).dump(1) << "\n";
+  out.Commit();
+}
+
+ParticipantResults ResultsFromJson(const json& j, const std::string& src) {
+  if (!j.is_object() || !j.contains("format") || j["format"] != kFormat)
+    throw Error(src, "not a hapcine study results file (format field is not '" +
+                         std::string(kFormat) + "')");
+  if (IntField(j, "version", src, "results") != kVersion)
+    throw Error(src, "unsupported results version " + j["version"].dump());
+  ParticipantResults r;
+  r.source = src;
+  r.plan_id = StringField(j, "plan_id", src, "results");
+  r.participant = StringField(j, "participant", src, "results");
+  r.device = StringField(j, "device", src, "results");
+  r.training_condition = StringField(j, "training_condition", src, "results");
+  r.started_utc = StringField(j, "started_utc", src, "results");
+  r.completed_utc = StringField(j, "completed_utc", src, "results");
+  r.conditions = StringArray(ArrayField(j, "conditions", src, "results"), src, "conditions");
+  const std::set<std::string> conds(r.conditions.begin(), r.conditions.end());
+  if (conds.size() != r.conditions.size() || conds.size() < 2)
+    throw Error(src, "conditions must be at least two distinct names");
+
+  // The design: every ordered pair of distinct groups of every clip, once.
+  std::map<std::string, int> expected;  // key -> times seen
+  std::set<std::string> clip_names;
+  for (const auto& jc : ArrayField(j, "clips", src, "results")) {
+    ClipGroups c;
+    c.name = StringField(jc, "name", src, "clip");
+    if (!clip_names.insert(c.name).second) throw Error(src, "clip '" + c.name + "' listed twice");
+    std::set<std::string> covered;
+    for (const auto& g : ArrayField(jc, "groups", src, "clip '" + c.name + "'")) {
+      c.groups.push_back(StringArray(g, src, "clip '" + c.name + "' groups"));
+      if (c.groups.back().empty()) throw Error(src, "clip '" + c.name + "' has an empty group");
+      for (const auto& cond : c.groups.back()) {
+        if (!conds.count(cond))
+          throw Error(src, "clip '" + c.name + "': unknown condition '" + cond + "'");
+        if (!covered.insert(cond).second)
+          throw Error(src, "clip '" + c.name + "': condition '" + cond + "' in two groups");
+      }
+    }
+    if (covered.size() != conds.size())
+      throw Error(src, "clip '" + c.name + "': groups do not cover every condition");
+    for (size_t a = 0; a < c.groups.size(); ++a)
+      for (size_t b = 0; b < c.groups.size(); ++b)
+        if (a != b) expected[Key(c.name, c.groups[a], c.groups[b])] = 0;
+    r.clips.push_back(std::move(c));
+  }
+  if (r.clips.empty()) throw Error(src, "no clips");
+
+  const json& jt = ArrayField(j, "trials", src, "results");
+  std::set<int> indices;
+  for (const auto& t : jt) {
+    TrialResult tr;
+    tr.index = IntField(t, "index", src, "trial");
+    const std::string where = "trial " + std::to_string(tr.index);
+    if (!indices.insert(tr.index).second) throw Error(src, where + " recorded twice");
+    tr.clip = StringField(t, "clip", src, where);
+    tr.first = StringArray(Field(t, "first", src, where), src, where + " first");
+    tr.second = StringArray(Field(t, "second", src, where), src, where + " second");
+    tr.choice = IntField(t, "choice", src, where);
+    if (tr.choice != 1 && tr.choice != 2)
+      throw Error(src, where + ": choice must be 1 or 2, got " + std::to_string(tr.choice));
+    tr.response_time_s = NumberField(t, "response_time_s", src, where);
+    if (tr.response_time_s < 0) throw Error(src, where + ": negative response time");
+    tr.answered_utc = StringField(t, "answered_utc", src, where);
+    const auto it = expected.find(Key(tr.clip, tr.first, tr.second));
+    if (it == expected.end())
+      throw Error(src, where + ": pair is not part of the design (clip '" + tr.clip + "')");
+    if (++it->second > 1) throw Error(src, where + ": pair presented twice");
+    r.trials.push_back(std::move(tr));
+  }
+  for (const auto& [key, seen] : expected)
+    if (seen == 0)
+      throw Error(src, "incomplete: " + std::to_string(expected.size()) + " trials expected, " +
+                           std::to_string(jt.size()) + " recorded");
+  for (int i = 0; i < static_cast<int>(r.trials.size()); ++i)
+    if (!indices.count(i))
+      throw Error(src, "trial indices are not 0.." + std::to_string(r.trials.size() - 1));
+  return r;
+}
+
+ParticipantResults ReadResultsFile(const std::string& path) {
+  return ResultsFromJson(ReadJsonFile(path), path);
+}
+
+}  // namespace hapcine::study

@@ -1,0 +1,250 @@
+#include "study/session.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "core/error.h"
+#include "study/hash.h"
+#include "study/journal.h"
+#include "study/json_util.h"
+#include "study/plan.h"
+#include "study/player_process.h"
+#include "study/results.h"
+
+namespace hapcine::study {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+void RunOptions::Check() const {
+  if (plan_path.empty()) throw UsageError("a plan file is needed");
+  if (participant.empty()) throw UsageError("--participant is needed");
+  if (device != "sim" && device != "none" && device != "falcon")
+    throw UsageError("--device must be sim, none or falcon");
+}
+
+std::string JournalPathFor(const std::string& results_path) {
+  const std::string suffix = ".results.json";
+  if (results_path.size() > suffix.size() &&
+      results_path.compare(results_path.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return results_path.substr(0, results_path.size() - suffix.size()) + ".journal.jsonl";
+  return results_path + ".journal.jsonl";
+}
+
+namespace {
+
+// Answers from a responses file (scripted runs) or typed on a stream.
+class AnswerSource {
+ public:
+  AnswerSource(const std::string& responses_path, std::istream& in, std::ostream& out)
+      : in_(in), out_(out), scripted_(!responses_path.empty()), path_(responses_path) {
+    if (scripted_) {
+      std::ifstream f(responses_path);
+      if (!f) throw Error(responses_path, "cannot open responses file");
+      std::string line;
+      int n = 0;
+      while (std::getline(f, line)) {
+        ++n;
+        const auto hash = line.find('#');
+        if (hash != std::string::npos) line.erase(hash);
+        const auto b = line.find_first_not_of(" \t\r");
+        if (b == std::string::npos) continue;
+        const auto e = line.find_last_not_of(" \t\r");
+        const std::string tok = line.substr(b, e - b + 1);
+        if (tok != "1" && tok != "2")
+          throw Error(responses_path + ":" + std::to_string(n),
+                      "answer must be 1 or 2, got '" + tok + "'");
+        answers_.push_back(tok[0] - '0');
+      }
+    }
+  }
+  bool scripted() const { return scripted_; }
+  // A scripted run whose answers are used up stops before playing another pair.
+  bool Exhausted() const { return scripted_ && next_ >= answers_.size(); }
+  // 1 or 2; 0 = replay requested; nullopt = stop (end of input or "q").
+  std::optional<int> Next() {
+    if (scripted_) {
+      if (next_ >= answers_.size()) return std::nullopt;
+      return answers_[next_++];
+    }
+    for (;;) {
+      out_ << "Which did you prefer? [1/2, r = replay, q = stop for now] " << std::flush;
+      std::string line;
+      if (!std::getline(in_, line)) return std::nullopt;
+      const auto b = line.find_first_not_of(" \t\r");
+      const std::string tok =
+          b == std::string::npos ? "" : line.substr(b, line.find_last_not_of(" \t\r") - b + 1);
+      if (tok == "1" || tok == "2") return tok[0] - '0';
+      if (tok == "r" || tok == "R") return 0;
+      if (tok == "q" || tok == "Q") return std::nullopt;
+      out_ << "Please type 1 or 2.\n";
+    }
+  }
+
+ private:
+  std::istream& in_;
+  std::ostream& out_;
+  bool scripted_;
+  std::string path_;
+  std::vector<int> answers_;
+  size_t next_ = 0;
+};
+
+}  // namespace
+
+RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream& out) {
+  options.Check();
+  const StudyPlan plan = ReadPlanFile(options.plan_path);
+  const ParticipantPlan& who = plan.Participant(options.participant);
+
+  RunSummary summary;
+  summary.total = static_cast<int>(who.trials.size());
+  summary.results_path = options.results_path;
+  if (summary.results_path.empty()) {
+    fs::path dir = fs::path(options.plan_path).parent_path();
+    summary.results_path = (dir / (who.id + ".results.json")).string();
+  }
+  summary.journal_path = JournalPathFor(summary.results_path);
+
+  if (options.verify_hashes) {
+    for (const auto& c : plan.clips) {
+      if (HashFile(c.video) != c.video_hash)
+        throw Error(c.video, "video changed since the plan was made (hash differs)");
+      for (const auto& [cond, t] : c.tracks)
+        if (HashFile(t.path) != t.hash)
+          throw Error(t.path, "haptic track changed since the plan was made (hash differs)");
+    }
+  }
+
+  AnswerSource answers(options.responses_path, in, out);
+  Journal journal(summary.journal_path, plan.plan_id, who.id);
+
+  // What the journal already holds.
+  bool training_done = false;
+  std::map<int, json> answered;
+  for (const auto& r : journal.records()) {
+    const std::string where = "journal record";
+    const std::string type = StringField(r, "type", journal.path(), where);
+    if (type == "training_done") {
+      training_done = true;
+    } else if (type == "trial") {
+      const int idx = IntField(r, "index", journal.path(), where);
+      if (idx < 0 || idx >= summary.total)
+        throw Error(journal.path(), "trial index " + std::to_string(idx) + " is not in the plan");
+      const Trial& t = who.trials[idx];
+      if (StringField(r, "clip", journal.path(), where) != t.clip ||
+          StringArray(Field(r, "first", journal.path(), where), journal.path(), where) != t.first ||
+          StringArray(Field(r, "second", journal.path(), where), journal.path(), where) != t.second)
+        throw Error(journal.path(), "trial " + std::to_string(idx) + " does not match the plan");
+      const int choice = IntField(r, "choice", journal.path(), where);
+      if (choice != 1 && choice != 2)
+        throw Error(journal.path(), "trial " + std::to_string(idx) + ": choice must be 1 or 2");
+      NumberField(r, "response_time_s", journal.path(), where);
+      StringField(r, "answered_utc", journal.path(), where);
+      if (!answered.emplace(idx, r).second)
+        throw Error(journal.path(), "trial " + std::to_string(idx) + " recorded twice");
+    } else if (type != "started") {
+      throw Error(journal.path(), "unknown journal record type '" + type + "'");
+    }
+  }
+  summary.answered_before = static_cast<int>(answered.size());
+  if (summary.answered_before > 0 || training_done)
+    out << "Resuming " << who.id << ": " << summary.answered_before << " of " << summary.total
+        << " trials already answered (" << journal.path() << ")\n";
+  journal.Append({{"type", "started"}, {"utc", UtcNow()}, {"device", options.device}});
+
+  const auto words =
+      SplitCommand(options.player_cmd.empty() ? kDefaultPlayerTemplate : options.player_cmd);
+  const std::string exe = SelfExecutable();
+  auto play = [&](const std::string& clip_name, const std::string& condition) {
+    const StudyClip& clip = plan.Clip(clip_name);
+    const auto argv = SubstituteCommand(words, {{"exe", exe},
+                                                {"video", clip.video},
+                                                {"track", clip.tracks.at(condition).path},
+                                                {"device", options.device},
+                                                {"clip", clip_name},
+                                                {"condition", condition}});
+    const int rc = RunChild(argv);
+    if (rc != 0)
+      throw Error(clip.tracks.at(condition).path,
+                  "player exited with status " + std::to_string(rc) + " (" + argv[0] + ")");
+  };
+
+  if (!training_done) {
+    out << "Training: " << who.training.size() << " clips with one kind of haptic feedback.\n";
+    for (size_t i = 0; i < who.training.size(); ++i) {
+      out << "  training " << i + 1 << "/" << who.training.size() << ": " << who.training[i].clip
+          << "\n"
+          << std::flush;
+      play(who.training[i].clip, who.training[i].condition);
+    }
+    journal.Append({{"type", "training_done"}, {"utc", UtcNow()}});
+  }
+
+  for (const Trial& t : who.trials) {
+    if (answered.count(t.index)) continue;
+    std::optional<int> choice;
+    double rt_s = 0;
+    for (;;) {
+      if (answers.Exhausted()) break;
+      out << "Trial " << t.index + 1 << "/" << summary.total << " (" << t.clip
+          << "): sequence 1...\n"
+          << std::flush;
+      play(t.clip, t.first.front());
+      out << "  sequence 2...\n" << std::flush;
+      play(t.clip, t.second.front());
+      const auto asked = std::chrono::steady_clock::now();
+      choice = answers.Next();
+      rt_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+      if (!choice || *choice != 0) break;  // 0 = replay the pair
+    }
+    if (!choice) {
+      out << "Stopped after " << answered.size() << " of " << summary.total
+          << " trials; answers are saved in " << journal.path()
+          << ". Run the same command again to resume.\n";
+      return summary;
+    }
+    const json rec = {
+        {"type", "trial"},         {"index", t.index},         {"clip", t.clip},
+        {"first", t.first},        {"second", t.second},       {"choice", *choice},
+        {"response_time_s", rt_s}, {"answered_utc", UtcNow()}, {"scripted", answers.scripted()}};
+    journal.Append(rec);
+    answered.emplace(t.index, rec);
+    ++summary.answered_now;
+  }
+
+  // Complete: assemble the results from the journal (the single source of truth).
+  ParticipantResults res;
+  res.plan_id = plan.plan_id;
+  res.participant = who.id;
+  res.device = options.device;
+  res.conditions = plan.conditions;
+  for (const auto& c : plan.clips) res.clips.push_back({c.name, c.groups});
+  res.training_condition = who.training_condition;
+  for (const auto& r : journal.records()) {
+    if (r.value("type", "") == "started" && res.started_utc.empty())
+      res.started_utc = r.value("utc", "");
+  }
+  res.completed_utc = UtcNow();
+  for (const auto& [idx, r] : answered) {
+    TrialResult tr;
+    tr.index = idx;
+    tr.clip = r["clip"].get<std::string>();
+    tr.first = r["first"].get<std::vector<std::string>>();
+    tr.second = r["second"].get<std::vector<std::string>>();
+    tr.choice = r["choice"].get<int>();
+    tr.response_time_s = r["response_time_s"].get<double>();
+    tr.answered_utc = r["answered_utc"].get<std::string>();
+    res.trials.push_back(std::move(tr));
+  }
+  ResultsFromJson(ResultsToJson(res), summary.results_path);  // self-check before writing
+  WriteResultsFile(res, summary.results_path);
+  summary.complete = true;
+  out << "Done: " << summary.total << " trials answered; results in " << summary.results_path
+      << "\n";
+  return summary;
+}
+
+}  // namespace hapcine::study

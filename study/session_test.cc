@@ -1,0 +1,197 @@
+#include "study/session.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "study/plan.h"
+#include "study/results.h"
+#include "study/test_fixtures.h"
+
+namespace hapcine::study {
+namespace {
+using testing::MakeClip;
+using testing::MakeTempDir;
+
+struct Fixture {
+  std::string dir, plan_path;
+  StudyPlan plan;
+};
+
+Fixture MakeStudy(const std::string& tag) {
+  Fixture f;
+  f.dir = MakeTempDir(tag);
+  PlanOptions o;
+  o.clips = {MakeClip(f.dir, "crane"), MakeClip(f.dir, "vertigo", true)};  // 12 + 6 trials
+  o.participants = 3;
+  o.seed = 7;
+  f.plan = MakePlan(o, nullptr);
+  f.plan_path = f.dir + "/plan.json";
+  WritePlanFile(f.plan, f.plan_path);
+  return f;
+}
+
+std::string WriteResponses(const std::string& path, const std::vector<int>& answers) {
+  std::ofstream out(path);
+  out << "# scripted answers\n";
+  for (int a : answers) out << a << "\n";
+  return path;
+}
+
+size_t CountLines(const std::string& path) {
+  std::ifstream in(path);
+  size_t n = 0;
+  std::string line;
+  while (std::getline(in, line)) ++n;
+  return n;
+}
+
+TEST(SessionTest, ResumesAfterInterruptionWithNothingLostOrDuplicated) {
+  Fixture f = MakeStudy("resume");
+  ASSERT_EQ(f.plan.participants[1].trials.size(), 18u);
+  std::vector<int> all;
+  for (int i = 0; i < 18; ++i) all.push_back(1 + (i * 7 % 3 == 0));
+  RunOptions o;
+  o.plan_path = f.plan_path;
+  o.participant = "P02";
+  const std::string played = f.dir + "/played.txt";
+  o.player_cmd = "/bin/sh -c 'echo \"$0\" >> " + played + "' {condition}";
+  // First sitting: answers for 9 trials, then the input runs out (a break).
+  o.responses_path = WriteResponses(f.dir + "/r1.txt", {all.begin(), all.begin() + 9});
+  std::istringstream no_input;
+  std::ostringstream log;
+  RunSummary s1 = RunSession(o, no_input, log);
+  EXPECT_FALSE(s1.complete);
+  EXPECT_EQ(s1.answered_now, 9);
+  EXPECT_FALSE(std::filesystem::exists(s1.results_path));
+  EXPECT_EQ(s1.journal_path, f.dir + "/P02.journal.jsonl");
+  // 2 training clips + 9 pairs; no pair is played once the answers run out.
+  EXPECT_EQ(CountLines(played), 2u + 9 * 2);
+
+  // A crash in the middle of writing the next record leaves a torn line.
+  { std::ofstream(s1.journal_path, std::ios::app) << R"({"type":"trial","index":)"; }
+
+  // Second sitting: the remaining 9 answers.
+  o.responses_path = WriteResponses(f.dir + "/r2.txt", {all.begin() + 9, all.end()});
+  RunSummary s2 = RunSession(o, no_input, log);
+  EXPECT_EQ(s2.answered_before, 9);
+  EXPECT_EQ(s2.answered_now, 9);
+  ASSERT_TRUE(s2.complete) << log.str();
+  EXPECT_EQ(CountLines(played), 2u + 18 * 2);  // training is not repeated on resume
+
+  const ParticipantResults r = ReadResultsFile(s2.results_path);
+  EXPECT_EQ(r.plan_id, f.plan.plan_id);
+  EXPECT_EQ(r.participant, "P02");
+  ASSERT_EQ(r.trials.size(), 18u);
+  std::set<int> idx;
+  for (size_t i = 0; i < r.trials.size(); ++i) {
+    idx.insert(r.trials[i].index);
+    EXPECT_EQ(r.trials[i].choice, all[r.trials[i].index]) << i;
+    EXPECT_EQ(r.trials[i].first, f.plan.participants[1].trials[r.trials[i].index].first);
+  }
+  EXPECT_EQ(idx.size(), 18u);
+  // Journal: header, started, training_done, 9 trials, started, 9 trials.
+  EXPECT_EQ(CountLines(s2.journal_path), 1u + 1 + 1 + 9 + 1 + 9);
+
+  // Running again once complete asks nothing and rewrites the same answers.
+  o.responses_path = WriteResponses(f.dir + "/r3.txt", {});
+  RunSummary s3 = RunSession(o, no_input, log);
+  EXPECT_TRUE(s3.complete);
+  EXPECT_EQ(s3.answered_now, 0);
+  EXPECT_EQ(ReadResultsFile(s3.results_path).trials.size(), 18u);
+}
+
+TEST(SessionTest, PlaysTheRightTracksInOrderAndReadsTypedAnswers) {
+  Fixture f = MakeStudy("player");
+  const std::string log_path = f.dir + "/played.txt";
+  RunOptions o;
+  o.plan_path = f.plan_path;
+  o.participant = "1";
+  o.device = "none";
+  o.results_path = f.dir + "/out/p1.results.json";
+  std::filesystem::create_directory(f.dir + "/out");
+  o.player_cmd =
+      "/bin/sh -c 'echo \"$0 $1 $2 $3\" >> " + log_path + "' {clip} {condition} {track} {device}";
+  // Typed answers with noise: invalid input is asked again, "r" replays.
+  std::string typed;
+  for (int i = 0; i < 18; ++i) typed += (i == 0 ? "x\nr\n2\n" : "1\n");
+  std::istringstream in(typed);
+  std::ostringstream out;
+  const RunSummary s = RunSession(o, in, out);
+  ASSERT_TRUE(s.complete) << out.str();
+  EXPECT_EQ(s.journal_path, f.dir + "/out/p1.journal.jsonl");
+  // 2 training clips + 18 trials x 2 stimuli + one replayed pair.
+  std::ifstream played(log_path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(played, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 2u + 36 + 2);
+  const ParticipantPlan& p = f.plan.participants[0];
+  const StudyClip& clip0 = f.plan.Clip(p.trials[0].clip);
+  const std::string want_first = p.trials[0].clip + " " + p.trials[0].first[0] + " " +
+                                 clip0.tracks.at(p.trials[0].first[0]).path + " none";
+  EXPECT_EQ(lines[2], want_first);
+  EXPECT_EQ(lines[4], want_first);  // replayed
+  EXPECT_EQ(lines[0].substr(lines[0].find(' ') + 1, p.training_condition.size()),
+            p.training_condition);
+  const ParticipantResults r = ReadResultsFile(s.results_path);
+  EXPECT_EQ(r.trials[0].choice, 2);
+  EXPECT_EQ(r.trials[1].choice, 1);
+  EXPECT_EQ(r.device, "none");
+}
+
+TEST(SessionTest, FailuresKeepTheJournalAndRefuseForeignState) {
+  Fixture f = MakeStudy("fail");
+  RunOptions o;
+  o.plan_path = f.plan_path;
+  o.participant = "P03";
+  o.player_cmd = "/bin/false";
+  o.responses_path = WriteResponses(f.dir + "/r.txt", std::vector<int>(18, 1));
+  std::istringstream in;
+  std::ostringstream out;
+  EXPECT_THROW(RunSession(o, in, out), Error);  // the player failed
+  o.player_cmd = "/nonexistent/player";
+  EXPECT_THROW(RunSession(o, in, out), Error);
+  // Half done, then the journal is copied to another participant's name.
+  o.player_cmd = "/bin/true";
+  o.responses_path = WriteResponses(f.dir + "/r.txt", std::vector<int>(5, 2));
+  const RunSummary s = RunSession(o, in, out);
+  EXPECT_EQ(s.answered_now, 5);
+  std::filesystem::copy_file(s.journal_path, f.dir + "/P01.journal.jsonl");
+  o.participant = "P01";
+  EXPECT_THROW(RunSession(o, in, out), Error);
+  // A corrupt line in the middle is an error, not silently skipped.
+  o.participant = "P03";
+  {
+    std::ifstream inj(s.journal_path);
+    std::stringstream ss;
+    ss << inj.rdbuf();
+    std::string text = ss.str();
+    text.insert(text.find('\n') + 1, "garbage\n");
+    std::ofstream(s.journal_path) << text;
+  }
+  EXPECT_THROW(RunSession(o, in, out), Error);
+  // Tracks changed after planning are refused.
+  Fixture g = MakeStudy("changed");
+  WriteHapticTrackFile(testing::MakeTrack("semantic", 5), g.dir + "/crane.semantic.haptic.csv");
+  o.plan_path = g.plan_path;
+  EXPECT_THROW(RunSession(o, in, out), Error);
+  // Bad options.
+  RunOptions bad = o;
+  bad.device = "holodeck";
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad = o;
+  bad.participant = "P99";
+  EXPECT_THROW(RunSession(bad, in, out), UsageError);
+  bad = o;
+  std::ofstream(f.dir + "/bad_responses.txt") << "1\n3\n";
+  bad.plan_path = f.plan_path;
+  bad.responses_path = f.dir + "/bad_responses.txt";
+  EXPECT_THROW(RunSession(bad, in, out), Error);
+}
+
+}  // namespace
+}  // namespace hapcine::study
