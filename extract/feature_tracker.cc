@@ -49,6 +49,13 @@ constexpr size_t kMinTracksForCollapse = 20;
 constexpr double kGoodSurvival = 0.7;
 // Quality cap for frames inside a suspected fade/dissolve.
 constexpr double kTransitionQualityCap = 0.25;
+// A gradual histogram change that KLT followed from frame to frame, with at
+// least this share of the tracks surviving each frame and the image content
+// moving by at least kMotionRunShare of the working width in all, is the
+// camera moving (a pan or tilt brings new colours into view), not a dissolve.
+// A dissolve on a still camera keeps tracks alive but does not move them.
+constexpr double kMotionRunSurvival = 0.5;
+constexpr double kMotionRunShare = 0.05;
 
 }  // namespace
 
@@ -69,6 +76,9 @@ struct FeatureTracker::Impl {
   cv::Size prev_size;
   std::vector<cv::Point2f> prev_points;
   std::vector<long> prev_ids;
+  // The current run of transition-flagged frames, as the tracker saw it.
+  bool run_tracked = true;    // every frame of the run kept kMotionRunSurvival of its tracks
+  double run_motion_px = 0;   // sum over the run of the median track displacement
 
   void DropTracks() {
     prev_pyramid.clear();
@@ -78,6 +88,24 @@ struct FeatureTracker::Impl {
   }
 
   cv::Size Window() const { return {options.klt_window, options.klt_window}; }
+
+  // Adds one transition-flagged frame's KLT result to the run statistics.
+  void AccumulateRun(size_t before, const std::vector<cv::Point2f>& points,
+                     const std::vector<cv::Point2f>& from) {
+    if (before < kMinTracksForCollapse ||
+        points.size() < kMotionRunSurvival * static_cast<double>(before)) {
+      run_tracked = false;
+      return;
+    }
+    std::vector<float> disp(points.size());
+    for (size_t i = 0; i < points.size(); ++i) disp[i] = static_cast<float>(cv::norm(points[i] - from[i]));
+    std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
+    run_motion_px += disp[disp.size() / 2];
+  }
+
+  bool RunWasCameraMotion(int working_width) const {
+    return run_tracked && !prev_points.empty() && run_motion_px >= kMotionRunShare * working_width;
+  }
 
   // New corners on the half-resolution pyramid level (4x cheaper than the
   // full working image; KLT does not need corners at full resolution, any
@@ -213,10 +241,16 @@ struct FeatureTracker::Impl {
     if (first) {
       out.boundary = ShotBoundary::kStart;
       first = false;
+    } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.cols)) {
+      // Gradual change explained by tracked motion: same shot, keep tracking.
     } else if (decision.boundary != ShotBoundary::kNone) {
       out.boundary = decision.boundary;
       ++shot;
       DropTracks();
+    }
+    if (!decision.transition) {
+      run_tracked = true;
+      run_motion_px = 0;
     }
     out.shot = shot;
     out.blank = decision.blank;
@@ -236,6 +270,7 @@ struct FeatureTracker::Impl {
     const size_t before = prev_points.size();
     Track(pyramid, size, &points, &ids, &from);
     size_t survived = points.size();
+    if (decision.transition) AccumulateRun(before, points, from);
 
     size_t relinked = 0;
     const bool collapsed =

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "extract/shot_detector.h"
 #include "extract/test_frames.h"
 
 namespace hapcine {
@@ -344,6 +345,42 @@ TEST(FeatureTrackerTest, DissolveIsAGradualBoundary) {
   EXPECT_GE(first_fade, 12);
   EXPECT_LE(first_fade, 26);
   EXPECT_EQ(out.back().shot, 1);
+}
+
+// A tilt from the floor to the ceiling changes the colours on screen
+// gradually, like a dissolve: the histogram test alone would split the shot
+// there. KLT follows the content all the way, so it stays one shot.
+TEST(FeatureTrackerTest, PanAcrossChangingColoursIsNotADissolve) {
+  // Two differently tinted textures side by side, blended over 200 px.
+  const cv::Mat a = NoiseTexture({2400, 800}, 21, {-0.9, -0.8, -0.6});
+  const cv::Mat b = NoiseTexture({2400, 800}, 22, {0.6, 0.9, 0.9});
+  cv::Mat wide(a.size(), a.type());
+  for (int x = 0; x < a.cols; ++x) {
+    const double w = std::clamp((x - 1100) / 200.0, 0.0, 1.0);
+    cv::addWeighted(a.col(x), 1 - w, b.col(x), w, 0, wide.col(x));
+  }
+  FeatureTracker tracker(SmallOptions());
+  ShotDetector histograms_only;
+  int histogram_fades = 0;
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 60; ++i) {
+    // Still for 10 frames, an eased 960 px (decoded) move over 40 frames, still.
+    const double t = std::clamp((i - 10) / 40.0, 0.0, 1.0);
+    const double x = 960.0 * (0.5 - 0.5 * std::cos(M_PI * t));
+    const Frame frame = MakeFrame(Shifted(wide, -x, 0, kDecoded), i, 0.5);
+    histogram_fades += histograms_only.Update(frame).boundary == ShotBoundary::kFade;
+    out.push_back(tracker.Process(frame));
+  }
+  int boundaries = 0, transitions = 0;
+  for (const auto& t : out) {
+    boundaries += t.boundary == ShotBoundary::kFade || t.boundary == ShotBoundary::kCut;
+    transitions += t.transition;
+  }
+  ASSERT_GT(histogram_fades, 0) << "the colour change must look like a dissolve to the histograms";
+  EXPECT_GT(transitions, 0);
+  EXPECT_EQ(boundaries, 0);
+  EXPECT_EQ(out.back().shot, 0);
+  EXPECT_GT(out.back().points.size(), 100u) << "tracking continues through the pan";
 }
 
 TEST(FeatureTrackerTest, RejectsBadInputAndOptions) {

@@ -1,0 +1,206 @@
+// End-to-end: the `hapcine` program as a user runs it, on a clip made on the
+// spot: synth -> estimate -> eval -> haptics (+ .hjif) -> play on the
+// simulated seat; and the bad inputs a user meets at each step (exit code 1,
+// one line naming the file, no output left behind).
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "core/camera_path.h"
+#include "core/haptic_track.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+// Runs `hapcine ARGS` through the shell, capturing stdout and stderr.
+RunResult RunHapcine(const std::string& args, const fs::path& dir) {
+  const fs::path err_file = dir / "stderr.txt";
+  const std::string cmd =
+      std::string("'") + HAPCINE_EXE + "' " + args + " 2>'" + err_file.string() + "'";
+  RunResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// Last non-empty line of a text (progress output may come before an error).
+std::string LastLine(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+// Files in `dir` whose name starts with `stem` (atomic writers use stem.tmp-*).
+int CountFilesStartingWith(const fs::path& dir, const std::string& stem) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind(stem, 0) == 0) ++n;
+  return n;
+}
+
+class PipelineTest : public ::testing::Test {
+ protected:
+  // One small clip for the whole suite: tilting (rotation about X only), so
+  // the estimate must show rotation with no translation. 480x270 keeps the
+  // render and the estimate to seconds.
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("hapcine_e2e_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+    const RunResult r = RunHapcine("synth tilting --width 480 --height 270 --duration-s 3.5 -o " +
+                                       Quote(dir_),
+                                   dir_);
+    synth_ok_ = r.exit_code == 0;
+    if (!synth_ok_) std::fprintf(stderr, "synth failed: %s\n", r.err.c_str());
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  void SetUp() override { ASSERT_TRUE(synth_ok_) << "the synthetic clip could not be rendered"; }
+
+  static fs::path dir_;
+  static bool synth_ok_;
+};
+fs::path PipelineTest::dir_;
+bool PipelineTest::synth_ok_ = false;
+
+TEST_F(PipelineTest, SynthEstimateEvalHapticsPlay) {
+  const fs::path video = dir_ / "tilting.mp4";
+  const fs::path gt = dir_ / "tilting.camera.csv";
+  const fs::path est = dir_ / "tilting.est.camera.csv";
+  ASSERT_TRUE(fs::exists(video));
+  ASSERT_TRUE(fs::exists(gt));
+
+  RunResult r = RunHapcine("estimate -q " + Quote(video) + " -o " + Quote(est), dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const hapcine::CameraPath path = hapcine::ReadCameraPathFile(est.string());
+  const hapcine::CameraPath truth = hapcine::ReadCameraPathFile(gt.string());
+  ASSERT_EQ(path.frames.size(), truth.frames.size());
+  // A tilt is a rotation: no frame may carry translation, and the model
+  // column says which simpler model was chosen.
+  for (const auto& f : path.frames) {
+    EXPECT_EQ(f.center.norm(), 0.0) << "frame " << f.frame;
+    ASSERT_TRUE(f.model.has_value());
+    EXPECT_TRUE(*f.model == "static" || *f.model == "rotation" || *f.model == "rotation+zoom")
+        << "frame " << f.frame << " model " << *f.model;
+  }
+
+  r = RunHapcine("eval --json --gt " + Quote(gt) + " --est " + Quote(est), dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(r.out);
+  const auto& overall = report.at("overall");
+  // Loose bounds for a 480x270 clip; docs/estimate.md has the full-size figures.
+  EXPECT_LT(overall.at("rotation_deg").at("mean").get<double>(), 0.3);
+  EXPECT_LT(overall.at("zoom_ratio_percent").at("mean").get<double>(), 1.0);
+  EXPECT_EQ(overall.at("frames").get<int>(), static_cast<int>(truth.frames.size()));
+
+  const fs::path track = dir_ / "tilting.haptic.csv";
+  const fs::path hjif = dir_ / "tilting.hjif";
+  r = RunHapcine("haptics " + Quote(est) + " --model cinematic -o " + Quote(track) + " --hjif " +
+                     Quote(hjif),
+                 dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const hapcine::HapticTrack haptic = hapcine::ReadHapticTrackFile(track.string());
+  EXPECT_EQ(haptic.model, "cinematic");
+  ASSERT_FALSE(haptic.samples.empty());
+  EXPECT_NEAR(haptic.duration_s(), truth.frames.back().time_s, 0.1);
+  double max_abs = 0, max_motion = 0;
+  for (const auto& s : haptic.samples)
+    for (int a = 0; a < hapcine::kNumActuators; ++a) {
+      max_abs = std::max(max_abs, s.pos_m[a].cwiseAbs().maxCoeff());
+      max_motion = std::max(max_motion, s.pos_m[a].norm());
+    }
+  EXPECT_LE(max_abs, 0.05) << "an actuator left its 0.10 m workspace";
+  EXPECT_GT(max_motion, 0.005) << "a tilt must move the seat";
+  std::ifstream hj(hjif);
+  const nlohmann::json hjif_doc = nlohmann::json::parse(hj);
+  EXPECT_TRUE(hjif_doc.contains("perceptions"));
+
+  // The film on the simulated seat, headless, with loop statistics.
+  r = RunHapcine("play " + Quote(video) + " --track " + Quote(track) +
+                     " --device sim --headless --no-realtime --stats --fault-log " +
+                     Quote(dir_ / "fault.csv"),
+                 dir_);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE((r.out + r.err).find("p99"), std::string::npos) << r.out << r.err;
+}
+
+TEST_F(PipelineTest, EstimateRejectsBadVideosWithOneLineAndNoOutput) {
+  const fs::path empty = dir_ / "empty file.mp4";
+  std::ofstream(empty).close();
+  const fs::path text = dir_ / "notes.mp4";
+  std::ofstream(text) << "this is not a video\n";
+  const fs::path truncated = dir_ / "truncated.mp4";
+  {
+    std::ifstream in(dir_ / "tilting.mp4", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(truncated, std::ios::binary) << bytes.substr(0, 2000);
+  }
+  for (const fs::path& bad : {empty, text, truncated, dir_ / "missing.mp4"}) {
+    const fs::path out = dir_ / ("bad_" + bad.stem().string() + ".camera.csv");
+    const RunResult r = RunHapcine("estimate -q " + Quote(bad) + " -o " + Quote(out), dir_);
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(LastLine(r.err).find(bad.filename().string()), std::string::npos)
+        << "the error must name the file: " << r.err;
+    EXPECT_EQ(CountFilesStartingWith(dir_, out.filename().string()), 0)
+        << "output left behind for " << bad;
+  }
+}
+
+TEST_F(PipelineTest, HapticsRejectsMalformedCameraPathWithLineNumber) {
+  const fs::path bad = dir_ / "nan.camera.csv";
+  {
+    std::ifstream in(dir_ / "tilting.camera.csv");
+    std::ofstream out(bad);
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) {
+      ++n;
+      if (n == 10) line = "8,0.3,0,0,0,1,0,0,0,nan";  // a NaN field of view on line 10
+      out << line << "\n";
+    }
+  }
+  const fs::path track = dir_ / "nan.haptic.csv";
+  const RunResult r = RunHapcine("haptics " + Quote(bad) + " -o " + Quote(track), dir_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("nan.camera.csv:10"), std::string::npos) << r.err;
+  EXPECT_EQ(CountFilesStartingWith(dir_, "nan.haptic.csv"), 0);
+}
+
+TEST_F(PipelineTest, UsageErrorsExitTwo) {
+  EXPECT_EQ(RunHapcine("estimate --no-such-flag x.mp4 -o y.csv", dir_).exit_code, 2);
+  EXPECT_EQ(RunHapcine("no-such-command", dir_).exit_code, 2);
+  const RunResult help = RunHapcine("eval --help", dir_);
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--gt"), std::string::npos);
+}
+
+}  // namespace
