@@ -3,11 +3,13 @@
 // and are defined in docs/eval.md.
 
 #include <iostream>
+#include <optional>
 
 #include "cli/command.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "datasets/eval.h"
+#include "datasets/eval_haptics.h"
 
 namespace hapcine::cli {
 
@@ -15,7 +17,8 @@ int RunEval(int argc, char** argv) {
   CLI::App app{
       "Compare an estimated camera path (*.camera.csv) against ground truth: rotation error, "
       "FOV and zoom-ratio error, ATE after Umeyama alignment, RPE, per shot when a `shot` column "
-      "exists. Metric definitions: docs/eval.md.",
+      "exists. With --haptic, also the difference between the haptic tracks the two paths give\n"
+      "(same model, same scaling: docs/haptics.md). Metric definitions: docs/eval.md.",
       argv[0]};
   std::string gt_file, est_file, json_out, per_frame_out;
   std::string align = "sim3", matching = "auto";
@@ -44,6 +47,17 @@ int RunEval(int argc, char** argv) {
                  "estimated path length reported as spurious translation), GT units")
       ->capture_default_str();
   app.add_option("--per-frame", per_frame_out, "write per-frame errors as CSV (atomic)");
+  bool haptic = false;
+  std::string haptic_model = "cinematic";
+  double haptic_rate = 1000;
+  app.add_flag("--haptic", haptic,
+               "also compare the haptic tracks of the two paths (the estimate scaled to GT units\n"
+               "per shot; the cinematic scaling computed from the GT and used for both)");
+  app.add_option("--haptic-model", haptic_model, "model of the compared tracks (implies --haptic)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cinematic", "semantic", "random", "none"}));
+  app.add_option("--haptic-rate", haptic_rate, "rate of the compared tracks, Hz")
+      ->capture_default_str();
 
   return RunApp(app, argc, argv, [&]() {
     opt.align = ParseTrajectoryAlignment(align);
@@ -55,7 +69,16 @@ int RunEval(int argc, char** argv) {
     EvalReport report = EvaluateCameraPaths(gt, est, opt);
     report.gt_source = gt_file;
     report.est_source = est_file;
-    const nlohmann::json j = EvalReportToJson(report);
+    nlohmann::json j = EvalReportToJson(report);
+    std::optional<HapticEvalReport> haptic_report;
+    if (haptic || app.count("--haptic-model") > 0) {
+      HapticOptions ho;
+      ho.model = HapticModelFromName(haptic_model);
+      ho.rate_hz = haptic_rate;
+      ho.source = gt_file;
+      haptic_report = EvaluateHapticDifference(gt, est, report, ho);
+      j["haptic"] = HapticEvalToJson(*haptic_report);
+    }
     if (!json_out.empty()) {
       AtomicFile out(json_out);
       out.stream() << j.dump(2) << "\n";
@@ -66,6 +89,7 @@ int RunEval(int argc, char** argv) {
       std::cout << j.dump(2) << "\n";
     } else {
       std::cout << FormatEvalTable(report);
+      if (haptic_report) std::cout << "\n" << FormatHapticEvalTable(*haptic_report);
     }
     return kExitOk;
   });

@@ -1,7 +1,9 @@
 #include "haptics/camera_signals.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include "core/error.h"
 #include "core/rotation.h"
@@ -63,6 +65,7 @@ CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
     s.zoom_forward_u.push_back(reference_depth_u * (ratio - 1.0));
     s.log_zoom.push_back(std::log(ratio));
   }
+  s.reference_depth_u = reference_depth_u;
   Unwrap(&s.pan_rad);
   Unwrap(&s.roll_rad);
   return s;
@@ -77,6 +80,38 @@ double ReferenceDepthFor(const CameraPath& path, double fallback) {
     if (end != it->second.c_str() && std::isfinite(v) && v > 0) return v;
   }
   return fallback;
+}
+
+std::optional<double> DollyZoomSubjectDistance(const CameraPath& path, const ShotRange& shot) {
+  const auto& f0 = path.frames[shot.first];
+  const Eigen::Vector3d axis = f0.world_from_cam.toRotationMatrix().col(2);  // camera +Z (backward)
+  const double tan0 = std::tan(DegToRad(f0.fov_deg) / 2);
+  double sdd = 0, sdm = 0, smm = 0, max_m = 0, max_d = 0;
+  std::vector<std::pair<double, double>> dm;  // (forward travel, 1 - ratio)
+  for (size_t i = shot.first; i <= shot.last; ++i) {
+    const auto& f = path.frames[i];
+    const double d = -axis.dot(f.center - f0.center);
+    const double m = 1.0 - tan0 / std::tan(DegToRad(f.fov_deg) / 2);
+    dm.emplace_back(d, m);
+    sdd += d * d;
+    sdm += d * m;
+    smm += m * m;
+    max_m = std::max(max_m, std::abs(m));
+    max_d = std::max(max_d, std::abs(d));
+  }
+  if (!(sdd > 0 && sdm > 0 && max_m >= 0.05)) return std::nullopt;
+  const double inv_d = sdm / sdd;  // 1 / D
+  double sr = 0;
+  for (const auto& [d, m] : dm) sr += (m - d * inv_d) * (m - d * inv_d);
+  if (!(sr <= 0.01 * smm) || !(max_d * inv_d >= 0.05)) return std::nullopt;
+  const double depth = 1.0 / inv_d;
+  return std::isfinite(depth) ? std::optional<double>(depth) : std::nullopt;
+}
+
+double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double explicit_depth_u) {
+  if (explicit_depth_u > 0) return explicit_depth_u;
+  if (const auto d = DollyZoomSubjectDistance(path, shot)) return *d;
+  return ReferenceDepthFor(path, 1.0);
 }
 
 void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s) {

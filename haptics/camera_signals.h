@@ -21,6 +21,7 @@
 //                gamma(t) = -(forward travel)(t) exactly, which is what
 //                makes the cinematic model produce no movement for Vertigo.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,7 @@ struct CameraSignals {
   std::vector<double> tilt_rad, pan_rad, roll_rad;
   std::vector<double> zoom_forward_u;
   std::vector<double> log_zoom;  // ln(tan(fov0/2)/tan(fov/2)), unit-free
+  double reference_depth_u = 1;  // D used for zoom_forward_u
   size_t size() const { return time_s.size(); }
 };
 
@@ -55,6 +57,24 @@ CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
 // (ground truth in metres) or `reference_depth` when present and positive,
 // else `fallback` (1.0: estimated paths are in median-depth units).
 double ReferenceDepthFor(const CameraPath& path, double fallback);
+
+// Subject distance of a dolly zoom ("Vertigo"), in path units, from the
+// motion alone. A camera that moves forward by d(t) while widening its field
+// of view so that a subject at distance D keeps its size has
+//   tan(fov0/2) / tan(fov(t)/2) = (D - d(t)) / D,  i.e.  1 - ratio(t) = d(t) / D.
+// Least squares for 1/D over the shot (d = forward travel along the first
+// frame's optical axis). nullopt unless the fit explains the zoom (rms
+// residual <= 10 % of the rms of 1 - ratio), the magnification changes by at
+// least 5 %, the travel reaches at least 5 % of D, and D > 0 (forward with a
+// zoom-out, or backward with a zoom-in). Works in any units, so estimated
+// paths (median-depth units) get their dolly zooms' D as well.
+std::optional<double> DollyZoomSubjectDistance(const CameraPath& path, const ShotRange& shot);
+
+// D for one shot: explicit_depth_u when > 0 (--reference-depth), else the
+// dolly-zoom fit above, else ReferenceDepthFor(path, 1.0). A dolly zoom's own
+// D makes its zoom cancel its travel exactly in the cinematic model, whatever
+// a film-wide metadata value says.
+double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double explicit_depth_u);
 
 // Checks beyond ReadCameraPath's: |position| <= 1e6, time gaps inside a shot
 // <= max_gap_s. Throws Error("<source>: frame N (data row R)", reason).

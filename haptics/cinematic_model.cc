@@ -106,10 +106,9 @@ std::vector<CameraSignals> CinematicShotSignals(const CameraPath& path,
                                                 const std::vector<ShotRange>& shots,
                                                 const CinematicOptions& o,
                                                 const WashoutOptions& w) {
-  const double depth = o.reference_depth_u > 0 ? o.reference_depth_u : ReferenceDepthFor(path, 1.0);
   std::vector<CameraSignals> out;
   for (const ShotRange& r : shots) {
-    CameraSignals s = ExtractShotSignals(path, r, depth);
+    CameraSignals s = ExtractShotSignals(path, r, ShotReferenceDepth(path, r, o.reference_depth_u));
     if (w.high_pass) {
       std::vector<double> ch(s.size());
       for (int k = 0; k < 3; ++k) {

@@ -48,7 +48,8 @@ struct CinematicScaling {
 
 struct CinematicOptions {
   // Distance D of the subject whose magnification defines gamma, in path
-  // units; 0 = automatic (metadata subject_distance_m / reference_depth,
+  // units; 0 = automatic per shot (ShotReferenceDepth: a dolly zoom's own
+  // subject distance, else metadata subject_distance_m / reference_depth,
   // else 1 = the median depth of estimated paths).
   double reference_depth_u = 0;
   // Cap on k = sz, metres per path unit: 0.45 fills +-0.045 m with a motion

@@ -126,9 +126,12 @@ HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
       frames = ResampleFrames(path, shots, per_frame, time_s);
       track.metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
       track.metadata["cinematic_m"] = JoinScales(scaling, true);
-      track.metadata["reference_depth"] =
-          FormatDouble(o.cinematic.reference_depth_u > 0 ? o.cinematic.reference_depth_u
-                                                         : ReferenceDepthFor(path, 1.0));
+      std::string depths;
+      for (const ShotRange& r : shots) {
+        depths += (depths.empty() ? "" : ";") +
+                  FormatDouble(ShotReferenceDepth(path, r, o.cinematic.reference_depth_u));
+      }
+      track.metadata["reference_depth"] = depths;
       break;
     }
     case HapticModel::kSemantic: {
