@@ -2,6 +2,8 @@
 // (written by hand), from one Figure description (datasets/plot_figure.h).
 
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "core/camera_path.h"
@@ -44,7 +46,7 @@ int RunPlot(int argc, char** argv) {
   };
 
   std::string gt_file, est_file;
-  bool absolute = false, no_scale = false;
+  bool absolute = false, no_scale = false, no_effects = false;
   CLI::App* camera = app.add_subcommand(
       "camera",
       "pan/tilt/roll (deg), camera centre x/y/z and horizontal FOV over time; with a second "
@@ -56,14 +58,18 @@ int RunPlot(int argc, char** argv) {
                    "plot poses as stored instead of relative to each path's first frame");
   camera->add_flag("--no-scale", no_scale,
                    "do not scale the estimate's positions onto the first path (least squares)");
+  camera->add_flag("--no-effects", no_effects,
+                   "no time line of the effects the classifier finds in each path");
   add_common(camera);
 
-  std::string track_file;
+  std::vector<std::string> track_files;
   CLI::App* haptic = app.add_subcommand(
       "haptic",
       "actuator displacements (head, left hand, right hand; x/y/z in mm) over time, with the "
-      "`effect` column as labelled bands (the paper's Figure 4)");
-  haptic->add_option("track", track_file, "haptic track (*.haptic.csv)")
+      "`effect` column as labelled bands; several tracks are overlaid (the first solid, the "
+      "others dashed), e.g. the cinematic and semantic tracks of a clip as in the paper's "
+      "Figure 4");
+  haptic->add_option("tracks", track_files, "haptic tracks (*.haptic.csv), one or more")
       ->required();
   add_common(haptic);
 
@@ -76,11 +82,26 @@ int RunPlot(int argc, char** argv) {
       CameraPlotOptions opt;
       opt.relative_to_first = !absolute;
       opt.scale_estimate = !absolute && !no_scale;
+      opt.effect_labels = !no_effects;
       opt.title = title.empty() ? gt_file + (est_file.empty() ? "" : "  vs  " + est_file) : title;
       fig = CameraPathFigure(gt, est_file.empty() ? nullptr : &est, opt);
     } else {
-      const HapticTrack track = ReadHapticTrackFile(track_file);
-      fig = HapticTrackFigure(track, title.empty() ? track_file + " (" + track.model + ")" : title);
+      std::vector<HapticTrack> tracks;
+      std::string names;
+      for (const std::string& f : track_files) {
+        tracks.push_back(ReadHapticTrackFile(f));
+        names += (names.empty() ? "" : "  vs  ") + f + " (" + tracks.back().model + ")";
+      }
+      std::vector<const HapticTrack*> ptrs;
+      for (const HapticTrack& t : tracks) ptrs.push_back(&t);
+      // Legend names: the model, or the file when two tracks share a model.
+      std::vector<std::string> legend;
+      for (size_t i = 0; i < tracks.size(); ++i) {
+        bool shared = false;
+        for (size_t j = 0; j < tracks.size(); ++j) shared |= j != i && tracks[j].model == tracks[i].model;
+        legend.push_back(shared ? track_files[i] : tracks[i].model);
+      }
+      fig = HapticTracksFigure(ptrs, title.empty() ? names : title, legend);
     }
     fig.width_px = width_px;
     WriteOutputs(fig, prefix, format);

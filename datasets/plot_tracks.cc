@@ -6,6 +6,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/rotation.h"
+#include "haptics/effect_classifier.h"
 
 namespace hapcine {
 namespace {
@@ -57,6 +58,59 @@ double EstimateScale(const CameraPath& gt, const CameraPath& est) {
   }
   const double s = den > 1e-300 ? num / den : 1.0;
   return std::isfinite(s) && s > 0 ? s : 1.0;
+}
+
+std::vector<double> FrameTimes(const CameraPath& p) {
+  std::vector<double> t;
+  for (const auto& f : p.frames) t.push_back(f.time_s);
+  return t;
+}
+
+double FramePeriod(const CameraPath& p) {
+  const size_t n = p.frames.size();
+  return n > 1 ? (p.frames[n - 1].time_s - p.frames[0].time_s) / (n - 1) : 0.0;
+}
+
+// "traveling left", "zoom_in out", ...: the effect and the direction its
+// intensity's sign gives (effect_classifier.h).
+std::string LabelWithDirection(const EffectSegment& seg) {
+  const bool neg = seg.intensity < 0;
+  const char* dir = "";
+  switch (seg.effect) {
+    case CameraEffect::kCraneShot:
+    case CameraEffect::kTilting:
+      dir = neg ? " down" : " up";
+      break;
+    case CameraEffect::kDutchAngle:
+      dir = neg ? " cw" : " ccw";
+      break;
+    case CameraEffect::kTraveling:
+      dir = neg ? " left" : " right";
+      break;
+    case CameraEffect::kZoomIn:
+      dir = neg ? " (out)" : "";
+      break;
+    case CameraEffect::kVertigo:
+      dir = neg ? " backward" : "";
+      break;
+    default:
+      break;
+  }
+  return std::string(EffectName(seg.effect)) + dir;
+}
+
+// The classifier's label of every frame ("none" between segments).
+std::vector<std::string> ClassifiedLabels(const CameraPath& p) {
+  std::vector<std::string> labels(p.frames.size(), "none");
+  for (const EffectSegment& seg : ClassifyEffects(p, ClassifierOptions{})) {
+    for (size_t i = 0; i < p.frames.size(); ++i) {
+      const double t = p.frames[i].time_s;
+      if (t >= seg.start_s && t <= seg.end_s) {
+        labels[i] = LabelWithDirection(seg);
+      }
+    }
+  }
+  return labels;
 }
 
 void AddSeries(PlotPanel* panel, const std::string& name, const std::vector<double>& t,
@@ -123,54 +177,94 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
     AddSeries(&pos, "z" + src.position_suffix, s.t, s.z, 5, src.dashed);
     AddSeries(&fov, "fov" + src.suffix, s.t, s.fov, 0, src.dashed);
   }
+  if (options.effect_labels) {
+    std::map<std::string, int> colors;
+    for (const auto& src : sources) {
+      fig.panels.push_back(EffectTimeline("effects found by the classifier" + src.suffix,
+                                          FrameTimes(*src.path),
+                                          ClassifiedLabels(*src.path), FramePeriod(*src.path),
+                                          &colors));
+    }
+  }
   return fig;
 }
 
-Figure HapticTrackFigure(const HapticTrack& track, const std::string& title) {
-  if (track.samples.empty()) throw UsageError("haptic track has no samples");
-  Figure fig;
-  fig.title = title;
-  std::vector<double> t;
-  for (const auto& s : track.samples) t.push_back(s.time_s);
-  const char* kTitles[kNumActuators] = {"head (H)", "left hand (LA)", "right hand (RA)"};
-  for (int a = 0; a < kNumActuators; ++a) {
-    PlotPanel panel;
-    panel.title = kTitles[a];
-    panel.y_label = "mm";
-    const char* axis[3] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k) {
-      std::vector<double> v;
-      for (const auto& s : track.samples) v.push_back(1000.0 * s.pos_m[a](k));
-      AddSeries(&panel, axis[k], t, v, k, false);
-    }
-    fig.panels.push_back(std::move(panel));
-  }
-  // Effect bands: runs of equal non-empty `effect`, each label its own colour.
+PlotPanel EffectTimeline(const std::string& title, const std::vector<double>& t,
+                         const std::vector<std::string>& labels, double last_period_s,
+                         std::map<std::string, int>* colors) {
   PlotPanel line;
-  line.title = "effect";
+  line.title = title;
   line.show_y_axis = false;
-  line.height_weight = 0.55;
-  std::map<std::string, int> colors;
-  for (size_t i = 0; i < track.samples.size();) {
-    const auto& eff = track.samples[i].effect;
+  line.height_weight = 0.45;
+  for (size_t i = 0; i < labels.size();) {
     size_t j = i + 1;
-    while (j < track.samples.size() && track.samples[j].effect == eff) ++j;
-    if (eff && !eff->empty()) {
-      if (!colors.count(*eff)) colors[*eff] = static_cast<int>(colors.size());
+    while (j < labels.size() && labels[j] == labels[i]) ++j;
+    if (!labels[i].empty()) {
       PlotBand b;
-      b.x_begin = track.samples[i].time_s;
+      b.x_begin = t[i];
       // The run lasts until the next sample starts (or one period past the last).
-      b.x_end = j < track.samples.size() ? track.samples[j].time_s
-                                         : track.samples[j - 1].time_s +
-                                               (track.rate_hz > 0 ? 1.0 / track.rate_hz : 0.0);
-      b.label = *eff;
-      b.color = PaletteColor(colors[*eff] + 1);
+      b.x_end = j < t.size() ? t[j] : t[j - 1] + last_period_s;
+      b.label = labels[i];
+      if (labels[i] == "none") {
+        b.color = PlotColor{235, 235, 235};
+      } else {
+        if (!colors->count(labels[i])) colors->emplace(labels[i], static_cast<int>(colors->size()));
+        b.color = PaletteColor(colors->at(labels[i]) + 1);
+      }
       line.bands.push_back(b);
     }
     i = j;
   }
-  if (!line.bands.empty()) fig.panels.push_back(std::move(line));
+  return line;
+}
+
+Figure HapticTracksFigure(const std::vector<const HapticTrack*>& tracks, const std::string& title,
+                          const std::vector<std::string>& names) {
+  if (tracks.empty()) throw UsageError("no haptic track to plot");
+  for (const HapticTrack* track : tracks) {
+    if (!track || track->samples.empty()) throw UsageError("haptic track has no samples");
+  }
+  Figure fig;
+  fig.title = title;
+  const char* kTitles[kNumActuators] = {"head (H)", "left hand (LA)", "right hand (RA)"};
+  const char* axis[3] = {"x", "y", "z"};
+  fig.panels.resize(kNumActuators);
+  for (int a = 0; a < kNumActuators; ++a) {
+    fig.panels[a].title = kTitles[a];
+    fig.panels[a].y_label = "mm";
+  }
+  std::map<std::string, int> colors;
+  std::vector<PlotPanel> timelines;
+  for (size_t n = 0; n < tracks.size(); ++n) {
+    const HapticTrack& track = *tracks[n];
+    const std::string name = n < names.size() ? names[n] : track.model;
+    const std::string suffix = tracks.size() > 1 ? " (" + name + ")" : "";
+    std::vector<double> t;
+    for (const auto& s : track.samples) t.push_back(s.time_s);
+    for (int a = 0; a < kNumActuators; ++a) {
+      for (int k = 0; k < 3; ++k) {
+        std::vector<double> v;
+        for (const auto& s : track.samples) v.push_back(1000.0 * s.pos_m[a](k));
+        AddSeries(&fig.panels[a], axis[k] + suffix, t, v, k, n > 0);
+      }
+    }
+    std::vector<std::string> labels;
+    bool any = false;
+    for (const auto& s : track.samples) {
+      labels.push_back(s.effect ? *s.effect : "");
+      any |= s.effect.has_value() && !s.effect->empty();
+    }
+    if (any) {
+      const double period = track.rate_hz > 0 ? 1.0 / track.rate_hz : 0.0;
+      timelines.push_back(EffectTimeline("effect" + suffix, t, labels, period, &colors));
+    }
+  }
+  for (auto& line : timelines) fig.panels.push_back(std::move(line));
   return fig;
+}
+
+Figure HapticTrackFigure(const HapticTrack& track, const std::string& title) {
+  return HapticTracksFigure({&track}, title);
 }
 
 }  // namespace hapcine

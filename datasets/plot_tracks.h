@@ -3,10 +3,16 @@
 // and rendered by svg_writer.h / plot_png.h:
 //  - a camera path (optionally with an estimate overlaid): pan/tilt/roll,
 //    camera centre x/y/z and horizontal FOV over time;
-//  - a haptic track: head / left hand / right hand displacement x/y/z over
-//    time (the paper's Figure 4), and the `effect` column as labelled bands.
+//    and the effects the classifier finds in each path (haptics/
+//    effect_classifier.h) as labelled bands on a time line;
+//  - haptic tracks: head / left hand / right hand displacement x/y/z over
+//    time, several tracks overlaid like the paper's Figure 4 (cinematic vs
+//    semantic for the Zoom-in clip), and each track's `effect` column as
+//    labelled bands.
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
@@ -22,6 +28,9 @@ struct CameraPlotOptions {
   // Scale the estimate's positions by the least-squares factor onto the
   // ground truth (monocular estimates have no metric scale). Needs `relative_to_first`.
   bool scale_estimate = true;
+  // A time line of the classifier's effect labels under the curves, one row
+  // per path (GT, est).
+  bool effect_labels = true;
   std::string title;
   void Check() const;  // throws UsageError
 };
@@ -33,5 +42,17 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
 // Positions in millimetres; effect bands on a time line under the panels
 // when any sample has an `effect`.
 Figure HapticTrackFigure(const HapticTrack& track, const std::string& title = "");
+// Several tracks on the same panels: the first solid, the others dashed,
+// legend entries suffixed with `names` (default: each track's model); one
+// effect time line per track that has an `effect` column.
+Figure HapticTracksFigure(const std::vector<const HapticTrack*>& tracks,
+                          const std::string& title = "",
+                          const std::vector<std::string>& names = {});
+
+// Labelled bands (one per run of equal label) on a band-only panel; runs
+// labelled "none" are drawn light grey.
+PlotPanel EffectTimeline(const std::string& title, const std::vector<double>& time_s,
+                         const std::vector<std::string>& labels, double last_period_s,
+                         std::map<std::string, int>* colors);
 
 }  // namespace hapcine

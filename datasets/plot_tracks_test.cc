@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/rotation.h"
 #include "datasets/svg_writer.h"
@@ -26,7 +28,9 @@ CameraPath Path(int n, double scale, const Eigen::Quaterniond& world) {
 TEST(PlotTracksTest, CameraFigureOverlaysEstimateRelativeAndScaled) {
   const CameraPath gt = Path(30, 1.0, Eigen::Quaterniond(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY())));
   const CameraPath est = Path(30, 4.0, Eigen::Quaterniond::Identity());
-  const Figure fig = CameraPathFigure(gt, &est);
+  CameraPlotOptions no_labels;
+  no_labels.effect_labels = false;
+  const Figure fig = CameraPathFigure(gt, &est, no_labels);
   ASSERT_EQ(fig.panels.size(), 3u);
   ASSERT_EQ(fig.panels[0].series.size(), 6u);  // pan/tilt/roll x (GT, est)
   const PlotSeries& pan_gt = fig.panels[0].series[0];
@@ -66,6 +70,65 @@ TEST(PlotTracksTest, HapticFigureHasThreeActuatorsAndEffectBands) {
   track.samples[0].effect.reset();
   for (auto& s : track.samples) s.effect.reset();
   EXPECT_EQ(HapticTrackFigure(track).panels.size(), 3u);
+}
+
+TEST(PlotTracksTest, CameraFigureShowsTheClassifiersEffectsPerPath) {
+  // 1 s still, 3 s moving right at 1 m/s, 1 s still; the "estimate" moves left.
+  auto path = [](double dir) {
+    CameraPath p;
+    for (int i = 0; i <= 150; ++i) {
+      CameraFrame f;
+      f.frame = i;
+      f.time_s = i / 30.0;
+      f.center.x() = dir * std::clamp(f.time_s - 1.0, 0.0, 3.0);
+      f.fov_deg = 50;
+      p.frames.push_back(f);
+    }
+    return p;
+  };
+  const CameraPath gt = path(1), est = path(-1);
+  const Figure fig = CameraPathFigure(gt, &est);
+  ASSERT_EQ(fig.panels.size(), 5u);
+  const PlotPanel& g = fig.panels[3];
+  const PlotPanel& e = fig.panels[4];
+  EXPECT_FALSE(g.show_y_axis);
+  EXPECT_NE(g.title.find("(GT)"), std::string::npos);
+  ASSERT_EQ(g.bands.size(), 3u);
+  EXPECT_EQ(g.bands[0].label, "none");
+  EXPECT_EQ(g.bands[1].label, "traveling right");
+  EXPECT_NEAR(g.bands[1].x_begin, 1.0, 0.3);
+  EXPECT_NEAR(g.bands[1].x_end, 4.0, 0.3);
+  EXPECT_NEAR(g.bands[2].x_end, 5.0 + 1 / 30.0, 1e-9);
+  ASSERT_EQ(e.bands.size(), 3u);
+  EXPECT_EQ(e.bands[1].label, "traveling left");
+  // One colour per label across both rows; "none" is light grey.
+  EXPECT_NE(g.bands[1].color.r + 256 * g.bands[1].color.g,
+            e.bands[1].color.r + 256 * e.bands[1].color.g);
+  EXPECT_EQ(g.bands[0].color.r, 235);
+}
+
+TEST(PlotTracksTest, SeveralHapticTracksOverlayLikeFigure4) {
+  HapticTrack a, b;
+  a.model = "cinematic";
+  b.model = "semantic";
+  for (int i = 0; i < 100; ++i) {
+    HapticSample s;
+    s.time_s = i / 100.0;
+    s.pos_m[2] = Eigen::Vector3d(0, 0, -0.001 * i);
+    a.samples.push_back(s);
+    s.effect = i < 50 ? "none" : "zoom_in";
+    b.samples.push_back(s);
+  }
+  const Figure fig = HapticTracksFigure({&a, &b}, "zoom_in");
+  ASSERT_EQ(fig.panels.size(), 4u);  // three actuators + b's effect line
+  ASSERT_EQ(fig.panels[2].series.size(), 6u);
+  EXPECT_EQ(fig.panels[2].series[2].name, "z (cinematic)");
+  EXPECT_FALSE(fig.panels[2].series[2].dashed);
+  EXPECT_EQ(fig.panels[2].series[5].name, "z (semantic)");
+  EXPECT_TRUE(fig.panels[2].series[5].dashed);
+  EXPECT_NEAR(fig.panels[2].series[5].y[99], -99.0, 1e-9);
+  EXPECT_EQ(fig.panels[3].title, "effect (semantic)");
+  EXPECT_THROW(HapticTracksFigure({}), UsageError);
 }
 
 TEST(PlotTracksTest, EmptyInputsAreUsageErrors) {
