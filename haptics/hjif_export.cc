@@ -1,5 +1,6 @@
 #include "haptics/hjif_export.h"
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 
@@ -10,6 +11,13 @@ namespace hapcine {
 namespace {
 
 using nlohmann::json;
+
+// body_part_target of each actuator's channels (reference-software names).
+const nlohmann::json kBodyParts[kNumActuators] = {
+    nlohmann::json::array({"Head"}),
+    nlohmann::json::array({"Left", "Hand"}),
+    nlohmann::json::array({"Right", "Hand"}),
+};
 
 std::string TodayUtc() {
   const std::time_t now = std::time(nullptr);
@@ -72,6 +80,8 @@ json HapticTrackToHjif(const HapticTrack& track, const HjifOptions& o) {
                        " actuator displacement from its workspace centre";
     p["avatar_id"] = 0;
     p["effect_library"] = json::array();
+    p["reference_devices"] = json::array(
+        {json{{"id", 0}, {"name", "Novint Falcon"}}});
     p["unit_exponent"] = 0;             // metres (10^0)
     p["perception_unit_exponent"] = 0;  // amplitudes times gain are metres
     json channels = json::array();
@@ -86,21 +96,22 @@ json HapticTrackToHjif(const HapticTrack& track, const HjifOptions& o) {
                      {"phase", 0}, {"base_signal", "Sine"},  {"keyframes", keyframes}};
       json band = {{"band_type", "Curve"},
                    {"curve_type", "Linear"},
-                   {"window_length", 0},
                    {"lower_frequency_limit", 0},
-                   {"upper_frequency_limit", o.keyframe_rate_hz / 2},
+                   // An integer in the reference software's loader.
+                   {"upper_frequency_limit",
+                    std::max(1, static_cast<int>(std::lround(o.keyframe_rate_hz / 2)))},
                    {"effects", json::array({effect})}};
       json ch;
       ch["id"] = a * 3 + k;
       ch["description"] = std::string(ActuatorName(static_cast<Actuator>(a))) + " " +
-                          axis_names[k] + " position (seat frame)";
+                          axis_names[k] + " position (seat frame: +X right, +Y up, +Z backward)";
       ch["gain"] = o.gain_m;
-      ch["mixing_weight"] = 1.0;
-      ch["body_part_mask"] = 0;
-      ch["actuator_target"] = {{"device", "Novint Falcon"},
-                               {"actuator", ActuatorName(static_cast<Actuator>(a))},
-                               {"axis", axis_names[k]}};
-      ch["vertices"] = json::array();
+      ch["mixing_coefficient"] = 1.0;
+      ch["body_part_mask"] = 0;  // unspecified; body_part_target names the part
+      ch["body_part_target"] = kBodyParts[a];
+      ch["reference_device_id"] = 0;
+      // The seat axis this channel moves along.
+      ch["direction"] = {{"X", k == 0 ? 1 : 0}, {"Y", k == 1 ? 1 : 0}, {"Z", k == 2 ? 1 : 0}};
       ch["bands"] = json::array({band});
       channels.push_back(ch);
     }

@@ -8,6 +8,9 @@
 //   keyframe_rate_hz (relative_position in ticks of `timescale` from the
 //   effect's position, amplitude_modulation = position_m / gain, with the
 //   channel gain = the workspace half range, so amplitudes lie in [-1, 1]).
+// Field names and types follow what the MPEG reference software's HJIF
+// loader (MPEGGroup/HapticReferenceSoftware, IOJson::loadFile) requires;
+// the test checks every one of them.
 
 #include <nlohmann/json.hpp>
 #include <string>

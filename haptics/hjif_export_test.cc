@@ -68,6 +68,79 @@ TEST(HjifExport, StructureAndValues) {
   EXPECT_GT(m, 0.3);
 }
 
+// The members, and their JSON types, that the MPEG reference software's HJIF
+// loader (IOJson::loadFile and the load* functions it calls) requires; a
+// file missing one is not loaded. Also the enumerations it maps names with.
+TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
+  const nlohmann::json j = HapticTrackToHjif(Track(), HjifOptions{});
+  auto has = [](const nlohmann::json& o, const char* key, bool (nlohmann::json::*is)() const) {
+    EXPECT_TRUE(o.contains(key) && (o.at(key).*is)()) << key << " in " << o.dump().substr(0, 80);
+  };
+  using J = nlohmann::json;
+  for (const char* k : {"version", "profile", "date", "description"}) has(j, k, &J::is_string);
+  // (rapidjson's IsUint: a non-negative integer)
+  has(j, "level", &J::is_number_integer);
+  has(j, "timescale", &J::is_number_integer);
+  EXPECT_GE(j["level"].get<int>(), 0);
+  EXPECT_GT(j["timescale"].get<int>(), 0);
+  for (const char* k : {"perceptions", "avatars", "syncs"}) has(j, k, &J::is_array);
+  for (const auto& av : j["avatars"]) {
+    has(av, "id", &J::is_number_integer);
+    has(av, "lod", &J::is_number_integer);
+    EXPECT_EQ(av.at("type"), "Custom");
+  }
+  for (const auto& p : j["perceptions"]) {
+    has(p, "id", &J::is_number_integer);
+    has(p, "avatar_id", &J::is_number_integer);
+    has(p, "description", &J::is_string);
+    EXPECT_EQ(p.at("perception_modality"), "Position");
+    has(p, "channels", &J::is_array);
+    has(p, "effect_library", &J::is_array);
+    for (const auto& d : p.at("reference_devices")) {
+      has(d, "id", &J::is_number_integer);
+      has(d, "name", &J::is_string);
+    }
+    for (const auto& ch : p["channels"]) {
+      has(ch, "id", &J::is_number_integer);
+      has(ch, "description", &J::is_string);
+      has(ch, "gain", &J::is_number);
+      has(ch, "mixing_coefficient", &J::is_number);
+      has(ch, "body_part_mask", &J::is_number_integer);
+      EXPECT_GE(ch["body_part_mask"].get<int>(), 0);
+      has(ch, "bands", &J::is_array);
+      for (const auto& part : ch.at("body_part_target")) {
+        EXPECT_TRUE(part == "Head" || part == "Left" || part == "Right" || part == "Hand") << part;
+      }
+      for (const char* axis : {"X", "Y", "Z"}) {
+        EXPECT_TRUE(ch.at("direction").at(axis).is_number_integer()) << axis;
+      }
+      for (const auto& band : ch["bands"]) {
+        EXPECT_EQ(band.at("band_type"), "Curve");
+        EXPECT_EQ(band.at("curve_type"), "Linear");
+        has(band, "lower_frequency_limit", &J::is_number_integer);
+        has(band, "upper_frequency_limit", &J::is_number_integer);
+        has(band, "effects", &J::is_array);
+        for (const auto& e : band["effects"]) {
+          EXPECT_EQ(e.at("effect_type"), "Basis");
+          has(e, "position", &J::is_number_integer);
+          has(e, "phase", &J::is_number);
+          EXPECT_EQ(e.at("base_signal"), "Sine");
+          has(e, "keyframes", &J::is_array);
+          for (const auto& key : e["keyframes"]) {
+            ASSERT_TRUE(key.at("relative_position").is_number_integer());
+            ASSERT_TRUE(key.at("amplitude_modulation").is_number());
+          }
+        }
+      }
+    }
+  }
+  // Each channel's direction is its seat axis.
+  const auto& right = j["perceptions"][2];
+  EXPECT_EQ(right["channels"][1]["direction"]["Y"], 1);
+  EXPECT_EQ(right["channels"][1]["direction"]["X"], 0);
+  EXPECT_EQ(right["channels"][0]["body_part_target"], nlohmann::json::array({"Right", "Hand"}));
+}
+
 TEST(HjifExport, RejectsEmptyTracksAndBadOptions) {
   EXPECT_ANY_THROW(HapticTrackToHjif(HapticTrack(), HjifOptions()));
   HjifOptions o;
