@@ -13,7 +13,10 @@
 #include "core/haptic_track.h"
 #include "estimate/camera_estimator.h"
 #include "haptics/haptic_models.h"
+#include "haptics/camera_signals.h"
+#include "haptics/effect_classifier.h"
 #include "haptics/hjif_export.h"
+#include "haptics/keyframes.h"
 #include "haptics/seat_geometry.h"
 
 namespace hapcine::cli {
@@ -39,7 +42,7 @@ int RunHaptics(int argc, char** argv) {
       "Films are processed per shot (`shot` column) with a washout so no actuator leaves its\n"
       "workspace. Details and file formats: docs/haptics.md.",
       "hapcine haptics"};
-  std::string input, output, hjif, seat_file, model = "cinematic", keyframes;
+  std::string input, output, hjif, seat_file, model = "cinematic", keyframes, effects_out;
   HapticOptions opt;
   HjifOptions hjif_opt;
   double rate = 0;
@@ -65,6 +68,9 @@ int RunHaptics(int argc, char** argv) {
   app.add_option("--keyframes", keyframes,
                  "semantic model: hand-placed effects, CSV 'start_s,end_s,effect,intensity'\n"
                  "(default: effects found automatically by the classifier)");
+  app.add_option("--effects-out", effects_out,
+                 "also write the effect segments (the classifier's, or --keyframes) as a\n"
+                 "keyframe file: edit it and pass it back with --keyframes");
   app.add_flag("--no-washout", no_washout,
                "no high-pass on the camera signals (the paper's plain Equations 2-6; cut\n"
                "crossfades, speed limit and clamp still apply)");
@@ -114,6 +120,9 @@ int RunHaptics(int argc, char** argv) {
     CameraPath path;
     if (EndsWith(input, ".csv")) {
       path = ReadCameraPathFile(input);
+      // The haptic checks (gaps, absurd positions) with file line numbers.
+      const std::vector<int> lines = CsvDataRowLines(input);
+      ValidatePathForHaptics(path, input, opt.max_gap_s, &lines);
     } else {
       // A video: estimate its camera path first (default estimator settings;
       // run `hapcine estimate` yourself to choose them and keep the path).
@@ -141,11 +150,20 @@ int RunHaptics(int argc, char** argv) {
       hj = std::make_unique<AtomicFile>(hjif);
       hj->stream() << HapticTrackToHjif(track, hjif_opt).dump(1) << "\n";
     }
+    std::unique_ptr<AtomicFile> fx;
+    if (!effects_out.empty()) {
+      fx = std::make_unique<AtomicFile>(effects_out);
+      WriteKeyframes(keyframes.empty() ? ClassifyEffects(path, opt.classifier)
+                                       : ReadKeyframesFile(keyframes),
+                     fx->stream());
+    }
     csv.Commit();
     if (hj) hj->Commit();
+    if (fx) fx->Commit();
     std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
               << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
               << (hjif.empty() ? "" : " + " + hjif)
+              << (effects_out.empty() ? "" : " + " + effects_out)
               << "; clamped samples: " << track.metadata.at("clamped_samples") << "\n";
     return kExitOk;
   });

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <utility>
 
+#include "core/csv.h"
 #include "core/error.h"
 #include "core/rotation.h"
 
@@ -71,6 +73,21 @@ CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
   return s;
 }
 
+std::vector<int> CsvDataRowLines(const std::string& file) {
+  std::vector<int> lines;
+  std::ifstream in(file);
+  if (!in) return lines;
+  try {
+    CsvReader csv(in, file);
+    csv.ReadPreamble();
+    std::vector<std::string> fields;
+    while (csv.NextRow(&fields)) lines.push_back(csv.line());
+  } catch (const Error&) {
+    // The reader reports bad rows itself; keep the lines read so far.
+  }
+  return lines;
+}
+
 double ReferenceDepthFor(const CameraPath& path, double fallback) {
   for (const char* key : {"subject_distance_m", "reference_depth"}) {
     auto it = path.metadata.find(key);
@@ -114,11 +131,15 @@ double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double 
   return ReferenceDepthFor(path, 1.0);
 }
 
-void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s) {
+void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s,
+                            const std::vector<int>* data_lines) {
   if (path.frames.empty()) throw Error(source, "camera path has no frames");
   auto where = [&](size_t i) {
-    return source + ": frame " + std::to_string(path.frames[i].frame) + " (data row " +
-           std::to_string(i + 1) + ")";
+    const std::string frame = "frame " + std::to_string(path.frames[i].frame);
+    if (data_lines && i < data_lines->size()) {
+      return source + ":" + std::to_string((*data_lines)[i]) + ": " + frame;
+    }
+    return source + ": " + frame + " (data row " + std::to_string(i + 1) + ")";
   };
   for (size_t i = 0; i < path.frames.size(); ++i) {
     const auto& f = path.frames[i];

@@ -77,7 +77,15 @@ std::optional<double> DollyZoomSubjectDistance(const CameraPath& path, const Sho
 double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double explicit_depth_u);
 
 // Checks beyond ReadCameraPath's: |position| <= 1e6, time gaps inside a shot
-// <= max_gap_s. Throws Error("<source>: frame N (data row R)", reason).
-void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s);
+// <= max_gap_s. Throws Error("<source>:<line>: frame N", reason) when
+// `data_lines` gives the file line of every frame (CsvDataRowLines), else
+// Error("<source>: frame N (data row R)", reason).
+void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s,
+                            const std::vector<int>* data_lines = nullptr);
+
+// The 1-based line number of every data row of a project CSV file (after the
+// metadata lines and the header), for errors about rows the reader accepted.
+// Stops at the first unreadable row; empty when the file cannot be read.
+std::vector<int> CsvDataRowLines(const std::string& file);
 
 }  // namespace hapcine

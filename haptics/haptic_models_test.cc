@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <random>
 #include <sstream>
 
 #include "core/error.h"
@@ -210,6 +211,49 @@ TEST(HapticModels, RejectsBadPaths) {
   one.frames.resize(1);
   EXPECT_EQ(MakeHapticTrack(one, o).samples.size(), 1u);
   EXPECT_THROW(HapticModelFromName("cinema"), UsageError);
+}
+
+// Whatever a camera path holds that ReadCameraPath and the haptic checks
+// accept (huge but legal positions, wild rotations, FOV anywhere in (0, 180),
+// irregular times, many short shots), no model leaves the 0.10 m cube, and
+// the cinematic scaling alone keeps it inside the usable range: the final
+// clamp never has to act.
+TEST(HapticModels, NoAcceptedPathLeavesTheWorkspace) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 60; ++trial) {
+    CameraPath p;
+    const int n = 2 + static_cast<int>(u(rng) * 300);
+    const double pos_scale = std::pow(10.0, -6 + 11.5 * u(rng));  // 1e-6 .. 3e5
+    double t = 10 * u(rng);
+    int shot = 0;
+    for (int i = 0; i < n; ++i) {
+      CameraFrame f;
+      f.frame = i;
+      t += 0.001 + 0.3 * u(rng);
+      f.time_s = t;
+      for (int k = 0; k < 3; ++k) f.center[k] = pos_scale * (2 * u(rng) - 1);
+      f.world_from_cam = Eigen::Quaterniond(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5,
+                                            u(rng) - 0.5).normalized();
+      f.fov_deg = 0.01 + 179.98 * u(rng);
+      if (trial % 2 == 0 && u(rng) < 0.05) ++shot;
+      if (trial % 2 == 0) f.shot = shot;
+      p.frames.push_back(f);
+    }
+    for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom}) {
+      HapticOptions o;
+      o.model = m;
+      o.rate_hz = 200;
+      for (bool washout : {true, false}) {
+        o.washout.high_pass = washout;
+        const HapticTrack track = MakeHapticTrack(p, o);
+        EXPECT_LE(MaxCoord(track), o.seat.usable_half_m + 1e-12) << trial << " " << track.model;
+        EXPECT_EQ(track.metadata.at("clamped_samples"), "0") << trial << " " << track.model;
+        for (const auto& s : track.samples)
+          for (const auto& a : s.pos_m) ASSERT_TRUE(a.allFinite());
+      }
+    }
+  }
 }
 
 TEST(HapticModels, DifferenceOfTracks) {

@@ -1,0 +1,99 @@
+#include "haptics/camera_signals.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+#include "haptics/test_paths_for_test.h"
+
+namespace hapcine {
+namespace {
+
+using testing::EffectPathSpec;
+using testing::MakeEffectPath;
+
+TEST(CameraSignals, DollyZoomSubjectDistanceFromTheMotionAlone) {
+  // MakeEffectPath's dolly zoom keeps a subject 4 m away the same size.
+  CameraPath p = MakeEffectPath(CameraEffect::kVertigo);
+  p.metadata.clear();
+  const auto d = DollyZoomSubjectDistance(p, SplitShots(p)[0]);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_NEAR(*d, testing::kSubjectDistanceM, 1e-9);
+  // In other units (an estimate in median-depth units), D follows them.
+  for (auto& f : p.frames) f.center *= 0.25;
+  EXPECT_NEAR(*DollyZoomSubjectDistance(p, SplitShots(p)[0]), 1.0, 1e-9);
+  // Backward with a zoom-in is a dolly zoom too.
+  const CameraPath back = MakeEffectPath(CameraEffect::kVertigo, -0.5);
+  EXPECT_NEAR(*DollyZoomSubjectDistance(back, SplitShots(back)[0]), testing::kSubjectDistanceM,
+              1e-9);
+}
+
+TEST(CameraSignals, NoDollyZoomWithoutBothMovementsInOppositeSenses) {
+  for (CameraEffect e : {CameraEffect::kNone, CameraEffect::kZoomIn, CameraEffect::kTraveling,
+                         CameraEffect::kDutchAngle}) {
+    const CameraPath p = MakeEffectPath(e);
+    EXPECT_FALSE(DollyZoomSubjectDistance(p, SplitShots(p)[0]).has_value()) << EffectName(e);
+  }
+  // Forward AND zoom-in (both magnify): not a dolly zoom (D would be < 0).
+  CameraPath both = MakeEffectPath(CameraEffect::kZoomIn);
+  for (size_t i = 0; i < both.frames.size(); ++i) both.frames[i].center.z() = -0.01 * i;
+  EXPECT_FALSE(DollyZoomSubjectDistance(both, SplitShots(both)[0]).has_value());
+  // A zoom-out with an unrelated forward move (zoom during the first half,
+  // travel during the second): the fit does not explain the zoom.
+  CameraPath apart = MakeEffectPath(CameraEffect::kZoomIn, -1.0);
+  const size_t n = apart.frames.size();
+  for (size_t i = 0; i < n; ++i) {
+    apart.frames[i].center.z() = i > n / 2 ? -0.02 * (i - n / 2.0) : 0.0;
+    if (i > n / 2) apart.frames[i].fov_deg = apart.frames[n / 2].fov_deg;
+  }
+  EXPECT_FALSE(DollyZoomSubjectDistance(apart, SplitShots(apart)[0]).has_value());
+}
+
+TEST(CameraSignals, DollyZoomFitToleratesEstimatorNoise) {
+  EffectPathSpec s;
+  s.effect = CameraEffect::kVertigo;
+  s.noise = 0.002;  // 2 mm, 0.02 deg, 0.02 % FOV per frame
+  const CameraPath p = MakeEffectPath(s);
+  const auto d = DollyZoomSubjectDistance(p, SplitShots(p)[0]);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_NEAR(*d, testing::kSubjectDistanceM, 0.2);
+}
+
+TEST(CameraSignals, ShotReferenceDepthPrecedence) {
+  const CameraPath p = MakeEffectPath(CameraEffect::kVertigo);  // metadata says 4 too
+  const ShotRange shot = SplitShots(p)[0];
+  EXPECT_EQ(ShotReferenceDepth(p, shot, 2.5), 2.5);  // explicit wins
+  CameraPath q = p;
+  q.metadata["subject_distance_m"] = "9";
+  EXPECT_NEAR(ShotReferenceDepth(q, shot, 0), 4.0, 1e-9);  // the dolly zoom's own D
+  const CameraPath zoom = MakeEffectPath(CameraEffect::kZoomIn);
+  EXPECT_EQ(ShotReferenceDepth(zoom, SplitShots(zoom)[0], 0), 4.0);  // metadata
+  CameraPath bare = zoom;
+  bare.metadata.clear();
+  EXPECT_EQ(ShotReferenceDepth(bare, SplitShots(bare)[0], 0), 1.0);  // median-depth units
+}
+
+TEST(CameraSignals, ErrorsNameTheFileLine) {
+  const std::string file = std::string(HAPCINE_BINARY_DIR) + "/camera_signals_test.camera.csv";
+  CameraPath p = MakeEffectPath(CameraEffect::kTraveling);
+  p.metadata["comment"] = "x";
+  WriteCameraPathFile(p, file);
+  const std::vector<int> lines = CsvDataRowLines(file);
+  ASSERT_EQ(lines.size(), p.frames.size());
+  EXPECT_EQ(lines[1], lines[0] + 1);
+  p.frames[40].center.x() = 5e6;  // absurd
+  try {
+    ValidatePathForHaptics(p, file, 1.0, &lines);
+    FAIL();
+  } catch (const Error& e) {
+    const std::string want = file + ":" + std::to_string(lines[40]) + ": frame 40";
+    EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+  }
+  std::remove(file.c_str());
+  EXPECT_TRUE(CsvDataRowLines(file).empty());
+}
+
+}  // namespace
+}  // namespace hapcine
