@@ -26,6 +26,17 @@ void WriteOutputs(const Figure& fig, const std::string& prefix, const std::strin
   }
 }
 
+std::string FileStem(const std::string& path) {
+  std::string name = path.substr(path.find_last_of('/') + 1);
+  for (const char* suffix : {".haptic.csv", ".csv"}) {
+    const std::string sfx = suffix;
+    if (name.size() > sfx.size() && name.compare(name.size() - sfx.size(), sfx.size(), sfx) == 0) {
+      return name.substr(0, name.size() - sfx.size());
+    }
+  }
+  return name;
+}
+
 }  // namespace
 
 int RunPlot(int argc, char** argv) {
@@ -94,12 +105,15 @@ int RunPlot(int argc, char** argv) {
       }
       std::vector<const HapticTrack*> ptrs;
       for (const HapticTrack& t : tracks) ptrs.push_back(&t);
-      // Legend names: the model, or the file when two tracks share a model.
+      // Legend names: the model, or the file's stem (no folder, no
+      // .haptic.csv) when two tracks share a model.
       std::vector<std::string> legend;
       for (size_t i = 0; i < tracks.size(); ++i) {
         bool shared = false;
-        for (size_t j = 0; j < tracks.size(); ++j) shared |= j != i && tracks[j].model == tracks[i].model;
-        legend.push_back(shared ? track_files[i] : tracks[i].model);
+        for (size_t j = 0; j < tracks.size(); ++j) {
+          shared |= j != i && tracks[j].model == tracks[i].model;
+        }
+        legend.push_back(shared ? FileStem(track_files[i]) : tracks[i].model);
       }
       fig = HapticTracksFigure(ptrs, title.empty() ? names : title, legend);
     }

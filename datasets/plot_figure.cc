@@ -16,7 +16,8 @@ constexpr double kPanelTitleH = 22;  // panel title / y label line
 constexpr double kAxisH = 22;        // x tick labels under every panel
 constexpr double kXLabelH = 22;      // x axis label under the last panel
 constexpr double kLeftW = 72;        // y tick labels
-constexpr double kLegendW = 150;     // legend column on the right
+constexpr double kLegendW = 150;     // legend column on the right (at least)
+constexpr double kLegendCharW = 7.5; // legend text width per character (both renderers)
 
 void PadRange(double* lo, double* hi) {
   if (!(*hi > *lo)) {
@@ -40,6 +41,10 @@ PlotColor PaletteColor(int index) {
                                        {23, 190, 207}};
   const int n = sizeof(kPalette) / sizeof(kPalette[0]);
   return kPalette[((index % n) + n) % n];
+}
+
+bool BandLabelFits(const std::string& label, double width_px) {
+  return !label.empty() && 6.5 * static_cast<double>(label.size()) + 4 <= width_px;
 }
 
 std::vector<double> NiceTicks(double lo, double hi, int target) {
@@ -112,13 +117,20 @@ FigureLayout LayoutFigure(const Figure& fig) {
   L.x_min = x_lo;
   L.x_max = x_hi;
   L.x_ticks = NiceTicks(x_lo, x_hi, 8);
-  L.legend_x = fig.width_px - kLegendW + 10;
+  // The legend column widens for long names, up to a third of the figure.
+  size_t longest = 0;
+  for (const auto& p : fig.panels)
+    for (const auto& ser : p.series) longest = std::max(longest, ser.name.size());
+  const double legend_w =
+      std::min(std::max(kLegendW, 40 + kLegendCharW * static_cast<double>(longest)),
+               std::max(kLegendW, fig.width_px / 3.0));
+  L.legend_x = fig.width_px - legend_w + 10;
 
   double y = kTitleH;
   for (const auto& p : fig.panels) {
     PanelLayout pl;
     pl.plot.x = kLeftW;
-    pl.plot.w = fig.width_px - kLeftW - kLegendW;
+    pl.plot.w = fig.width_px - kLeftW - legend_w;
     pl.plot.y = y + kPanelTitleH;
     pl.plot.h = p.height_weight * fig.panel_height_px - kPanelTitleH - kAxisH;
     if (pl.plot.h < 10) pl.plot.h = 10;

@@ -76,6 +76,10 @@ struct FigureLayout {
 // small to draw in. Never returns a zero-width range (flat data is padded).
 FigureLayout LayoutFigure(const Figure& figure);
 
+// Whether a band's label fits inside the band drawn `width_px` wide (both
+// renderers skip labels that would spill over their neighbours).
+bool BandLabelFits(const std::string& label, double width_px);
+
 // About `target` round tick values (1, 2, 5 x 10^k) covering [lo, hi].
 std::vector<double> NiceTicks(double lo, double hi, int target = 6);
 // Compact tick label ("0.25", "1e+03", "-5").

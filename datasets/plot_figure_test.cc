@@ -82,5 +82,28 @@ TEST(PlotFigureTest, NonFinitePointsSplitRunsAndLongRunsAreDecimated) {
   EXPECT_EQ(SeriesRuns(s, L, L.panels[0].plot, 1u << 30)[0].size(), 50000u);
 }
 
+TEST(PlotFigureTest, BandLabelsThatDoNotFitAreSkipped) {
+  EXPECT_TRUE(BandLabelFits("none", 40));
+  EXPECT_FALSE(BandLabelFits("none", 20));
+  EXPECT_FALSE(BandLabelFits("", 1000));
+}
+
+TEST(PlotFigureTest, LegendWidensForLongNamesUpToAThird) {
+  Figure fig;
+  fig.panels.resize(1);
+  PlotSeries s;
+  s.x = {0, 1};
+  s.y = {0, 1};
+  s.name = "x";
+  fig.panels[0].series.push_back(s);
+  const FigureLayout narrow = LayoutFigure(fig);
+  fig.panels[0].series[0].name = std::string(60, 'n');
+  const FigureLayout wide = LayoutFigure(fig);
+  EXPECT_LT(wide.legend_x, narrow.legend_x);
+  EXPECT_LT(wide.panels[0].plot.w, narrow.panels[0].plot.w);
+  fig.panels[0].series[0].name = std::string(1000, 'n');
+  EXPECT_NEAR(LayoutFigure(fig).legend_x, fig.width_px * 2.0 / 3 + 10, 1e-9);
+}
+
 }  // namespace
 }  // namespace hapcine

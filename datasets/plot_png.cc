@@ -96,7 +96,9 @@ cv::Mat RenderFigurePng(const Figure& fig) {
       cv::addWeighted(fill, 0.35, roi, 0.65, 0, roi);
       cv::rectangle(img, cv::Point(static_cast<int>(x0), static_cast<int>(r.y)),
                     cv::Point(static_cast<int>(x1), static_cast<int>(r.y + r.h)), Bgr(b.color), 1);
-      if (!b.label.empty()) PutText(img, b.label, (x0 + x1) / 2, r.y + r.h / 2 + 4, 1, 0.35);
+      if (BandLabelFits(b.label, x1 - x0)) {
+        PutText(img, b.label, (x0 + x1) / 2, r.y + r.h / 2 + 4, 1, 0.35);
+      }
     }
     for (double t : L.x_ticks) {
       const double x = L.MapX(r, t);

@@ -60,12 +60,6 @@ double EstimateScale(const CameraPath& gt, const CameraPath& est) {
   return std::isfinite(s) && s > 0 ? s : 1.0;
 }
 
-std::vector<double> FrameTimes(const CameraPath& p) {
-  std::vector<double> t;
-  for (const auto& f : p.frames) t.push_back(f.time_s);
-  return t;
-}
-
 double FramePeriod(const CameraPath& p) {
   const size_t n = p.frames.size();
   return n > 1 ? (p.frames[n - 1].time_s - p.frames[0].time_s) / (n - 1) : 0.0;
@@ -99,18 +93,44 @@ std::string LabelWithDirection(const EffectSegment& seg) {
   return std::string(EffectName(seg.effect)) + dir;
 }
 
-// The classifier's label of every frame ("none" between segments).
-std::vector<std::string> ClassifiedLabels(const CameraPath& p) {
-  std::vector<std::string> labels(p.frames.size(), "none");
+// "none" is light grey; every other label gets the next palette colour the
+// first time it is seen (shared across the time lines of one figure).
+PlotColor BandColor(const std::string& label, std::map<std::string, int>* colors) {
+  if (label == "none") return PlotColor{235, 235, 235};
+  const int index = colors->emplace(label, static_cast<int>(colors->size())).first->second;
+  return PaletteColor(index + 1);
+}
+
+PlotPanel BandPanel(const std::string& title) {
+  PlotPanel line;
+  line.title = title;
+  line.show_y_axis = false;
+  line.height_weight = 0.45;
+  return line;
+}
+
+// The classifier's segments of a path as bands, "none" between them and to
+// the ends; two segments that touch (e.g. at a cut) stay two bands.
+PlotPanel ClassifiedTimeline(const std::string& title, const CameraPath& p,
+                             std::map<std::string, int>* colors) {
+  PlotPanel line = BandPanel(title);
+  auto add = [&](double begin, double end, const std::string& label) {
+    PlotBand b;
+    b.x_begin = begin;
+    b.x_end = end;
+    b.label = label;
+    b.color = BandColor(label, colors);
+    line.bands.push_back(b);
+  };
+  const double t1 = p.frames.back().time_s + FramePeriod(p);
+  double at = p.frames.front().time_s;
   for (const EffectSegment& seg : ClassifyEffects(p, ClassifierOptions{})) {
-    for (size_t i = 0; i < p.frames.size(); ++i) {
-      const double t = p.frames[i].time_s;
-      if (t >= seg.start_s && t <= seg.end_s) {
-        labels[i] = LabelWithDirection(seg);
-      }
-    }
+    if (seg.start_s > at) add(at, seg.start_s, "none");
+    add(seg.start_s, seg.end_s, LabelWithDirection(seg));
+    at = seg.end_s;
   }
-  return labels;
+  if (at < t1) add(at, t1, "none");
+  return line;
 }
 
 void AddSeries(PlotPanel* panel, const std::string& name, const std::vector<double>& t,
@@ -180,10 +200,8 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
   if (options.effect_labels) {
     std::map<std::string, int> colors;
     for (const auto& src : sources) {
-      fig.panels.push_back(EffectTimeline("effects found by the classifier" + src.suffix,
-                                          FrameTimes(*src.path),
-                                          ClassifiedLabels(*src.path), FramePeriod(*src.path),
-                                          &colors));
+      fig.panels.push_back(
+          ClassifiedTimeline("effects found by the classifier" + src.suffix, *src.path, &colors));
     }
   }
   return fig;
@@ -192,10 +210,7 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
 PlotPanel EffectTimeline(const std::string& title, const std::vector<double>& t,
                          const std::vector<std::string>& labels, double last_period_s,
                          std::map<std::string, int>* colors) {
-  PlotPanel line;
-  line.title = title;
-  line.show_y_axis = false;
-  line.height_weight = 0.45;
+  PlotPanel line = BandPanel(title);
   for (size_t i = 0; i < labels.size();) {
     size_t j = i + 1;
     while (j < labels.size() && labels[j] == labels[i]) ++j;
@@ -205,12 +220,7 @@ PlotPanel EffectTimeline(const std::string& title, const std::vector<double>& t,
       // The run lasts until the next sample starts (or one period past the last).
       b.x_end = j < t.size() ? t[j] : t[j - 1] + last_period_s;
       b.label = labels[i];
-      if (labels[i] == "none") {
-        b.color = PlotColor{235, 235, 235};
-      } else {
-        if (!colors->count(labels[i])) colors->emplace(labels[i], static_cast<int>(colors->size()));
-        b.color = PaletteColor(colors->at(labels[i]) + 1);
-      }
+      b.color = BandColor(labels[i], colors);
       line.bands.push_back(b);
     }
     i = j;

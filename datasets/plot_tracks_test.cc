@@ -107,6 +107,24 @@ TEST(PlotTracksTest, CameraFigureShowsTheClassifiersEffectsPerPath) {
   EXPECT_EQ(g.bands[0].color.r, 235);
 }
 
+TEST(PlotTracksTest, EffectsOnBothSidesOfACutStayTwoBands) {
+  CameraPath p;
+  for (int i = 0; i <= 120; ++i) {  // two shots, each moving right for 1.5 s
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = i / 30.0;
+    f.shot = i <= 60 ? 0 : 1;
+    f.center.x() = 10.0 * f.shot.value() + std::clamp(f.time_s - 2.0 * f.shot.value(), 0.0, 1.5);
+    f.fov_deg = 50;
+    p.frames.push_back(f);
+  }
+  const Figure fig = CameraPathFigure(p, nullptr);
+  ASSERT_EQ(fig.panels.size(), 4u);
+  int traveling = 0;
+  for (const PlotBand& b : fig.panels[3].bands) traveling += b.label == "traveling right";
+  EXPECT_EQ(traveling, 2);
+}
+
 TEST(PlotTracksTest, SeveralHapticTracksOverlayLikeFigure4) {
   HapticTrack a, b;
   a.model = "cinematic";

@@ -67,7 +67,7 @@ std::string RenderFigureSvg(const Figure& fig) {
       o << "<rect x=\"" << F(x0) << "\" y=\"" << F(r.y) << "\" width=\"" << F(x1 - x0)
         << "\" height=\"" << F(r.h) << "\" fill=\"" << Rgb(b.color)
         << "\" fill-opacity=\"0.35\" stroke=\"" << Rgb(b.color) << "\"/>\n";
-      if (!b.label.empty()) {
+      if (BandLabelFits(b.label, x1 - x0)) {
         Text(o, (x0 + x1) / 2, r.y + r.h / 2 + 4, b.label, "middle", 11);
       }
     }
