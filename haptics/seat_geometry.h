@@ -4,7 +4,8 @@
 // the output rate. Seat frame: +X to the viewer's right, +Y up, +Z backward
 // (the screen is at -Z), metres, origin anywhere (only differences are used).
 //
-// Defaults (built in; a JSON file may override any subset, see docs/haptics.md):
+// Defaults (built in, and documented in the configuration file
+// haptics/hapseat.json; a JSON file may override any subset, docs/haptics.md):
 //   G    = ( 0.00,  0.00,  0.00)  the user's chest, centre of the rotations
 //   G_H  = ( 0.00,  0.45,  0.05)  head actuator: 45 cm above the chest, 5 cm behind
 //   G_LA = (-0.25, -0.20, -0.25)  left-hand actuator on the left armrest

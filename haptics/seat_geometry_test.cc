@@ -58,6 +58,14 @@ TEST(SeatGeometry, RejectsBadInput) {
   EXPECT_THROW(LoadSeatGeometryFile("/nonexistent/seat.json"), Error);
 }
 
+// The documented configuration file in the source tree is exactly the
+// built-in defaults (so neither can drift from the other).
+TEST(SeatGeometry, ShippedConfigurationFileIsTheDefaults) {
+  const SeatGeometry file =
+      LoadSeatGeometryFile(std::string(HAPCINE_SOURCE_DIR) + "/haptics/hapseat.json");
+  EXPECT_EQ(SeatGeometryToJson(file), SeatGeometryToJson(SeatGeometry{}));
+}
+
 TEST(SeatGeometry, LoadsFile) {
   const std::string path = std::string(HAPCINE_BINARY_DIR) + "/seat_geometry_test.json";
   {
