@@ -151,6 +151,30 @@ TEST(SynthHaptics, CraneShotLiftsEveryone) {
   for (int a = 0; a < kNumActuators; ++a) EXPECT_GT(At(t, 6.5).pos_m[a].y(), 0.01) << a;
 }
 
+// The pre-processing pass uses the workspace: every Table 1 clip that moves
+// the actuators reaches the usable range (45 mm) to within 1 mm, also when
+// T and R point different ways (crane: up + tilt down; arcing: sideways +
+// pan), with and without washout.
+TEST(SynthHaptics, ScalingUsesTheWholeUsableRange) {
+  for (const std::string& preset : SynthTable1PresetNames()) {
+    if (preset == "vertigo") continue;
+    for (bool washout : {true, false}) {
+      const double peak = MaxCoord(Cinematic(GroundTruth(preset), washout));
+      EXPECT_GT(peak, 0.044) << preset << " washout " << washout;
+      EXPECT_LE(peak, 0.045 + 1e-12) << preset;
+    }
+  }
+}
+
+// Joint scaling must not amplify an imperfect Vertigo cancellation back to
+// a large movement: with D 5 % off (7.35 m instead of 7) the residual stays
+// a few millimetres.
+TEST(SynthHaptics, NearlyCancellingDollyZoomStaysSmall) {
+  HapticOptions o;
+  o.cinematic.reference_depth_u = 7.35;
+  EXPECT_LT(MaxCoord(MakeHapticTrack(GroundTruth("vertigo"), o)), 0.003);
+}
+
 TEST(SynthHaptics, EveryPresetAndModelStaysInTheWorkspace) {
   for (const std::string& preset : SynthPresetNames()) {
     for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom,

@@ -29,6 +29,62 @@ double MaxRotationOffset(const CameraSignals& s, const SeatGeometry& seat, doubl
   return peak;
 }
 
+// Largest coordinate of f (Equation 3) over the shot, any actuator.
+double MaxCombinedOffset(const CameraSignals& s, const SeatGeometry& seat, const CinematicScale& c) {
+  double peak = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const ActuatorFrame f = CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i],
+                                                  s.roll_rad[i], s.zoom_forward_u[i], c, seat);
+    for (const auto& v : f) peak = std::max(peak, v.cwiseAbs().maxCoeff());
+  }
+  return peak;
+}
+
+CinematicScale Scaled(const CinematicScale& c, double gain) {
+  CinematicScale out;
+  out.kx = out.ky = out.kz = out.sz = gain * c.kx;
+  out.mx = out.my = out.mz = gain * c.mx;
+  return out;
+}
+
+// T, R and F were each sized to fill the usable range on their own, but f
+// averages them (weights |T|, |R|, |F|): when they point different ways (a
+// crane that tilts down to keep its subject framed) the actuators use only
+// part of their range. f is what they render, so k, sz and m are raised
+// together by the largest gain that keeps every coordinate of f within
+// usable (grid, then bisection, as for m), within the caps and at most
+// kMaxCombinationGain: three vectors that each fill the range along
+// different axes average down to a third; a larger shortfall comes from
+// vectors that oppose each other, which is the cancellation the paper wants
+// (Vertigo) and must not be amplified back.
+constexpr double kMaxCombinationGain = 3.0;
+
+CinematicScale BoostForCombination(const CameraSignals& s, const SeatGeometry& seat,
+                                   const CinematicOptions& o, const CinematicScale& c) {
+  double max_gain = kMaxCombinationGain;
+  if (c.kx > 0) max_gain = std::min(max_gain, o.max_translation_gain / c.kx);
+  if (c.mx > 0) max_gain = std::min(max_gain, o.max_rotation_gain / c.mx);
+  const double usable = seat.usable_half_m;
+  if (!(max_gain > 1) || !(MaxCombinedOffset(s, seat, c) > 0)) return c;
+  constexpr int kGrid = 32;
+  double lo = 1, hi = -1;
+  for (int j = 1; j <= kGrid; ++j) {
+    const double g = 1 + (max_gain - 1) * j / kGrid;
+    if (MaxCombinedOffset(s, seat, Scaled(c, g)) > usable) {
+      hi = g;
+      break;
+    }
+    lo = g;
+  }
+  if (hi > 0) {
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (MaxCombinedOffset(s, seat, Scaled(c, mid)) > usable ? hi : lo) = mid;
+    }
+  }
+  return Scaled(c, lo);
+}
+
 CinematicScale ScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
                             const CinematicOptions& o) {
   const double usable = seat.usable_half_m;
@@ -63,7 +119,7 @@ CinematicScale ScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
   CinematicScale c;
   c.kx = c.ky = c.kz = c.sz = k;
   c.mx = c.my = c.mz = m;
-  return c;
+  return BoostForCombination(s, seat, o, c);
 }
 
 }  // namespace

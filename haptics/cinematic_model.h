@@ -19,9 +19,14 @@
 //   m = mx = my = mz = the largest m <= max_rotation_gain such that no
 //       coordinate of any R_A exceeds usable over the shot (searched).
 // Since f is a convex combination of T, R_A, F, every coordinate of f then
-// stays within +-usable: the actuators use their full range and never
-// saturate. The caps keep estimator noise in a still shot from being blown
-// up to the full workspace.
+// stays within +-usable. Because f averages T, R_A and F, it can stay below
+// the range when they point different ways (a crane tilting down to keep its
+// subject framed); k, sz and m are then raised together by the largest gain
+// (<= 3, within the caps) that keeps every coordinate of f within +-usable,
+// so the actuators use their range and never saturate, while the
+// cancellation of opposing vectors (Vertigo) is not amplified back. The caps
+// keep estimator noise in a still shot from being blown up to the full
+// workspace.
 
 #include <vector>
 
