@@ -13,6 +13,7 @@
 #include "datasets/synth_clip.h"
 #include "haptics/effect_classifier.h"
 #include "haptics/haptic_models.h"
+#include "haptics/test_paths_for_test.h"
 
 namespace hapcine {
 namespace {
@@ -36,22 +37,8 @@ double MaxAbs(const HapticTrack& t, int actuator, int axis) {
   return m;
 }
 
-double MaxCoord(const HapticTrack& t) {
-  double m = 0;
-  for (int a = 0; a < kNumActuators; ++a)
-    for (int k = 0; k < 3; ++k) m = std::max(m, MaxAbs(t, a, k));
-  return m;
-}
-
-double MaxStep(const HapticTrack& t) {
-  double m = 0;
-  for (size_t i = 1; i < t.samples.size(); ++i) {
-    for (int a = 0; a < kNumActuators; ++a) {
-      m = std::max(m, (t.samples[i].pos_m[a] - t.samples[i - 1].pos_m[a]).cwiseAbs().maxCoeff());
-    }
-  }
-  return m;
-}
+using testing::MaxCoord;
+using testing::MaxStep;
 
 // The sample at time t (1 kHz track starting at 0).
 const HapticSample& At(const HapticTrack& t, double time_s) {

@@ -17,22 +17,8 @@ namespace {
 
 using testing::MakeEffectPath;
 
-double MaxCoord(const HapticTrack& t) {
-  double m = 0;
-  for (const auto& s : t.samples)
-    for (const auto& a : s.pos_m) m = std::max(m, a.cwiseAbs().maxCoeff());
-  return m;
-}
-
-double MaxStep(const HapticTrack& t) {
-  double m = 0;
-  for (size_t i = 1; i < t.samples.size(); ++i) {
-    for (int a = 0; a < kNumActuators; ++a) {
-      m = std::max(m, (t.samples[i].pos_m[a] - t.samples[i - 1].pos_m[a]).cwiseAbs().maxCoeff());
-    }
-  }
-  return m;
-}
+using testing::MaxCoord;
+using testing::MaxStep;
 
 // A film: three shots, 60 s: a 25 s traveling drift (never stops), a 20 s
 // shot with a zoom-in then a dutch angle, a 15 s crane; 25 fps, `shot` column.

@@ -4,10 +4,12 @@
 // Positions in metres with the subject 4 m in front of the first camera
 // (metadata subject_distance_m=4). Header-only so it stays out of the library.
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "core/camera_path.h"
+#include "core/haptic_track.h"
 #include "core/rotation.h"
 #include "haptics/semantic_model.h"
 
@@ -116,6 +118,25 @@ inline CameraPath TransformWorld(const CameraPath& in, const Eigen::Quaterniond&
     f.world_from_cam = CanonicalQuaternion(q * f.world_from_cam);
   }
   return out;
+}
+
+// Largest |coordinate| of any actuator over a track, metres.
+inline double MaxCoord(const HapticTrack& t) {
+  double m = 0;
+  for (const auto& s : t.samples)
+    for (const auto& a : s.pos_m) m = std::max(m, a.cwiseAbs().maxCoeff());
+  return m;
+}
+
+// Largest change of any coordinate from one sample to the next, metres.
+inline double MaxStep(const HapticTrack& t) {
+  double m = 0;
+  for (size_t i = 1; i < t.samples.size(); ++i) {
+    for (int a = 0; a < kNumActuators; ++a) {
+      m = std::max(m, (t.samples[i].pos_m[a] - t.samples[i - 1].pos_m[a]).cwiseAbs().maxCoeff());
+    }
+  }
+  return m;
 }
 
 }  // namespace hapcine::testing
