@@ -260,7 +260,8 @@ std::string SegmentTable(const SegmentReport& s, int rpe_delta) {
     << "\n";
   o << "path length: GT " << FormatDouble(s.gt_path_length) << ", estimate "
     << FormatDouble(s.est_path_length) << " (estimate units, unaligned)";
-  if (s.gt_static) o << "  <- spurious translation";
+  if (s.gt_static)
+    o << (s.est_path_length > 0 ? "  <- spurious translation" : "  (none, as in the ground truth)");
   o << "\n";
   if (s.model_agreement) {
     char buf[96];

@@ -177,6 +177,9 @@ TEST(EvalTest, RotationOnlyClipReportsSpuriousTranslation) {
   EXPECT_TRUE(j["overall"]["ate_percent"].is_null());
   EXPECT_NEAR(j["overall"]["spurious_translation"].get<double>(), 0.29, 1e-9);
   EXPECT_NE(FormatEvalTable(r).find("spurious translation"), std::string::npos);
+  // An estimate that keeps the camera still is not flagged.
+  const EvalReport same = EvaluateCameraPaths(gt, gt, {});
+  EXPECT_EQ(FormatEvalTable(same).find("spurious"), std::string::npos);
 }
 
 TEST(EvalTest, ShotsAreAlignedSeparately) {
