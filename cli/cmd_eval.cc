@@ -4,12 +4,16 @@
 
 #include <iostream>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/command.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "datasets/eval.h"
 #include "datasets/eval_haptics.h"
+#include "haptics/camera_signals.h"
 
 namespace hapcine::cli {
 
@@ -76,6 +80,13 @@ int RunEval(int argc, char** argv) {
       ho.model = HapticModelFromName(haptic_model);
       ho.rate_hz = haptic_rate;
       ho.source = gt_file;
+      ho.Check();
+      // The haptic checks (gaps, absurd positions) with file line numbers.
+      for (const auto& [path, file] : {std::pair<const CameraPath*, std::string>{&gt, gt_file},
+                                       {&est, est_file}}) {
+        const std::vector<int> lines = CsvDataRowLines(file);
+        ValidatePathForHaptics(*path, file, ho.max_gap_s, &lines);
+      }
       haptic_report = EvaluateHapticDifference(gt, est, report, ho);
       j["haptic"] = HapticEvalToJson(*haptic_report);
     }

@@ -9,6 +9,7 @@
 
 #include "core/csv.h"
 #include "core/error.h"
+#include "haptics/camera_signals.h"
 
 namespace hapcine {
 
@@ -41,6 +42,11 @@ HapticEvalReport EvaluateHapticDifference(const CameraPath& gt, const CameraPath
                                           const HapticOptions& options) {
   HapticOptions o = options;
   if (o.source.empty()) o.source = path_report.gt_source;
+  // Each path's problems name its own file (the tracks share the options).
+  ValidatePathForHaptics(gt, path_report.gt_source.empty() ? "ground truth" : path_report.gt_source,
+                         o.max_gap_s);
+  ValidatePathForHaptics(est, path_report.est_source.empty() ? "estimate" : path_report.est_source,
+                         o.max_gap_s);
   const CameraPath scaled = ScaleEstimateToGroundTruth(est, path_report);
   const auto [a, b] = MakeComparableHapticTracks(gt, scaled, o);
   HapticEvalReport r;

@@ -72,6 +72,24 @@ TEST(EvalHapticsTest, ScaleIsAppliedPerShot) {
   EXPECT_NEAR(d_est.norm(), d_gt.norm(), 1e-6);
 }
 
+TEST(EvalHapticsTest, ErrorsNameThePathAtFault) {
+  const CameraPath gt = SynthGroundTruth("traveling", SynthOptions{});
+  CameraPath est = AsEstimate(gt, 1.0);
+  for (size_t i = 60; i < est.frames.size(); ++i) est.frames[i].time_s += 3;  // a gap
+  EvalOptions eo;
+  eo.matching = FrameMatching::kFrameIndex;
+  EvalReport paths = EvaluateCameraPaths(gt, est, eo);
+  paths.gt_source = "gt.camera.csv";
+  paths.est_source = "est.camera.csv";
+  try {
+    EvaluateHapticDifference(gt, est, paths, HapticOptions{});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("est.camera.csv: frame 60"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(EvalHapticsTest, TracksThatDoNotOverlapAreAnError) {
   const CameraPath gt = SynthGroundTruth("traveling", SynthOptions{});
   CameraPath est = AsEstimate(gt, 1.0);
