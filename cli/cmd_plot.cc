@@ -2,10 +2,12 @@
 // (written by hand), from one Figure description (datasets/plot_figure.h).
 
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cli/command.h"
+#include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
 #include "datasets/plot_png.h"
@@ -15,15 +17,25 @@
 namespace hapcine::cli {
 namespace {
 
+// Both files are complete under temporary names before either is renamed
+// into place: a failure leaves neither.
 void WriteOutputs(const Figure& fig, const std::string& prefix, const std::string& format) {
+  std::unique_ptr<AtomicFile> png, svg;
   if (format == "png" || format == "both") {
-    WriteFigurePngFile(fig, prefix + ".png");
-    std::cerr << "wrote " << prefix << ".png\n";
+    const std::vector<unsigned char> bytes = EncodeFigurePng(fig, prefix + ".png");
+    png = std::make_unique<AtomicFile>(prefix + ".png");
+    png->stream().write(reinterpret_cast<const char*>(bytes.data()),
+                        static_cast<std::streamsize>(bytes.size()));
   }
   if (format == "svg" || format == "both") {
-    WriteFigureSvgFile(fig, prefix + ".svg");
-    std::cerr << "wrote " << prefix << ".svg\n";
+    svg = std::make_unique<AtomicFile>(prefix + ".svg");
+    svg->stream() << RenderFigureSvg(fig);
   }
+  for (auto* f : {png.get(), svg.get()}) {
+    if (f) f->Commit();
+  }
+  if (png) std::cerr << "wrote " << prefix << ".png\n";
+  if (svg) std::cerr << "wrote " << prefix << ".svg\n";
 }
 
 std::string FileStem(const std::string& path) {

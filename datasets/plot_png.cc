@@ -144,10 +144,14 @@ cv::Mat RenderFigurePng(const Figure& fig) {
   return img;
 }
 
-void WriteFigurePngFile(const Figure& figure, const std::string& file) {
-  const cv::Mat img = RenderFigurePng(figure);
+std::vector<unsigned char> EncodeFigurePng(const Figure& figure, const std::string& name) {
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", img, png)) throw Error(file, "PNG encoding failed");
+  if (!cv::imencode(".png", RenderFigurePng(figure), png)) throw Error(name, "PNG encoding failed");
+  return png;
+}
+
+void WriteFigurePngFile(const Figure& figure, const std::string& file) {
+  const std::vector<unsigned char> png = EncodeFigurePng(figure, file);
   AtomicFile out(file);
   out.stream().write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   out.Commit();
