@@ -121,6 +121,9 @@ int RunEstimate(int argc, char** argv) {
     EstimateProgress progress(quiet);
     const CameraPath path = EstimateCameraPathFromFile(
         video, opt, [&](long done, long total) { progress.Update(done, total); });
+    if (path.frames.size() < 2)
+      throw Error(video, std::to_string(path.frames.size()) +
+                             " video frame(s): camera motion needs at least two");
     WriteCameraPathFile(path, output);
     progress.Done(static_cast<long>(path.frames.size()));
     return kExitOk;

@@ -19,6 +19,7 @@ bool Project(const T* q, const T* c, const T* log_f, const T* d, const T& rho,
   Eigen::Map<const Eigen::Quaternion<T>> world_from_cam(q);
   Eigen::Matrix<T, 3, 1> v(d[0], d[1], d[2]);
   if (c != nullptr) {
+    if (rho < T(0)) return false;  // beyond infinity: behind every camera
     v += rho * (anchor.cast<T>() - Eigen::Matrix<T, 3, 1>(c[0], c[1], c[2]));
   }
   const Eigen::Matrix<T, 3, 1> p = world_from_cam.conjugate() * v;
@@ -218,7 +219,7 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   std::vector<std::array<double, 4>> X(points->size());
   for (size_t i = 0; i < points->size(); ++i) {
     Eigen::Vector4d h = (*points)[i].homogeneous;
-    if (!options.use_depth) h(3) = 0;
+    if (!options.use_depth || h(3) < 0) h(3) = 0;  // bearing only / cheirality bound below
     h.normalize();
     X[i] = {h(0), h(1), h(2), h(3)};
   }
@@ -254,6 +255,12 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
     if (!point_used[i]) continue;
     problem.SetManifold(X[i].data(), options.use_depth ? static_cast<ceres::Manifold*>(&sphere4)
                                                        : static_cast<ceres::Manifold*>(&sphere3));
+    // Cheirality: rho < 0 would be a point "beyond infinity", i.e. behind
+    // every camera, that still projects where it is seen (the homogeneous
+    // projection does not see the sign). Without this bound a forward dolly
+    // with a zoom out fits as a backward move at constant focal with the
+    // near points flipped behind the cameras.
+    if (options.use_depth) problem.SetParameterLowerBound(X[i].data(), 3, 0.0);
   }
   const int n = static_cast<int>(cameras->size());
   // Focal priors: between consecutive distinct focal blocks, and on the first.

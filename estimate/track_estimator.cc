@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/rotation.h"
+#include "estimate/axial_ambiguity.h"
 #include "estimate/smoothing.h"
 #include "estimate/two_view_geometry.h"
 
@@ -277,50 +278,61 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   std::sort(order.begin(), order.end());
   if (static_cast<int>(order.size()) > options_.max_points) order.resize(options_.max_points);
 
+  // Points from the cameras' initial poses: anchored at the first keyframe
+  // that sees them, depth by midpoint triangulation with the most distant one.
+  std::map<long, int> point_of_track;
+  auto init_points = [&](const std::vector<BaCamera>& cams, std::vector<BaPoint>* points_out,
+                         std::vector<BaObservation>* obs_out) {
+    std::vector<BaPoint>& points = *points_out;
+    std::vector<BaObservation>& obs = *obs_out;
+    points.clear();
+    obs.clear();
+    point_of_track.clear();
+    for (const auto& [neg, id] : order) {
+      const auto& kfs = seen[id];
+      const BaCamera& ca = cams[kfs[0]];
+      const Eigen::Vector2d ua = At(keyframes_[kfs[0]].pos).u.at(id);
+      const double fa = std::exp(ca.log_focal);
+      const Eigen::Vector3d ray_a = (ca.world_from_cam * Eigen::Vector3d(ua.x() / fa, ua.y() / fa, 1)).normalized();
+      double rho = 0;
+      if (has_translation) {
+        // Midpoint triangulation with the most distant observing keyframe.
+        int best = -1;
+        double best_base = 0;
+        for (int j : kfs) {
+          const double base = (cams[j].center - ca.center).norm();
+          if (base > best_base) {
+            best_base = base;
+            best = j;
+          }
+        }
+        if (best >= 0) {
+          const BaCamera& cb = cams[best];
+          const Eigen::Vector2d ub = At(keyframes_[best].pos).u.at(id);
+          const double fb = std::exp(cb.log_focal);
+          const Eigen::Vector3d ray_b = (cb.world_from_cam * Eigen::Vector3d(ub.x() / fb, ub.y() / fb, 1)).normalized();
+          const Eigen::Vector3d w = cb.center - ca.center;
+          const double bb = ray_a.dot(ray_b), d1 = ray_a.dot(w), d2 = ray_b.dot(w);
+          const double den = 1 - bb * bb;
+          if (den > 1e-8) {
+            const double lambda = (d1 - bb * d2) / den;
+            if (lambda > 0 && std::isfinite(lambda)) rho = 1 / lambda;
+          }
+        }
+        if (!(rho > 0)) rho = 0.2 / scene_depth_;
+      }
+      BaPoint p;
+      p.anchor = ca.center;
+      p.homogeneous = Eigen::Vector4d(ray_a.x(), ray_a.y(), ray_a.z(), rho).normalized();
+      point_of_track[id] = static_cast<int>(points.size());
+      for (int j : kfs) obs.push_back({j, static_cast<int>(points.size()), At(keyframes_[j].pos).u.at(id)});
+      points.push_back(p);
+    }
+  };
   std::vector<BaCamera> cams = build_cameras(false);
   std::vector<BaPoint> points;
   std::vector<BaObservation> obs;
-  std::map<long, int> point_of_track;
-  for (const auto& [neg, id] : order) {
-    const auto& kfs = seen[id];
-    const BaCamera& ca = cams[kfs[0]];
-    const Eigen::Vector2d ua = At(keyframes_[kfs[0]].pos).u.at(id);
-    const double fa = std::exp(ca.log_focal);
-    const Eigen::Vector3d ray_a = (ca.world_from_cam * Eigen::Vector3d(ua.x() / fa, ua.y() / fa, 1)).normalized();
-    double rho = 0;
-    if (has_translation) {
-      // Midpoint triangulation with the most distant observing keyframe.
-      int best = -1;
-      double best_base = 0;
-      for (int j : kfs) {
-        const double base = (cams[j].center - ca.center).norm();
-        if (base > best_base) {
-          best_base = base;
-          best = j;
-        }
-      }
-      if (best >= 0) {
-        const BaCamera& cb = cams[best];
-        const Eigen::Vector2d ub = At(keyframes_[best].pos).u.at(id);
-        const double fb = std::exp(cb.log_focal);
-        const Eigen::Vector3d ray_b = (cb.world_from_cam * Eigen::Vector3d(ub.x() / fb, ub.y() / fb, 1)).normalized();
-        const Eigen::Vector3d w = cb.center - ca.center;
-        const double bb = ray_a.dot(ray_b), d1 = ray_a.dot(w), d2 = ray_b.dot(w);
-        const double den = 1 - bb * bb;
-        if (den > 1e-8) {
-          const double lambda = (d1 - bb * d2) / den;
-          if (lambda > 0 && std::isfinite(lambda)) rho = 1 / lambda;
-        }
-      }
-      if (!(rho > 0)) rho = 0.2 / scene_depth_;
-    }
-    BaPoint p;
-    p.anchor = ca.center;
-    p.homogeneous = Eigen::Vector4d(ray_a.x(), ray_a.y(), ray_a.z(), rho).normalized();
-    point_of_track[id] = static_cast<int>(points.size());
-    for (int j : kfs) obs.push_back({j, static_cast<int>(points.size()), At(keyframes_[j].pos).u.at(id)});
-    points.push_back(p);
-  }
+  init_points(cams, &points, &obs);
 
   BaOptions ba;
   ba.huber_scale = 1.0 / 960;
@@ -372,31 +384,77 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   BaSummary summary = solve(&cams, &pts, &ob);
   if (summary.success && has_general) {
     // BIC: does a per-keyframe focal in the general segments pay for itself?
-    std::vector<BaCamera> cams_z = build_cameras(true);
-    std::vector<BaPoint> pts_z = points;
-    std::vector<BaObservation> ob_z = obs;
-    const BaSummary sz = solve(&cams_z, &pts_z, &ob_z);
-    if (sz.success) {
+    // Per-keyframe focal candidates: from the two-view initialisation and,
+    // when the move is along the optical axis, from the other branch of the
+    // axial dolly/zoom ambiguity (axial_ambiguity.h), whichever fits better.
+    struct Candidate {
+      std::vector<BaCamera> cams;
+      std::vector<BaPoint> pts;
+      std::vector<BaObservation> ob;
+      BaSummary summary;
+    };
+    std::vector<Candidate> zoomed;
+    auto try_zoom = [&](std::vector<BaCamera> init) {
+      Candidate c;
+      c.cams = std::move(init);
+      init_points(c.cams, &c.pts, &c.ob);
+      c.summary = solve(&c.cams, &c.pts, &c.ob);
+      if (c.summary.success) zoomed.push_back(std::move(c));
+    };
+    const std::vector<BaCamera> zoom_cams = build_cameras(true);
+    try_zoom(zoom_cams);
+    int pivot = 0;  // last held keyframe: the branch before it is decided
+    while (pivot + 1 < n && keyframes_[pivot + 1].fixed) ++pivot;
+    if (IsAxialMotion(cams, pivot)) {
+      std::vector<BaCamera> solved = zoom_cams;  // sharing of the zoom variant, values of the solve
+      for (int i = 0; i < n; ++i) {
+        solved[i].world_from_cam = cams[i].world_from_cam;
+        solved[i].center = cams[i].center;
+        solved[i].log_focal = cams[i].log_focal;
+      }
+      std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> matches(n);
+      for (int k = pivot + 1; k < n; ++k)
+        for (const auto& [id, u] : At(keyframes_[k].pos).u) {
+          auto it = At(keyframes_[k - 1].pos).u.find(id);
+          if (it != At(keyframes_[k - 1].pos).u.end()) matches[k].push_back({it->second, u});
+        }
+      try_zoom(MirroredAxialBranch(solved, pivot, matches));
+    }
+    // Every candidate is scored on all observations (capped), with one sigma.
+    const auto e0 = ObservationErrors(cams, pts, obs, true);
+    std::vector<std::vector<double>> ez;
+    std::vector<double> finite;
+    for (const Candidate& c : zoomed) {
+      ez.push_back(ObservationErrors(c.cams, c.pts, obs, true));
+      for (double e : ez.back())
+        if (std::isfinite(e)) finite.push_back(e);
+    }
+    const double sigma = std::max(Median(finite) / 1.1774, options_.two_view.noise_floor);
+    auto chi2 = [&](const std::vector<double>& e) {
+      double sum = 0;
+      for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
+      return sum;
+    };
+    int best = -1;
+    double best_chi2 = 0;
+    for (size_t c = 0; c < zoomed.size(); ++c) {
+      const double x = chi2(ez[c]);
+      if (best < 0 || x < best_chi2) {
+        best = static_cast<int>(c);
+        best_chi2 = x;
+      }
+    }
+    if (best >= 0) {
       int extra = 0;
       for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
-      const auto e0 = ObservationErrors(cams, pts, obs, true);
-      const auto e1 = ObservationErrors(cams_z, pts_z, obs, true);
-      std::vector<double> abs1;
-      for (double e : e1)
-        if (std::isfinite(e)) abs1.push_back(e);
-      const double sigma = std::max(Median(abs1) / 1.1774, options_.two_view.noise_floor);
-      auto chi2 = [&](const std::vector<double>& e) {
-        double s = 0;
-        for (double v : e) s += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
-        return s;
-      };
       const double m = 2.0 * obs.size();
-      const double bic0 = chi2(e0), bic1 = chi2(e1) + extra * std::log(std::max(m, 2.0));
+      const double bic0 = chi2(e0), bic1 = best_chi2 + extra * std::log(std::max(m, 2.0));
       if (bic1 < bic0) {
-        cams = cams_z;
-        pts = pts_z;
-        ob = ob_z;
-        summary = sz;
+        Candidate& c = zoomed[best];
+        cams = c.cams;
+        pts = c.pts;
+        ob = c.ob;
+        summary = c.summary;
         report.zoom_by_bic = true;
         for (int i = 1; i < n; ++i)
           if (keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed)

@@ -93,7 +93,9 @@ class FfmpegSource : public FrameSource {
  private:
   void Open() {
     const std::string& path = info_.path;
-    if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_ERROR);
+    // FFmpeg's own messages ("moov atom not found") would add lines to the
+    // one-line error this class throws with the same reason.
+    if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_FATAL);
     int r = avformat_open_input(&fmt_, path.c_str(), nullptr, nullptr);
     if (r < 0) throw Error(path, "not a media file FFmpeg can read (" + AvError(r) + ")");
     // The "tty" demuxer turns any .txt/.ans file into ANSI-art video.

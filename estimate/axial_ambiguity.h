@@ -1,0 +1,46 @@
+#pragma once
+// The axial dolly/zoom ambiguity.
+//
+// A camera that translates along its optical axis while its focal length
+// changes moves every image point radially about the principal point. Point
+// i scales by 1/s_i(t) = a(t) + b(t) w_i (w_i its inverse depth, a the zoom,
+// b the forward motion), and any affine change of the inverse depths
+// w' = alpha + beta w explains the same tracks with another zoom a' and
+// motion b'. With beta < 0 the depth order flips: a forward dolly zooming
+// out (Vertigo) fits exactly as a backward move at constant focal with the
+// subject at infinity and the background near. Only cheirality (no point
+// beyond infinity, enforced in the bundle adjustment) separates the two
+// branches, so both must be optimised and compared; a solve started on one
+// branch stays on it. Inside the right branch the zoom is pinned by the
+// points that can be pushed no further: the initialisation puts the most
+// distant points at infinity, the smallest zoom the tracks allow.
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "estimate/bundle_adjustment.h"
+
+namespace hapcine {
+
+// True when the centres after `pivot` moved mostly along the pivot camera's
+// optical axis (|forward component| >= `min_axial_share` of the distance).
+bool IsAxialMotion(const std::vector<BaCamera>& cams, int pivot, double min_axial_share = 0.8);
+
+// Radial scale of matches (u1 -> u2, normalised coordinates about the
+// principal point) at `percentile` in [0, 1]; points closer than `min_radius`
+// to the centre are skipped (their scale is noise). 1 if none is usable.
+double RadialScalePercentile(const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& matches,
+                             double percentile, double min_radius = 0.1);
+
+// The other branch of the ambiguity as an initialisation: the centres after
+// `pivot` mirrored through the pivot's centre, and the focal of each
+// keyframe k > pivot chained from the radial scale of its matches with
+// keyframe k - 1 (matches[k]): a forward move takes a low percentile (the
+// far points, which shrink or grow least, are put at infinity), a backward
+// move a high one. Rotations and sharing are kept.
+std::vector<BaCamera> MirroredAxialBranch(
+    const std::vector<BaCamera>& cams, int pivot,
+    const std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>>& matches);
+
+}  // namespace hapcine
