@@ -85,7 +85,8 @@ int RunHaptics(int argc, char** argv) {
       ->default_val(opt.washout.max_speed_m_s);
   app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
                  "distance of the subject defining the zoom's equivalent forward distance,\n"
-                 "in path units; 0 = metadata subject_distance_m, else 1 (median depth)")
+                 "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
+                 "metadata subject_distance_m, else 1 (the median depth of estimated paths)")
       ->default_val(opt.cinematic.reference_depth_u);
   app.add_option("--max-translation-gain", opt.cinematic.max_translation_gain,
                  "cinematic: cap on the translation/zoom scale, metres per path unit")
