@@ -268,6 +268,16 @@ TEST(SynthHaptics, MultiShotFilmStaysInTheWorkspaceAndNeverJumpsAtACut) {
                 << " mm per ms\n";
     }
   }
+  // One scaling for the whole film (the smallest factors, then the gain
+  // every shot allows): still inside, never clamped.
+  HapticOptions film_scaling;
+  film_scaling.cinematic.per_film_scaling = true;
+  for (const CameraPath& film : {SevenShotFilm(), GroundTruth("hard_cut")}) {
+    const HapticTrack t = MakeHapticTrack(film, film_scaling);
+    EXPECT_LE(MaxCoord(t), film_scaling.seat.usable_half_m + 1e-12);
+    EXPECT_GT(MaxCoord(t), 0.01);
+    EXPECT_EQ(t.metadata.at("clamped_samples"), "0");
+  }
   // Without the crossfade the seven-shot film would jump at its cuts (the
   // speed limit would then have to catch it): the crossfade is doing work.
   HapticOptions o;

@@ -56,16 +56,16 @@ CinematicScale Scaled(const CinematicScale& c, double gain) {
 // kMaxCombinationGain: three vectors that each fill the range along
 // different axes average down to a third; a larger shortfall comes from
 // vectors that oppose each other, which is the cancellation the paper wants
-// (Vertigo) and must not be amplified back.
+// (Vertigo) and must not be amplified back. Returns the gain (>= 1).
 constexpr double kMaxCombinationGain = 3.0;
 
-CinematicScale BoostForCombination(const CameraSignals& s, const SeatGeometry& seat,
-                                   const CinematicOptions& o, const CinematicScale& c) {
+double CombinationGain(const CameraSignals& s, const SeatGeometry& seat, const CinematicOptions& o,
+                       const CinematicScale& c) {
   double max_gain = kMaxCombinationGain;
   if (c.kx > 0) max_gain = std::min(max_gain, o.max_translation_gain / c.kx);
   if (c.mx > 0) max_gain = std::min(max_gain, o.max_rotation_gain / c.mx);
   const double usable = seat.usable_half_m;
-  if (!(max_gain > 1) || !(MaxCombinedOffset(s, seat, c) > 0)) return c;
+  if (!(max_gain > 1) || !(MaxCombinedOffset(s, seat, c) > 0)) return 1.0;
   constexpr int kGrid = 32;
   double lo = 1, hi = -1;
   for (int j = 1; j <= kGrid; ++j) {
@@ -82,10 +82,12 @@ CinematicScale BoostForCombination(const CameraSignals& s, const SeatGeometry& s
       (MaxCombinedOffset(s, seat, Scaled(c, mid)) > usable ? hi : lo) = mid;
     }
   }
-  return Scaled(c, lo);
+  return lo;
 }
 
-CinematicScale ScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
+// k and m such that T, F and every R_A each stay within the usable range
+// (before the combination gain).
+CinematicScale BaseScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
                             const CinematicOptions& o) {
   const double usable = seat.usable_half_m;
   double peak_t = 0;
@@ -119,7 +121,7 @@ CinematicScale ScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
   CinematicScale c;
   c.kx = c.ky = c.kz = c.sz = k;
   c.mx = c.my = c.mz = m;
-  return BoostForCombination(s, seat, o, c);
+  return c;
 }
 
 }  // namespace
@@ -186,14 +188,24 @@ CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeome
   const auto shots = SplitShots(path);
   const auto signals = CinematicShotSignals(path, shots, o, w);
   CinematicScaling scaling;
-  for (const auto& s : signals) scaling.per_shot.push_back(ScaleForShot(s, seat, o));
+  for (const auto& s : signals) scaling.per_shot.push_back(BaseScaleForShot(s, seat, o));
   if (o.per_film_scaling && !scaling.per_shot.empty()) {
+    // The smallest base factors, then the largest combination gain that
+    // every shot allows with them (the gain of one shot may exceed what
+    // another, with less cancellation, can take).
     CinematicScale film = scaling.per_shot[0];
     for (const auto& c : scaling.per_shot) {
       film.kx = film.ky = film.kz = film.sz = std::min(film.kx, c.kx);
       film.mx = film.my = film.mz = std::min(film.mx, c.mx);
     }
-    for (auto& c : scaling.per_shot) c = film;
+    double gain = kMaxCombinationGain;
+    for (const auto& s : signals) gain = std::min(gain, CombinationGain(s, seat, o, film));
+    for (auto& c : scaling.per_shot) c = Scaled(film, gain);
+  } else {
+    for (size_t i = 0; i < signals.size(); ++i) {
+      scaling.per_shot[i] =
+          Scaled(scaling.per_shot[i], CombinationGain(signals[i], seat, o, scaling.per_shot[i]));
+    }
   }
   return scaling;
 }

@@ -230,6 +230,7 @@ TEST(HapticModels, NoAcceptedPathLeavesTheWorkspace) {
       HapticOptions o;
       o.model = m;
       o.rate_hz = 200;
+      o.cinematic.per_film_scaling = trial % 4 == 0;
       for (bool washout : {true, false}) {
         o.washout.high_pass = washout;
         const HapticTrack track = MakeHapticTrack(p, o);
