@@ -1,0 +1,173 @@
+#include "bench/scatter_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace hapcine::bench {
+namespace {
+
+// Tableau 10, BGR.
+cv::Scalar Palette(int i) {
+  static const int rgb[10][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
+                                 {148, 103, 189}, {140, 86, 75}, {227, 119, 194}, {127, 127, 127},
+                                 {188, 189, 34},  {23, 190, 207}};
+  const int* c = rgb[((i % 10) + 10) % 10];
+  return cv::Scalar(c[2], c[1], c[0]);
+}
+
+bool Usable(double v, bool log) { return std::isfinite(v) && (!log || v > 0); }
+
+std::string TickText(double v) {
+  char buf[32];
+  if (v != 0 && (std::fabs(v) >= 1e4 || std::fabs(v) < 1e-3))
+    std::snprintf(buf, sizeof(buf), "%.0e", v);
+  else
+    std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+void DrawMarker(cv::Mat& img, cv::Point p, int marker, const cv::Scalar& color) {
+  const int r = 6;
+  switch (marker % 4) {
+    case 0: cv::circle(img, p, r, color, cv::FILLED, cv::LINE_AA); break;
+    case 1: cv::rectangle(img, p - cv::Point(r - 1, r - 1), p + cv::Point(r - 1, r - 1), color, cv::FILLED); break;
+    case 2: {
+      std::vector<cv::Point> tri{p + cv::Point(0, -r - 1), p + cv::Point(r, r - 1), p + cv::Point(-r, r - 1)};
+      cv::fillConvexPoly(img, tri, color, cv::LINE_AA);
+      break;
+    }
+    default: {
+      std::vector<cv::Point> dia{p + cv::Point(0, -r - 1), p + cv::Point(r + 1, 0), p + cv::Point(0, r + 1),
+                                 p + cv::Point(-r - 1, 0)};
+      cv::fillConvexPoly(img, dia, color, cv::LINE_AA);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<double> AxisTicks(double lo, double hi, bool log) {
+  std::vector<double> ticks;
+  if (!(hi > lo)) return {lo};
+  if (log) {
+    const int d0 = static_cast<int>(std::floor(std::log10(lo))), d1 = static_cast<int>(std::ceil(std::log10(hi)));
+    // Fewer labels over many decades: only the powers of ten.
+    const bool sparse = d1 - d0 > 3;
+    for (int d = d0; d <= d1; ++d)
+      for (double m : {1.0, 2.0, 5.0}) {
+        if (sparse && m != 1.0) continue;
+        const double v = m * std::pow(10.0, d);
+        if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) ticks.push_back(v);
+      }
+    return ticks;
+  }
+  const double raw = (hi - lo) / 6;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * mag >= raw) { step = m * mag; break; }
+  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step)
+    ticks.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
+  return ticks;
+}
+
+cv::Mat RenderScatter(const ScatterChart& chart) {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+  for (const auto& s : chart.series) {
+    if (s.x.size() != s.y.size()) throw Error(chart.title, "series '" + s.name + "' has x/y of different lengths");
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      if (!Usable(s.x[i], chart.log_x) || !Usable(s.y[i], chart.log_y)) continue;
+      x_lo = std::min(x_lo, s.x[i]);
+      x_hi = std::max(x_hi, s.x[i]);
+      y_lo = std::min(y_lo, s.y[i]);
+      y_hi = std::max(y_hi, s.y[i]);
+    }
+  }
+  if (!std::isfinite(x_lo) || !std::isfinite(y_lo)) throw Error(chart.title, "no point to plot");
+  // Pad the ranges (a factor on log axes) so markers are not on the frame.
+  auto pad = [](double& lo, double& hi, bool log) {
+    if (log) {
+      if (hi / lo < 10) { const double m = std::sqrt(10 / (hi / lo)); lo /= m; hi *= m; }
+      lo /= 1.3;
+      hi *= 1.3;
+    } else {
+      double span = hi - lo;
+      if (span <= 0) span = std::max(1.0, std::fabs(hi));
+      lo -= 0.08 * span;
+      hi += 0.08 * span;
+    }
+  };
+  pad(x_lo, x_hi, chart.log_x);
+  pad(y_lo, y_hi, chart.log_y);
+  if (chart.y_from_zero && !chart.log_y) y_lo = std::min(0.0, y_lo);
+
+  cv::Mat img(chart.height_px, chart.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int left = 80, right = 230, top = 50, bottom = 60;
+  const cv::Rect area(left, top, chart.width_px - left - right, chart.height_px - top - bottom);
+  if (area.width < 50 || area.height < 50) throw Error(chart.title, "chart too small");
+  auto map = [](double v, double lo, double hi, bool log) {
+    return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
+  };
+  auto to_px = [&](double x, double y) {
+    return cv::Point(static_cast<int>(std::lround(area.x + area.width * map(x, x_lo, x_hi, chart.log_x))),
+                     static_cast<int>(std::lround(area.y + area.height * (1 - map(y, y_lo, y_hi, chart.log_y)))));
+  };
+  const cv::Scalar black(0, 0, 0), grid(225, 225, 225);
+  const int font = cv::FONT_HERSHEY_SIMPLEX;
+  for (double t : AxisTicks(x_lo, x_hi, chart.log_x)) {
+    const int px = to_px(t, y_lo).x;
+    cv::line(img, {px, area.y}, {px, area.y + area.height}, grid, 1);
+    const std::string s = TickText(t);
+    cv::putText(img, s, {px - 4 * static_cast<int>(s.size()), area.y + area.height + 20}, font, 0.45, black, 1, cv::LINE_AA);
+  }
+  for (double t : AxisTicks(y_lo, y_hi, chart.log_y)) {
+    const int py = to_px(x_lo, t).y;
+    cv::line(img, {area.x, py}, {area.x + area.width, py}, grid, 1);
+    const std::string s = TickText(t);
+    cv::putText(img, s, {area.x - 10 - 9 * static_cast<int>(s.size()), py + 5}, font, 0.45, black, 1, cv::LINE_AA);
+  }
+  cv::rectangle(img, area, black, 1);
+  cv::putText(img, chart.title, {left, 30}, font, 0.65, black, 1, cv::LINE_AA);
+  cv::putText(img, chart.x_label, {area.x + area.width / 2 - 4 * static_cast<int>(chart.x_label.size()),
+                                   chart.height_px - 18}, font, 0.5, black, 1, cv::LINE_AA);
+  cv::putText(img, chart.y_label, {8, top - 10}, font, 0.5, black, 1, cv::LINE_AA);
+
+  int legend_y = top + 10;
+  for (const auto& s : chart.series) {
+    const cv::Scalar color = Palette(s.color_index);
+    std::vector<cv::Point> pts;
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      if (!Usable(s.x[i], chart.log_x) || !Usable(s.y[i], chart.log_y)) continue;
+      pts.push_back(to_px(s.x[i], s.y[i]));
+      if (i < s.labels.size() && !s.labels[i].empty())
+        cv::putText(img, s.labels[i], pts.back() + cv::Point(8, -6), font, 0.38, color, 1, cv::LINE_AA);
+    }
+    if (s.line && pts.size() > 1) cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
+    for (const auto& p : pts) DrawMarker(img, p, s.marker, color);
+    if (!s.name.empty()) {
+      const cv::Point lp(area.x + area.width + 20, legend_y);
+      if (s.line) cv::line(img, lp + cv::Point(-8, 0), lp + cv::Point(8, 0), color, 2, cv::LINE_AA);
+      DrawMarker(img, lp, s.marker, color);
+      cv::putText(img, s.name, lp + cv::Point(16, 5), font, 0.45, black, 1, cv::LINE_AA);
+      legend_y += 24;
+    }
+  }
+  return img;
+}
+
+void WriteScatterPng(const ScatterChart& chart, const std::string& file) {
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", RenderScatter(chart), png)) throw Error(file, "PNG encoding failed");
+  AtomicFile out(file);
+  out.stream().write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  out.Commit();
+}
+
+}  // namespace hapcine::bench
