@@ -50,8 +50,9 @@ int RunPlay(int argc, char** argv) {
       ->capture_default_str();
   return RunApp(app, argc, argv, [&] {
     o.realtime = !no_rt;
-    Play(o, std::cerr);
-    return kExitOk;
+    const PlayResult r = Play(o, std::cerr);
+    // Stopped by SIGINT/SIGTERM (forces zeroed): the shell's 128 + signal.
+    return r.stop_signal > 0 ? 128 + r.stop_signal : kExitOk;
   });
 }
 

@@ -58,6 +58,10 @@ class Device {
   virtual double MaxForceN() const = 0;
   // Human-readable identity ("sim", "falcon serial A1234").
   virtual std::string Name() const = 0;
+  // |F| of the last force actually sent to the device (after the device's own
+  // checks: a Falcon sends none before homing), newtons. Lets the player
+  // report, on every exit, that the last command really was zero.
+  virtual double LastSentForceN() const = 0;
 };
 
 // The HapSeat: one optional device per actuator, indexed by Actuator

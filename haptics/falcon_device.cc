@@ -37,7 +37,7 @@ void FalconDevice::Open() {
   firmware_attempts_ = 0;
   if (!(SetFalconNormalMode(*usb_) && FalconFirmwareRunning(*usb_))) {
     const std::vector<uint8_t> image = ReadFirmwareFile(options_.firmware_path);
-    firmware_attempts_ = LoadFalconFirmware(*usb_, image, options_.firmware);
+    firmware_attempts_ = LoadFalconFirmware(*usb_, image, options_.firmware, options_.progress);
   }
   parser_.Clear();
   have_reply_ = false;
@@ -52,7 +52,8 @@ void FalconDevice::Close() noexcept {
   FalconCommand zero;
   uint8_t out[kFalconPacketSize];
   EncodeCommand(zero, out);
-  for (int i = 0; i < 3; ++i) usb_->BulkWrite(out, kFalconPacketSize, 50);
+  for (int i = 0; i < 3; ++i)
+    if (usb_->BulkWrite(out, kFalconPacketSize, 50) == kFalconPacketSize) last_sent_force_n_ = 0;
   open_ = false;
 }
 
@@ -66,11 +67,14 @@ DeviceState FalconDevice::Exchange(const Eigen::Vector3d& force_n) {
   cmd.homing = !homed;
   cmd.leds = (user_leds_ & 0x0E) | static_cast<uint8_t>(homed ? Led::kGreen : Led::kRed);
   Eigen::Vector3d counts = Eigen::Vector3d::Zero();
+  double sent_n = 0;
   if (homed && force_n.allFinite()) {
     const Eigen::Vector3d falcon_force = options_.seat_from_falcon.transpose() * force_n;
     Eigen::Vector3d tau;
-    if (kin_.ForceToTorque(falcon_pos_m_, falcon_force, &tau))
+    if (kin_.ForceToTorque(falcon_pos_m_, falcon_force, &tau)) {
       counts = options_.counts_per_nm * tau;
+      sent_n = force_n.norm();
+    }
   }
   for (int i = 0; i < 3; ++i) {
     cmd.torque[i] = SaturateTorque(counts[i]);
@@ -82,6 +86,7 @@ DeviceState FalconDevice::Exchange(const Eigen::Vector3d& force_n) {
     state_.fault = DeviceFault::kTransferError;
     return state_;
   }
+  last_sent_force_n_ = sent_n;
   uint8_t raw[64], payload[64];
   const int r = usb_->BulkRead(raw, sizeof(raw), options_.read_timeout_ms);
   if (r < 0) {

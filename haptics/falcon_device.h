@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -38,6 +39,8 @@ struct FalconDeviceOptions {
   int max_silent_ticks = 100;      // no reply for this many ticks -> kNoData
   double velocity_cutoff_hz = 60;  // low-pass on the differentiated position
   FirmwareOptions firmware;
+  // Optional: one line per failed firmware attempt (the user sees retries).
+  std::function<void(const std::string&)> progress;
   void Check() const;  // throws UsageError
 };
 
@@ -53,6 +56,7 @@ class FalconDevice : public Device {
   void SetLeds(uint8_t mask) noexcept override { user_leds_ = mask; }
   double MaxForceN() const override { return options_.max_force_n; }
   std::string Name() const override;
+  double LastSentForceN() const override { return last_sent_force_n_; }
 
   // Number of firmware attempts Open() needed (0: firmware was running).
   int firmware_attempts() const { return firmware_attempts_; }
@@ -73,6 +77,7 @@ class FalconDevice : public Device {
   Eigen::Vector3d falcon_pos_m_ = FalconCentre();
   Eigen::Vector3d falcon_vel_m_s_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d last_counts_ = Eigen::Vector3d::Zero();
+  double last_sent_force_n_ = 0;  // |F| encoded in the last packet written
   std::chrono::steady_clock::time_point last_reply_time_;
   DeviceState state_;
 };

@@ -115,6 +115,7 @@ class ZeroForceGuard {
 void InstallStopSignals();
 void RestoreStopSignals();
 bool StopRequested();
+int StopSignal();    // the signal that requested the stop (SIGINT, SIGTERM), else 0
 void RequestStop();  // the same flag, e.g. from a button or a test
 void ClearStopRequest();
 

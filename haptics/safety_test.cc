@@ -133,8 +133,9 @@ TEST(Safety, RandomAdversarialForcesNeverExceedTheLimit) {
       const Eigen::Vector3d out = s.FilterForce(f, gain);
       ASSERT_TRUE(out.allFinite()) << i;
       ASSERT_LE(out.norm(), limit + 1e-12) << i;
-      if (out.norm() > prev.norm())
+      if (out.norm() > prev.norm()) {
         ASSERT_LE(out.norm() - prev.norm(), o.max_force_step_n + 1e-9) << i;
+      }
       prev = out;
     }
   }
@@ -146,9 +147,15 @@ TEST(Safety, StopFlagIsSetBySigintAndSigterm) {
   EXPECT_FALSE(StopRequested());
   std::raise(SIGINT);
   EXPECT_TRUE(StopRequested());
+  EXPECT_EQ(StopSignal(), SIGINT);
   ClearStopRequest();
   std::raise(SIGTERM);
   EXPECT_TRUE(StopRequested());
+  EXPECT_EQ(StopSignal(), SIGTERM);
+  ClearStopRequest();
+  RequestStop();  // the program's own request names no signal
+  EXPECT_TRUE(StopRequested());
+  EXPECT_EQ(StopSignal(), 0);
   ClearStopRequest();
   RestoreStopSignals();
 }
@@ -164,6 +171,7 @@ class RecordingDevice : public Device {
   }
   double MaxForceN() const override { return 9; }
   std::string Name() const override { return "recording"; }
+  double LastSentForceN() const override { return last.norm(); }
   bool open = false;
   int exchanges = 0;
   Eigen::Vector3d last = Eigen::Vector3d::Ones();

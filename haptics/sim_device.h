@@ -52,6 +52,7 @@ class SimDevice : public Device {
   void SetLeds(uint8_t mask) noexcept override { leds_ = mask; }
   double MaxForceN() const override { return options_.max_force_n; }
   std::string Name() const override { return "sim"; }
+  double LastSentForceN() const override { return last_force_n_.norm(); }
 
   // Ground truth, for tests.
   const Eigen::Vector3d& true_pos_m() const { return pos_m_; }

@@ -194,8 +194,9 @@ bool HapticLoop::Tick(double now_s) {
       if (clock_.TrueMediaTime(after, &truth)) stats_.sync_error.Add(truth - t);
       if (now_fn_) stats_.tick_work.Add(after - now_s);
     }
-    if (ending_ && o_.finish_at_end && now_s - end_start_s_ >= o_.end_ramp_s) {
-      // Back at the centre: hold briefly is the caller's choice; we stop.
+    // Back at the centre and the film is over (a track shorter than the
+    // film holds the centre until the film ends): stop.
+    if (ending_ && o_.finish_at_end && r.eof && now_s - end_start_s_ >= o_.end_ramp_s) {
       ZeroAll();
       status_ = LoopStatus::kFinished;
       return false;

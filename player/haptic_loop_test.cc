@@ -51,9 +51,11 @@ struct Driver {
   double media = 0;
   bool paused = false;
   bool updating = true;
+  double film_end_s = 1e9;  // the clock reports eof from here on
   int tick = 0;
   bool Step(HapticLoop& loop) {
     if (updating && tick % 40 == 0) clock.Update(media, wall, paused);
+    if (media >= film_end_s && !clock.Read().eof) clock.SetEof(wall);
     const bool go = loop.Tick(wall);
     wall += kDt;
     if (!paused) media += kDt;
@@ -71,6 +73,7 @@ TEST(HapticLoop, HeadlessPlayOnTheSimFollowsTheTrack) {
   });
   HapSeat seat = SimSeat();
   Driver drv;
+  drv.film_end_s = 8;
   drv.clock.SetTruth(-100.0, 1.0);  // true media = wall - 100
   HapticLoop loop(track, seat, drv.clock, LoopOptions());
   double sq = 0, worst = 0;
@@ -97,6 +100,33 @@ TEST(HapticLoop, HeadlessPlayOnTheSimFollowsTheTrack) {
   // Sync: the loop extrapolates between 25 Hz updates exactly (error 0 up to rounding).
   EXPECT_LT(loop.stats().sync_error.max_s(), 2e-6);
   EXPECT_EQ(loop.stats().missed_ticks, 0);
+}
+
+TEST(HapticLoop, ATrackShorterThanTheFilmHoldsTheCentreUntilTheFilmEnds) {
+  ClearStopRequest();
+  const HapticTrack track = MakeTrack(1, 100, [](double, Eigen::Vector3d* p) {
+    for (int a = 0; a < 3; ++a) p[a] = Eigen::Vector3d(0.01, 0, 0);
+  });
+  HapSeat seat = SimSeat();
+  Driver drv;
+  drv.film_end_s = 3;
+  LoopOptions o;
+  o.start_ramp_s = 0.1;
+  o.end_ramp_s = 0.2;
+  HapticLoop loop(track, seat, drv.clock, o);
+  int i = 0;
+  for (; i < 10000 && drv.Step(loop); ++i) {
+    if (drv.media > 0.5 && drv.media < 0.9) {
+      EXPECT_NEAR(loop.last_target_m(0).x(), 0.01, 1e-9);
+    }
+    if (drv.media > 1.3 && drv.media < 3.0) {
+      EXPECT_LT(loop.last_target_m(0).norm(), 1e-9);
+    }
+  }
+  EXPECT_EQ(loop.status(), LoopStatus::kFinished);
+  EXPECT_GE(drv.media, 3.0) << "stopped before the film ended";
+  EXPECT_LT(drv.media, 3.5);
+  EXPECT_EQ(Sim(seat, 0).last_force_n().norm(), 0.0);
 }
 
 TEST(HapticLoop, PauseHoldsThePosition) {

@@ -51,7 +51,8 @@ std::string LoopStats::Summary() const {
   if (extrapolation_error.count() > 0) {
     n = std::snprintf(
         buf, sizeof(buf),
-        "  clock extrapolation error at updates (%lld) p50 %.2f ms, p99 %.2f ms, max %.2f ms\n",
+        "  haptic-video sync error at player clock updates (%lld; |haptic time - video time|) p50 "
+        "%.2f ms, p99 %.2f ms, max %.2f ms\n",
         static_cast<long long>(extrapolation_error.count()),
         extrapolation_error.Quantile(0.5) * 1e3, extrapolation_error.Quantile(0.99) * 1e3,
         extrapolation_error.max_s() * 1e3);

@@ -92,14 +92,28 @@ bool FakeClock::TrueMediaTime(double now_s, double* media_s) const noexcept {
   return true;
 }
 
-WallClock::WallClock(double duration_s, double start_media_s)
-    : duration_s_(duration_s), start_media_s_(start_media_s), start_wall_s_(SteadySeconds()) {}
+WallClock::WallClock(double duration_s, double start_media_s, bool held)
+    : duration_s_(duration_s),
+      start_media_s_(start_media_s),
+      start_wall_s_(SteadySeconds()),
+      held_(held) {}
 
-void WallClock::Start(double now_s) { start_wall_s_.store(now_s); }
+void WallClock::Start(double now_s) {
+  start_wall_s_.store(now_s);
+  held_.store(false);
+}
 
 ClockReading WallClock::Read() const noexcept {
   ClockReading r;
   const double now = SteadySeconds();
+  if (held_.load(std::memory_order_relaxed)) {
+    r.media_s = start_media_s_;
+    r.wall_s = now;
+    r.valid = true;
+    r.paused = true;
+    r.serial = 1;
+    return r;
+  }
   double t = 0;
   TrueMediaTime(now, &t);
   r.media_s = std::min(t, duration_s_);
@@ -112,6 +126,10 @@ ClockReading WallClock::Read() const noexcept {
 }
 
 bool WallClock::TrueMediaTime(double now_s, double* media_s) const noexcept {
+  if (held_.load(std::memory_order_relaxed)) {
+    *media_s = start_media_s_;
+    return true;
+  }
   *media_s = start_media_s_ + (now_s - start_wall_s_.load(std::memory_order_relaxed));
   return true;
 }

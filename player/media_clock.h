@@ -80,10 +80,12 @@ class FakeClock : public MediaClock {
 };
 
 // Media time = wall time since Start(), for playing a track without video
-// (sim device, benchmarks). Reaches eof at `duration_s`.
+// (sim device, benchmarks). Reaches eof at `duration_s`. Runs from
+// construction unless `held`: then it reads as paused at start_media_s until
+// Start() (the player holds the film while Falcons are homed).
 class WallClock : public MediaClock {
  public:
-  explicit WallClock(double duration_s, double start_media_s = 0);
+  explicit WallClock(double duration_s, double start_media_s = 0, bool held = false);
   void Start(double now_s);  // default: at construction
   ClockReading Read() const noexcept override;
   bool TrueMediaTime(double now_s, double* media_s) const noexcept override;
@@ -91,6 +93,7 @@ class WallClock : public MediaClock {
  private:
   double duration_s_, start_media_s_;
   std::atomic<double> start_wall_s_;
+  std::atomic<bool> held_;
 };
 
 }  // namespace hapcine

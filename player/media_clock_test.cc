@@ -1,6 +1,7 @@
 #include "player/media_clock.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
@@ -72,6 +73,20 @@ TEST(MediaClock, WallClockRunsFromStartAndEnds) {
   double t = 0;
   ASSERT_TRUE(c.TrueMediaTime(SteadySeconds(), &t));
   EXPECT_NEAR(t, 3.0, 0.05);
+}
+
+TEST(MediaClock, AHeldWallClockIsPausedUntilStarted) {
+  WallClock c(2.0, 0.0, /*held=*/true);
+  usleep(20000);
+  ClockReading r = c.Read();
+  EXPECT_TRUE(r.valid);
+  EXPECT_TRUE(r.paused);
+  EXPECT_EQ(r.media_s, 0.0);
+  EXPECT_EQ(Extrapolate(r, SteadySeconds() + 0.5), 0.0);
+  c.Start(SteadySeconds() - 0.25);
+  r = c.Read();
+  EXPECT_FALSE(r.paused);
+  EXPECT_NEAR(r.media_s, 0.25, 0.05);
 }
 
 TEST(MediaClock, FakeClockCountsSeeksAndUpdates) {

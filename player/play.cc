@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "haptics/device_config.h"
+#include "haptics/falcon_firmware.h"
 #include "haptics/safety.h"
 #include "haptics/usb_transport.h"
 #include "player/loop_runner.h"
@@ -48,13 +49,19 @@ std::string ResolveTrackPath(const std::string& video, const std::string& track)
 namespace {
 
 std::unique_ptr<Device> MakeFalcon(const PlayOptions& o, const std::string& serial,
-                                   const Eigen::Matrix3d& mount, double max_force_n) {
+                                   const Eigen::Matrix3d& mount, double max_force_n,
+                                   std::ostream& log) {
   FalconDeviceOptions fo;
   fo.serial = serial;
   fo.firmware_path = o.firmware;
   fo.seat_from_falcon = mount;
   fo.max_force_n = max_force_n;
-  return std::make_unique<FalconDevice>(nullptr, fo);
+  fo.firmware = o.firmware_options;
+  fo.progress = [&log, serial](const std::string& line) {
+    log << "falcon " << serial << ": " << line << "\n";
+  };
+  // Null: FalconDevice::Open() opens it through libusb.
+  return std::make_unique<FalconDevice>(o.open_falcon ? o.open_falcon(serial) : nullptr, fo);
 }
 
 }  // namespace
@@ -66,7 +73,8 @@ HapSeat MakeSeat(const PlayOptions& o, std::ostream& log) {
     for (auto& d : seat.devices) d = std::make_unique<SimDevice>(o.sim);
     return seat;
   }
-  const std::vector<UsbDeviceInfo> found = ListFalconUsbDevices();
+  const std::vector<UsbDeviceInfo> found =
+      o.list_falcons ? o.list_falcons() : ListFalconUsbDevices();
   if (!o.seat_config.empty()) {
     const SeatConfig config = ReadSeatConfigFile(o.seat_config);
     for (int a = 0; a < kNumActuators; ++a) {
@@ -79,7 +87,8 @@ HapSeat MakeSeat(const PlayOptions& o, std::ostream& log) {
                                        ActuatorName(static_cast<Actuator>(a)) + "' (serial " +
                                        c.serial + ") is not connected; " +
                                        DescribeFalconUsbDevices(found));
-      seat.devices[a] = MakeFalcon(o, c.serial, c.seat_from_falcon, c.max_force_n.value_or(9.0));
+      seat.devices[a] =
+          MakeFalcon(o, c.serial, c.seat_from_falcon, c.max_force_n.value_or(9.0), log);
     }
     if (seat.count() == 0) throw Error(o.seat_config, "maps no device to a role");
     return seat;
@@ -98,36 +107,86 @@ HapSeat MakeSeat(const PlayOptions& o, std::ostream& log) {
                            : serials.size() == 2 ? std::vector<int>{1, 2}
                                                  : std::vector<int>{0, 1, 2};
   for (size_t i = 0; i < roles.size() && i < serials.size(); ++i) {
-    seat.devices[roles[i]] = MakeFalcon(o, serials[i], Eigen::Matrix3d::Identity(), 9.0);
+    seat.devices[roles[i]] = MakeFalcon(o, serials[i], Eigen::Matrix3d::Identity(), 9.0, log);
     log << "falcon serial " << serials[i] << " -> " << ActuatorName(static_cast<Actuator>(roles[i]))
         << " (no --seat-config: assigned in serial order)\n";
   }
   return seat;
 }
 
+namespace {
+
+bool AllHomed(const HapSeat& seat, const HapticLoop& loop) {
+  for (int a = 0; a < kNumActuators; ++a)
+    if (seat.devices[a] && !loop.last_state(a).homed) return false;
+  return true;
+}
+
+// Checks the track's length against the video's (mpv's duration).
+void CheckDuration(const PlayOptions& o, const std::string& track_path, double track_end_s,
+                   double video_s, PlayResult* result) {
+  if (video_s < 0) {
+    result->warnings.push_back("mpv reported no duration; track length not checked");
+    return;
+  }
+  if (std::abs(video_s - track_end_s) <= o.duration_tolerance_s) return;
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << "track ends at " << track_end_s
+    << " s but the video lasts " << video_s << " s (more than " << o.duration_tolerance_s
+    << " s apart): is it the track of this video?"
+    << (track_end_s < video_s ? " The actuators return to the centre when the track ends."
+                              : " The track is cut at the end of the video.");
+  if (o.strict_duration) throw Error(track_path, s.str());
+  result->warnings.push_back(s.str());
+}
+
+}  // namespace
+
 PlayResult Play(const PlayOptions& o, std::ostream& log) {
   o.Check();
   PlayResult result;
+  // Signals first: a Ctrl-C during firmware loading or mpv start-up also
+  // ends with zero force (the guard below) instead of killing the process.
+  ClearStopRequest();
+  InstallStopSignals();
+  struct Restore {
+    ~Restore() { RestoreStopSignals(); }
+  } restore;
+
   const std::string track_path = ResolveTrackPath(o.video, o.track);
   const HapticTrack track = ReadHapticTrackFile(track_path);
   if (track.samples.empty()) throw Error(track_path, "haptic track has no rows");
   const double track_end_s = track.samples.back().time_s;
   if (!o.video.empty() && !fs::exists(o.video)) throw Error(o.video, "video not found");
+  if (o.device == "falcon" && !o.firmware.empty()) ReadFirmwareFile(o.firmware);  // fail early
 
   HapSeat seat = MakeSeat(o, log);
   ZeroForceGuard guard(seat);  // zero + close on every way out of here
+  auto stopped_early = [&] {
+    result.status = LoopStatus::kStopped;
+    result.stop_signal = StopSignal();
+    ZeroAndClose(seat);
+    log << "stopped by signal before playback; forces zeroed\n";
+    return result;
+  };
   for (auto& d : seat.devices) {
     if (!d) continue;
     log << "opening " << d->Name() << "...\n";
     d->Open();
+    if (StopRequested()) return stopped_early();
   }
-  if (o.device == "falcon")
-    log << "home each Falcon: pull the grip fully out and push it back in (red LED -> green)\n";
+  // Falcons must be homed before the film starts: the clock is held paused
+  // (the loop already runs, homing, with zero force) until they are.
+  const bool wait_for_homing = o.device == "falcon";
 
   std::unique_ptr<MediaClock> clock;
   MpvClock* mpv = nullptr;
+  WallClock* wall = nullptr;
+  double film_s = track_end_s;
   if (o.wall_clock) {
-    clock = std::make_unique<WallClock>(track_end_s);
+    auto w = std::make_unique<WallClock>(track_end_s, 0.0, wait_for_homing);
+    wall = w.get();
+    clock = std::move(w);
     if (!o.video.empty())
       result.warnings.push_back(
           "--no-video: the video's duration was not checked against the track");
@@ -135,62 +194,76 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
     MpvOptions mo;
     mo.headless = o.headless;
     mo.fullscreen = o.fullscreen;
+    mo.start_paused = wait_for_homing;
     auto m = std::make_unique<MpvClock>(o.video, mo);
     m->WaitLoaded(20.0);
     mpv = m.get();
     clock = std::move(m);
     double video_s = -1;
     for (int i = 0; i < 100 && (video_s = mpv->duration_s()) < 0; ++i) usleep(10000);
-    if (video_s >= 0 && std::abs(video_s - track_end_s) > o.duration_tolerance_s) {
-      std::ostringstream s;
-      s << std::fixed << std::setprecision(2) << "track ends at " << track_end_s
-        << " s but the video lasts " << video_s << " s (more than " << o.duration_tolerance_s
-        << " s apart): is it the track of this video?";
-      if (o.strict_duration) throw Error(track_path, s.str());
-      result.warnings.push_back(s.str());
-    } else if (video_s < 0) {
-      result.warnings.push_back("mpv reported no duration; track length not checked");
-    }
+    CheckDuration(o, track_path, track_end_s, video_s, &result);
+    if (video_s > 0) film_s = video_s;
   }
   for (const auto& w : result.warnings) log << "warning: " << w << "\n";
+  if (StopRequested()) return stopped_early();
 
   LoopOptions lo = o.loop;
   // In a window the user decides when it ends (q / closing it); headless
-  // and wall-clock playback end once the actuators are back at the centre.
+  // and wall-clock playback end once the film is over and the actuators are
+  // back at the centre.
   lo.finish_at_end = o.headless || o.wall_clock;
   HapticLoop loop(track, seat, *clock, lo);
 
-  ClearStopRequest();
-  InstallStopSignals();
-  struct Restore {
-    ~Restore() { RestoreStopSignals(); }
-  } restore;
   RunnerOptions ro;
   ro.realtime = o.realtime;
   ro.max_run_s = o.max_run_s;
   const bool tty = isatty(STDERR_FILENO);
   double last_print = -1e9;
+  bool holding = wait_for_homing;
+  if (holding) log << "home each Falcon: pull the grip fully out and push it back in "
+                      "(red LED -> green); the film starts when all are homed\n";
   auto progress = [&] {
-    const double t = loop.last_media_s();
     const double now = SteadySeconds();
+    if (holding) {
+      if (!AllHomed(seat, loop)) return;
+      holding = false;
+      log << "all Falcons homed: playing\n";
+      if (mpv) mpv->SetPause(false);
+      if (wall) wall->Start(now);
+    }
+    const double t = loop.last_media_s();
     if (tty) {
-      log << "\rplaying " << std::fixed << std::setprecision(1) << t << " / " << track_end_s << " s"
+      log << "\rplaying " << std::fixed << std::setprecision(1) << t << " / " << film_s << " s"
           << std::flush;
     } else if (now - last_print >= 10) {
-      log << "playing " << std::fixed << std::setprecision(1) << t << " / " << track_end_s
-          << " s\n";
+      log << "playing " << std::fixed << std::setprecision(1) << t << " / " << film_s << " s\n";
       last_print = now;
     }
   };
   log << "playing " << track_path << " with " << (o.device == "none" ? "no device" : o.device)
       << " (k=" << lo.k_n_m << " N/m, d=" << lo.d_n_s_m << " N s/m)\n";
-  const RunReport report = RunLoop(loop, ro, nullptr, progress);
+  const RunReport report = RunLoop(loop, ro, nullptr, progress, 0.1);
   if (tty) log << "\n";
   result.realtime = report.realtime;
   if (!report.realtime) log << "note: " << report.realtime_note << "\n";
   result.status = loop.status();
   result.stats = loop.stats();
+  result.stop_signal = StopSignal();
   if (mpv) mpv->Quit();
+
+  // Zero and close now (the guard repeats it harmlessly), then read back
+  // what each device was last sent: the proof that the exit left no force.
+  ZeroAndClose(seat);
+  if (seat.count() > 0) {
+    log << "last force sent on exit:";
+    for (int a = 0; a < kNumActuators; ++a) {
+      if (!seat.devices[a]) continue;
+      result.last_sent_force_n[a] = seat.devices[a]->LastSentForceN();
+      log << " " << ActuatorName(static_cast<Actuator>(a)) << " " << std::fixed
+          << std::setprecision(3) << result.last_sent_force_n[a] << " N";
+    }
+    log << "\n";
+  }
 
   const LoopStats& st = loop.stats();
   if (o.print_stats) {

@@ -3,20 +3,27 @@
 // function behind cli/cmd_play.cc.
 //
 // Flow: resolve and read the track (default: <video stem>.haptic.csv beside
-// the video), build and open the seat (falcon: libusb + firmware + homing;
-// sim; none), start the media clock (mpv window, mpv headless, or the wall
-// clock), check the track against the video's duration, run the 1 kHz loop
-// until the film ends (headless/wall clock: after returning to the centre)
-// or the window is closed / Ctrl-C, and print the loop statistics.
-// Zero force on every exit path: ZeroForceGuard + the loop's own zeroing.
+// the video), build and open the seat (falcon: libusb + firmware; sim;
+// none), start the media clock (mpv window, mpv headless, or the wall
+// clock; with Falcons it is held paused until every Falcon is homed), check
+// the track against the video's duration, run the 1 kHz loop until the film
+// ends (headless/wall clock: after returning to the centre) or the window is
+// closed / Ctrl-C / SIGTERM, zero and close the seat, report the last force
+// each device was sent, and print the loop statistics.
+// Zero force on every exit path: ZeroForceGuard + the loop's own zeroing;
+// SIGINT/SIGTERM are caught from the start (also during firmware loading).
 
+#include <array>
+#include <functional>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "haptics/device.h"
 #include "haptics/falcon_device.h"
 #include "haptics/sim_device.h"
+#include "haptics/usb_transport.h"
 #include "player/haptic_loop.h"
 
 namespace hapcine {
@@ -38,6 +45,11 @@ struct PlayOptions {
   std::string fault_log = "hapcine-fault.csv";  // ring buffer dump on a fault
   LoopOptions loop;
   SimDeviceOptions sim;
+  FirmwareOptions firmware_options;
+  // Tests replace libusb here (a FakeFalconTransport per serial); empty:
+  // ListFalconUsbDevices / OpenLibusbTransport.
+  std::function<std::vector<UsbDeviceInfo>()> list_falcons;
+  std::function<std::unique_ptr<UsbTransport>(const std::string& serial)> open_falcon;
   void Check() const;  // throws UsageError
 };
 
@@ -46,6 +58,10 @@ struct PlayResult {
   LoopStats stats;
   std::vector<std::string> warnings;
   bool realtime = false;
+  int stop_signal = 0;  // SIGINT/SIGTERM when stopped by one
+  // |F| of the last force each device was sent (after the final zeroing);
+  // -1 where the seat has no device.
+  std::array<double, kNumActuators> last_sent_force_n{-1, -1, -1};
 };
 
 // `<dir>/<stem>.haptic.csv` for `video`, or `track` if given. Throws Error
