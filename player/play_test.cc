@@ -2,11 +2,22 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <sstream>
+#include <thread>
 
 #include "core/error.h"
+#include "haptics/fake_falcon_transport.h"
+#include "haptics/safety.h"
+#include "player/mpv_clock.h"
 
 namespace hapcine {
 namespace {
@@ -84,18 +95,25 @@ TEST(Play, BadOptionsAndNoDeviceAreClear) {
   }
 }
 
-TEST(Play, HeadlessMpvPlaysAGeneratedClip) {
-  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "ffmpeg CLI not installed";
-  const fs::path d = TempDir();
-  const fs::path video = d / "tiny.mp4";
+// A test-pattern clip of `seconds` with a tone (ffmpeg CLI); "" without ffmpeg.
+std::string MakeClip(const std::string& name, int seconds) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) return "";
+  const fs::path video = TempDir() / name;
   if (!fs::exists(video)) {
-    const std::string cmd =
-        "ffmpeg -loglevel error -y -f lavfi -i testsrc=duration=1:size=64x48:rate=25 -pix_fmt "
-        "yuv420p " +
-        video.string();
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const std::string d = std::to_string(seconds);
+    const std::string cmd = "ffmpeg -loglevel error -y -f lavfi -i testsrc=duration=" + d +
+                            ":size=64x48:rate=25 -f lavfi -i sine=duration=" + d +
+                            " -pix_fmt yuv420p -shortest " + video.string();
+    if (std::system(cmd.c_str()) != 0) return "";
   }
+  return video.string();
+}
+
+TEST(Play, HeadlessMpvPlaysAGeneratedClip) {
+  const fs::path d = TempDir();
+  const std::string clip = MakeClip("tiny.mp4", 1);
+  if (clip.empty()) GTEST_SKIP() << "ffmpeg CLI not installed";
+  const fs::path video = clip;
   WriteTrack(d / "tiny.haptic.csv", 1.0);
   PlayOptions o;
   o.video = video.string();
@@ -114,6 +132,160 @@ TEST(Play, HeadlessMpvPlaysAGeneratedClip) {
   o.track = (d / "long.haptic.csv").string();
   o.strict_duration = true;
   EXPECT_THROW(Play(o, log), Error);
+}
+
+TEST(Play, MpvPauseAndSeekReachTheClock) {
+  const std::string video = MakeClip("three.mp4", 3);
+  if (video.empty()) GTEST_SKIP() << "ffmpeg CLI not installed";
+  MpvOptions mo;
+  mo.headless = true;
+  MpvClock mpv(video, mo);
+  mpv.WaitLoaded(20);
+  auto wait_for = [&](const std::function<bool(const ClockReading&)>& ok) {
+    for (int i = 0; i < 400; ++i) {
+      if (ok(mpv.Read())) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+  };
+  ASSERT_TRUE(wait_for([](const ClockReading& r) { return r.valid && !r.paused; }));
+  EXPECT_NEAR(mpv.duration_s(), 3.0, 0.1);
+  mpv.SetPause(true);
+  ASSERT_TRUE(wait_for([](const ClockReading& r) { return r.paused; }));
+  const double held = mpv.Read().media_s;
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(mpv.Read().media_s, held) << "media time moved while paused";
+  EXPECT_EQ(Extrapolate(mpv.Read(), SteadySeconds() + 1), held);
+  const uint64_t seeks = mpv.Read().seek_serial;
+  mpv.SeekAbsolute(2.0);
+  ASSERT_TRUE(wait_for([&](const ClockReading& r) {
+    return r.seek_serial > seeks && std::abs(r.media_s - 2.0) < 0.05;
+  }));
+  mpv.SetPause(false);
+  ASSERT_TRUE(wait_for([](const ClockReading& r) { return r.eof; })) << "never reached the end";
+}
+
+// A seat of fake Falcons (the protocol byte for byte) behind Play().
+struct FakeFalcons {
+  std::vector<uint8_t> image = std::vector<uint8_t>(300, 0x3C);
+  std::map<std::string, FakeFalconTransport*> by_serial;
+  std::string firmware_path;
+  int corrupt_echo_attempts = 0;
+
+  explicit FakeFalcons(std::vector<std::string> serials) {
+    firmware_path = (TempDir() / "fake_fw.bin").string();
+    std::ofstream(firmware_path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(image.data()), image.size());
+    for (const auto& s : serials) by_serial[s] = nullptr;
+  }
+  void Install(PlayOptions* o) {
+    o->device = "falcon";
+    o->firmware = firmware_path;
+    o->firmware_options.max_attempts = 3;
+    o->firmware_options.handshake_timeout_ms = 2;
+    o->firmware_options.echo_timeout_ms = 20;
+    o->list_falcons = [this] {
+      std::vector<UsbDeviceInfo> out;
+      for (const auto& kv : by_serial) out.push_back({1, 2, kv.first, ""});
+      return out;
+    };
+    o->open_falcon = [this](const std::string& serial) {
+      auto fake = std::make_unique<FakeFalconTransport>(image);
+      fake->corrupt_echo_attempts = corrupt_echo_attempts;
+      by_serial[serial] = fake.get();
+      return std::unique_ptr<UsbTransport>(std::move(fake));
+    };
+  }
+};
+
+TEST(Play, FakeFalconsLoadFirmwareHomeAndEndWithZeroTorque) {
+  const fs::path d = TempDir();
+  WriteTrack(d / "falcon.haptic.csv", 0.3);
+  FakeFalcons fakes({"FTB", "FTA", "FTC"});
+  PlayOptions o;
+  fakes.Install(&o);
+  o.track = (d / "falcon.haptic.csv").string();
+  o.wall_clock = true;
+  o.realtime = false;
+  o.loop.start_ramp_s = 0.05;
+  o.loop.end_ramp_s = 0.05;
+  o.max_run_s = 10;
+  std::ostringstream log;
+  const PlayResult r = Play(o, log);
+  EXPECT_EQ(r.status, LoopStatus::kFinished) << log.str();
+  // Three Falcons without a seat config: head, left, right in serial order.
+  EXPECT_NE(log.str().find("falcon serial FTA -> head"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("falcon serial FTC -> right"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("all Falcons homed"), std::string::npos) << log.str();
+  for (int a = 0; a < kNumActuators; ++a) EXPECT_EQ(r.last_sent_force_n[a], 0.0) << a;
+  for (const auto& kv : fakes.by_serial) {
+    ASSERT_NE(kv.second, nullptr);
+    EXPECT_EQ(kv.second->mode(), FakeFalconTransport::Mode::kRunning);
+    EXPECT_GT(kv.second->commands_seen(), 200);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(kv.second->last_command().torque[i], 0) << kv.first;
+  }
+}
+
+TEST(Play, FirmwareThatWillNotLoadIsRetriedThenAClearError) {
+  const fs::path d = TempDir();
+  WriteTrack(d / "falcon.haptic.csv", 0.3);
+  FakeFalcons fakes({"FTA"});
+  fakes.corrupt_echo_attempts = 1000;
+  PlayOptions o;
+  fakes.Install(&o);
+  o.track = (d / "falcon.haptic.csv").string();
+  o.wall_clock = true;
+  std::ostringstream log;
+  try {
+    Play(o, log);
+    FAIL() << "played with firmware that never loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("firmware load failed after 3 attempts"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NE(log.str().find("firmware attempt 2/3 failed"), std::string::npos) << log.str();
+  // A firmware path that does not exist is named before any USB work.
+  o.firmware = (d / "no_such_firmware.bin").string();
+  try {
+    Play(o, log);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_firmware.bin"), std::string::npos) << e.what();
+  }
+  // No Falcon at all: the message says so.
+  o.firmware.clear();
+  o.list_falcons = [] { return std::vector<UsbDeviceInfo>(); };
+  try {
+    Play(o, log);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no USB device 0403:cb48"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Play, SigtermMidPlayStopsWithZeroForceOnEveryDevice) {
+  const fs::path d = TempDir();
+  WriteTrack(d / "long.haptic.csv", 5.0);
+  for (int sig : {SIGTERM, SIGINT}) {
+    PlayOptions o;
+    o.track = (d / "long.haptic.csv").string();
+    o.wall_clock = true;
+    o.realtime = false;
+    o.loop.start_ramp_s = 0.05;
+    o.max_run_s = 10;
+    std::thread killer([sig] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(600));
+      kill(getpid(), sig);
+    });
+    std::ostringstream log;
+    const PlayResult r = Play(o, log);
+    killer.join();
+    EXPECT_EQ(r.status, LoopStatus::kStopped) << log.str();
+    EXPECT_EQ(r.stop_signal, sig);
+    EXPECT_GT(r.stats.ticks, 300);
+    for (int a = 0; a < kNumActuators; ++a) EXPECT_EQ(r.last_sent_force_n[a], 0.0) << a;
+  }
 }
 
 }  // namespace
