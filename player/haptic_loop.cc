@@ -102,6 +102,7 @@ bool HapticLoop::Tick(double now_s) {
       return false;
     }
     bool seek = false;
+    double truth = 0;
     if (r.valid && r.serial != prev_reading_.serial) {
       if (prev_reading_.valid) {
         const double predicted = Extrapolate(prev_reading_, r.wall_s);
@@ -109,7 +110,9 @@ bool HapticLoop::Tick(double now_s) {
         if (r.seek_serial != prev_reading_.seek_serial || std::abs(jump) > o_.seek_jump_s) {
           seek = true;
           ++stats_.seeks;
-        } else if (!prev_reading_.paused && !r.paused) {
+        } else if (!prev_reading_.paused && !r.paused && !clock_.TrueMediaTime(r.wall_s, &truth)) {
+          // A clock without ground truth (mpv): the sync error is how far
+          // our extrapolated time was from the time the player reports.
           stats_.extrapolation_error.Add(jump);
         }
       }
@@ -190,7 +193,6 @@ bool HapticLoop::Tick(double now_s) {
 
     if (r.valid && !r.paused && !ending_) {
       const double after = now_fn_ ? now_fn_() : now_s;
-      double truth = 0;
       if (clock_.TrueMediaTime(after, &truth)) stats_.sync_error.Add(truth - t);
       if (now_fn_) stats_.tick_work.Add(after - now_s);
     }

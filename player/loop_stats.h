@@ -29,7 +29,9 @@ class MicroHistogram {
 struct LoopStats {
   MicroHistogram period;      // time between tick starts
   MicroHistogram sync_error;  // |true media time - media time used|, when the clock knows the truth
-  MicroHistogram extrapolation_error;  // |extrapolated - reported| at each clock update
+  // |extrapolated - reported| media time at each update of a clock without
+  // ground truth (mpv): the haptic-video sync error there.
+  MicroHistogram extrapolation_error;
   MicroHistogram tick_work;            // time spent inside Tick (needs a time source)
   int64_t ticks = 0;
   int64_t missed_ticks = 0;  // periods skipped (a gap of 2.6 periods = 2 missed)
