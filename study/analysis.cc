@@ -1,5 +1,6 @@
 #include "study/analysis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -8,6 +9,20 @@
 
 namespace hapcine::study {
 namespace {
+
+// Whether conditions a and b are in one group (one stimulus) of `clip`.
+bool SameStimulus(const ParticipantResults& r, const std::string& clip, const std::string& a,
+                  const std::string& b) {
+  for (const auto& c : r.clips) {
+    if (c.name != clip) continue;
+    for (const auto& g : c.groups) {
+      const bool has_a = std::find(g.begin(), g.end(), a) != g.end();
+      const bool has_b = std::find(g.begin(), g.end(), b) != g.end();
+      if (has_a || has_b) return has_a && has_b;
+    }
+  }
+  return false;
+}
 
 ScoreTable Score(const std::string& label, const std::vector<ParticipantResults>& results,
                  const std::vector<std::string>& conditions, const std::string* only_clip) {
@@ -44,23 +59,30 @@ ScoreTable Score(const std::string& label, const std::vector<ParticipantResults>
     t.normality.push_back(ShapiroWilk(col_scores));
   }
   t.friedman = FriedmanTest(t.score);
+  // Holm's family: the pairs actually tested (a merged pair is one stimulus).
   std::vector<double> raw;
+  std::vector<size_t> tested;
   for (size_t a = 0; a < k; ++a)
     for (size_t b = a + 1; b < k; ++b) {
       PairwiseTest pt;
       pt.a = conditions[a];
       pt.b = conditions[b];
+      pt.same_stimulus =
+          only_clip && SameStimulus(results.front(), *only_clip, conditions[a], conditions[b]);
       std::vector<double> x, y;
       for (size_t p = 0; p < n; ++p) {
         x.push_back(t.score[p][a]);
         y.push_back(t.score[p][b]);
       }
       pt.wilcoxon = WilcoxonSignedRank(x, y);
-      raw.push_back(pt.wilcoxon.valid ? pt.wilcoxon.p : 1.0);
+      if (!pt.same_stimulus) {
+        raw.push_back(pt.wilcoxon.valid ? pt.wilcoxon.p : 1.0);
+        tested.push_back(t.pairwise.size());
+      }
       t.pairwise.push_back(pt);
     }
   const auto adj = HolmAdjust(raw);
-  for (size_t i = 0; i < adj.size(); ++i) t.pairwise[i].p_holm = adj[i];
+  for (size_t i = 0; i < adj.size(); ++i) t.pairwise[tested[i]].p_holm = adj[i];
   return t;
 }
 

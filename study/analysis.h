@@ -23,6 +23,10 @@ struct PairwiseTest {
   std::string a, b;  // conditions
   WilcoxonResult wilcoxon;
   double p_holm = 1;  // Holm-adjusted within its family
+  // The two conditions are one stimulus on this clip (identical tracks,
+  // merged by the plan, e.g. the paper's Vertigo): not a hypothesis, so not
+  // tested and not counted in the Holm family (p = p_holm = 1).
+  bool same_stimulus = false;
 };
 
 // Scores and tests for one set of trials (all clips, or one clip).

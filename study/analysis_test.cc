@@ -102,12 +102,28 @@ TEST(AnalysisTest, KnownWinner) {
     EXPECT_DOUBLE_EQ(s[2], 1.0);
     EXPECT_DOUBLE_EQ(s[1], 0.5);  // semantic: loses twice to cinematic==none, beats random twice
   }
-  // Cinematic vs none on Vertigo: identical for everyone -> no test, p = 1.
-  for (const auto& pt : vertigo.pairwise)
-    if (pt.a == "cinematic" && pt.b == "none") {
+  // Cinematic vs none on Vertigo: one stimulus -> no test, p = 1, and not
+  // counted in Holm's family: the other 5 pairs are adjusted as 5 hypotheses.
+  std::vector<double> raw;
+  for (const auto& pt : vertigo.pairwise) {
+    const bool merged = pt.a == "cinematic" && pt.b == "none";
+    EXPECT_EQ(pt.same_stimulus, merged) << pt.a << " " << pt.b;
+    if (merged) {
       EXPECT_EQ(pt.wilcoxon.n_used, 0);
       EXPECT_EQ(pt.p_holm, 1);
+    } else {
+      raw.push_back(pt.wilcoxon.p);
     }
+  }
+  ASSERT_EQ(raw.size(), 5u);
+  const std::vector<double> adj = HolmAdjust(raw);
+  for (size_t i = 0, j = 0; i < vertigo.pairwise.size(); ++i) {
+    if (!vertigo.pairwise[i].same_stimulus) {
+      EXPECT_DOUBLE_EQ(vertigo.pairwise[i].p_holm, adj[j++]);
+    }
+  }
+  // The overall table merges nothing.
+  for (const auto& pt : a.overall.pairwise) EXPECT_FALSE(pt.same_stimulus);
   // Tests: Friedman significant; cinematic > none and random < all, Holm-adjusted.
   ASSERT_TRUE(a.overall.friedman.valid);
   EXPECT_LT(a.overall.friedman.p, 1e-4);

@@ -41,6 +41,10 @@ void FormatTests(const ScoreTable& t, const std::vector<std::string>& conditions
   o << "  Wilcoxon signed-rank, two-sided, Holm-Bonferroni within this table:\n";
   for (const auto& pt : t.pairwise) {
     o << "    " << Pad(pt.a + " vs " + pt.b, 24);
+    if (pt.same_stimulus) {
+      o << "one stimulus on this sequence (identical tracks): not tested\n";
+      continue;
+    }
     if (pt.wilcoxon.n_used == 0) {
       o << "identical scores for every participant (p = 1)\n";
       continue;
@@ -81,8 +85,13 @@ std::string BarChart(const std::string& title, const std::vector<std::string>& g
                      const std::vector<std::vector<double>>& err, bool legend) {
   const double bar_w = 22, gap = 18, left = 60, right = legend ? 150 : 20, top = 40, plot_h = 260,
                bottom = 60;
-  const double group_w = series.size() * bar_w + gap;
-  const double plot_w = std::max(200.0, groups.size() * group_w);
+  // Wide enough that neither the group labels (about 7 px per character at
+  // 12 px) nor the title (about 8 px at 14 px) overlap or get cut.
+  size_t longest_group = 0;
+  for (const auto& g : groups) longest_group = std::max(longest_group, g.size());
+  const double group_w = std::max(series.size() * bar_w + gap, 7.0 * longest_group + 12);
+  const double plot_w =
+      std::max({200.0, groups.size() * group_w, 8.0 * title.size() + 20 - left - right});
   const double width = left + plot_w + right, height = top + plot_h + bottom;
   auto y_of = [&](double v) { return top + plot_h * (1 - std::clamp(v, 0.0, 1.0)); };
   std::ostringstream s;
@@ -106,7 +115,7 @@ std::string BarChart(const std::string& title, const std::vector<std::string>& g
   s << "<line x1=\"" << left << "\" y1=\"" << top << "\" x2=\"" << left << "\" y2=\""
     << top + plot_h << "\" stroke=\"black\"/>\n";
   for (size_t g = 0; g < groups.size(); ++g) {
-    const double x0 = left + gap / 2 + g * group_w;
+    const double x0 = left + g * group_w + (group_w - series.size() * bar_w) / 2;
     for (size_t k = 0; k < series.size(); ++k) {
       const double x = x0 + k * bar_w, v = value[g][k], e = err[g][k];
       s << "<rect x=\"" << x + 2 << "\" y=\"" << y_of(v) << "\" width=\"" << bar_w - 4
@@ -193,7 +202,8 @@ json ReportToJson(const StudyAnalysis& a) {
                                {"n_used", pt.wilcoxon.n_used},
                                {"exact", pt.wilcoxon.exact},
                                {"p", pt.wilcoxon.p},
-                               {"p_holm", pt.p_holm}});
+                               {"p_holm", pt.p_holm},
+                               {"same_stimulus", pt.same_stimulus}});
     return j;
   };
   json j;

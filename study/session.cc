@@ -1,8 +1,11 @@
 #include "study/session.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <optional>
 
@@ -10,6 +13,7 @@
 #include "study/hash.h"
 #include "study/journal.h"
 #include "study/json_util.h"
+#include "study/keypress.h"
 #include "study/plan.h"
 #include "study/player_process.h"
 #include "study/results.h"
@@ -39,7 +43,13 @@ namespace {
 class AnswerSource {
  public:
   AnswerSource(const std::string& responses_path, std::istream& in, std::ostream& out)
-      : in_(in), out_(out), scripted_(!responses_path.empty()), path_(responses_path) {
+      : in_(in),
+        out_(out),
+        scripted_(!responses_path.empty()),
+        // A person at a terminal answers with one key press; a pipe or file
+        // on stdin gives one answer per line.
+        key_press_(!scripted_ && &in == &std::cin && IsTerminal(STDIN_FILENO)),
+        path_(responses_path) {
     if (scripted_) {
       std::ifstream f(responses_path);
       if (!f) throw Error(responses_path, "cannot open responses file");
@@ -69,6 +79,16 @@ class AnswerSource {
       if (next_ >= answers_.size()) return std::nullopt;
       return answers_[next_++];
     }
+    if (key_press_) {
+      for (;;) {
+        out_ << "Which did you prefer? Press 1 or 2 (r = replay, q = stop for now) " << std::flush;
+        const std::optional<char> key = ReadKeyPress(STDIN_FILENO);
+        out_ << (key && *key >= ' ' ? std::string(1, *key) : std::string()) << "\n";
+        if (!key || *key == 'q' || *key == 'Q' || *key == 3 || *key == 4) return std::nullopt;
+        if (*key == '1' || *key == '2') return *key - '0';
+        if (*key == 'r' || *key == 'R') return 0;
+      }
+    }
     for (;;) {
       out_ << "Which did you prefer? [1/2, r = replay, q = stop for now] " << std::flush;
       std::string line;
@@ -87,6 +107,7 @@ class AnswerSource {
   std::istream& in_;
   std::ostream& out_;
   bool scripted_;
+  bool key_press_;
   std::string path_;
   std::vector<int> answers_;
   size_t next_ = 0;
