@@ -140,6 +140,11 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
   }
 
   AnswerSource answers(options.responses_path, in, out);
+  if (const fs::path dir = fs::path(summary.results_path).parent_path(); !dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw Error(dir.string(), "cannot create the results folder: " + ec.message());
+  }
   Journal journal(summary.journal_path, plan.plan_id, who.id);
 
   // What the journal already holds.

@@ -112,8 +112,7 @@ TEST(SessionTest, PlaysTheRightTracksInOrderAndReadsTypedAnswers) {
   o.plan_path = f.plan_path;
   o.participant = "1";
   o.device = "none";
-  o.results_path = f.dir + "/out/p1.results.json";
-  std::filesystem::create_directory(f.dir + "/out");
+  o.results_path = f.dir + "/out/sub/p1.results.json";  // folders created by the run
   o.player_cmd =
       "/bin/sh -c 'echo \"$0 $1 $2 $3\" >> " + log_path + "' {clip} {condition} {track} {device}";
   // Typed answers with noise: invalid input is asked again, "r" replays.
@@ -123,7 +122,7 @@ TEST(SessionTest, PlaysTheRightTracksInOrderAndReadsTypedAnswers) {
   std::ostringstream out;
   const RunSummary s = RunSession(o, in, out);
   ASSERT_TRUE(s.complete) << out.str();
-  EXPECT_EQ(s.journal_path, f.dir + "/out/p1.journal.jsonl");
+  EXPECT_EQ(s.journal_path, f.dir + "/out/sub/p1.journal.jsonl");
   // 2 training clips + 18 trials x 2 stimuli + one replayed pair.
   std::ifstream played(log_path);
   std::vector<std::string> lines;
