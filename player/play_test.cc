@@ -43,6 +43,18 @@ void WriteTrack(const fs::path& path, double duration_s) {
   WriteHapticTrackFile(t, path.string());
 }
 
+// Options for a short play of `track` on the wall clock (no mpv), quick ramps.
+PlayOptions WallClockPlay(const fs::path& track) {
+  PlayOptions o;
+  o.track = track.string();
+  o.wall_clock = true;
+  o.realtime = false;
+  o.loop.start_ramp_s = 0.05;
+  o.loop.end_ramp_s = 0.05;
+  o.max_run_s = 10;
+  return o;
+}
+
 TEST(Play, FindsTheSiblingTrackOrSaysWhereItLooked) {
   const fs::path d = TempDir();
   WriteTrack(d / "clip.haptic.csv", 0.2);
@@ -59,14 +71,9 @@ TEST(Play, FindsTheSiblingTrackOrSaysWhereItLooked) {
 TEST(Play, WallClockPlayOnTheSimFinishes) {
   const fs::path d = TempDir();
   WriteTrack(d / "short.haptic.csv", 0.2);
-  PlayOptions o;
-  o.track = (d / "short.haptic.csv").string();
-  o.wall_clock = true;
+  PlayOptions o = WallClockPlay(d / "short.haptic.csv");
   o.device = "sim";
   o.print_stats = true;
-  o.loop.start_ramp_s = 0.05;
-  o.loop.end_ramp_s = 0.05;
-  o.max_run_s = 5;
   std::ostringstream log;
   const PlayResult r = Play(o, log);
   EXPECT_EQ(r.status, LoopStatus::kFinished);
@@ -206,14 +213,8 @@ TEST(Play, FakeFalconsLoadFirmwareHomeAndEndWithZeroTorque) {
   const fs::path d = TempDir();
   WriteTrack(d / "falcon.haptic.csv", 0.3);
   FakeFalcons fakes({"FTB", "FTA", "FTC"});
-  PlayOptions o;
+  PlayOptions o = WallClockPlay(d / "falcon.haptic.csv");
   fakes.Install(&o);
-  o.track = (d / "falcon.haptic.csv").string();
-  o.wall_clock = true;
-  o.realtime = false;
-  o.loop.start_ramp_s = 0.05;
-  o.loop.end_ramp_s = 0.05;
-  o.max_run_s = 10;
   std::ostringstream log;
   const PlayResult r = Play(o, log);
   EXPECT_EQ(r.status, LoopStatus::kFinished) << log.str();
@@ -272,12 +273,7 @@ TEST(Play, SigtermMidPlayStopsWithZeroForceOnEveryDevice) {
   const fs::path d = TempDir();
   WriteTrack(d / "long.haptic.csv", 5.0);
   for (int sig : {SIGTERM, SIGINT}) {
-    PlayOptions o;
-    o.track = (d / "long.haptic.csv").string();
-    o.wall_clock = true;
-    o.realtime = false;
-    o.loop.start_ramp_s = 0.05;
-    o.max_run_s = 10;
+    const PlayOptions o = WallClockPlay(d / "long.haptic.csv");
     std::thread killer([sig] {
       std::this_thread::sleep_for(std::chrono::milliseconds(600));
       kill(getpid(), sig);
