@@ -231,6 +231,35 @@ TEST(Play, FakeFalconsLoadFirmwareHomeAndEndWithZeroTorque) {
   }
 }
 
+TEST(Play, ASeatConfigMapsFalconsBySerialAndNamesAMissingOne) {
+  const fs::path d = TempDir();
+  WriteTrack(d / "falcon.haptic.csv", 0.3);
+  FakeFalcons fakes({"FTA", "FTB"});
+  const fs::path config = d / "seat.json";
+  std::ofstream(config) << R"({"devices": [{"role": "right", "serial": "FTA"},
+                                          {"role": "head", "serial": "FTB", "mount": "behind"}]})";
+  PlayOptions o = WallClockPlay(d / "falcon.haptic.csv");
+  fakes.Install(&o);
+  o.seat_config = config.string();
+  std::ostringstream log;
+  const PlayResult r = Play(o, log);
+  EXPECT_EQ(r.status, LoopStatus::kFinished) << log.str();
+  EXPECT_EQ(r.last_sent_force_n[0], 0.0);   // head: FTB
+  EXPECT_EQ(r.last_sent_force_n[1], -1.0);  // left: not configured
+  EXPECT_EQ(r.last_sent_force_n[2], 0.0);   // right: FTA
+  EXPECT_NE(log.str().find("opening falcon serial FTB"), std::string::npos) << log.str();
+  // A configured serial that is not plugged in: named, with what was found.
+  std::ofstream(config) << R"({"devices": [{"role": "left", "serial": "FTZ"}]})";
+  try {
+    Play(o, log);
+    FAIL();
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("FTZ"), std::string::npos) << m;
+    EXPECT_NE(m.find("serial 'FTA'"), std::string::npos) << m;
+  }
+}
+
 TEST(Play, FirmwareThatWillNotLoadIsRetriedThenAClearError) {
   const fs::path d = TempDir();
   WriteTrack(d / "falcon.haptic.csv", 0.3);
