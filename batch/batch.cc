@@ -154,6 +154,7 @@ BatchSummary RunLocalBatch(const BatchOptions& options) {
   auto worker = [&]() {
     for (size_t i = next++; i < mine.size(); i = next++) {
       FilmOutcome o;
+      progress.Started(mine[i]->id);
       try {
         o = ProcessFilm(options, step_exe, plan.settings_hash, *mine[i]);
       } catch (const std::exception& e) {  // e.g. an unwritable output folder

@@ -1,5 +1,6 @@
 #include "batch/progress.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -29,20 +30,38 @@ ProgressReporter::ProgressReporter(std::ostream& out, Mode mode, int total, int 
   if (mode_ == Mode::kBar) DrawBar();
 }
 
-double ProgressReporter::Eta(int worked, double worked_seconds, int left, int workers) {
-  if (left <= 0) return 0.0;
-  if (worked <= 0) return -1.0;
-  return worked_seconds / worked * left / (workers < 1 ? 1 : workers);
+double ProgressReporter::Eta(double mean_film_s, const std::vector<double>& running_elapsed,
+                             int pending, int workers) {
+  if (pending <= 0 && running_elapsed.empty()) return 0.0;
+  if (mean_film_s < 0) return -1.0;
+  double work = pending * mean_film_s;
+  for (double e : running_elapsed) work += std::max(0.0, mean_film_s - e);
+  return work / (workers < 1 ? 1 : workers);
+}
+
+double ProgressReporter::MeanFilmSeconds(int done, double done_seconds, int failed,
+                                         double failed_seconds, int running) {
+  if (done > 0) return done_seconds / done;
+  if (failed > 0 && running == 0) return failed_seconds / failed;
+  return -1.0;
+}
+
+void ProgressReporter::Started(const std::string& id) {
+  std::lock_guard<std::mutex> lock(mu_);
+  running_[id] = std::chrono::steady_clock::now();
 }
 
 void ProgressReporter::Finished(const std::string& id, const std::string& status, double seconds,
                                 bool reused, const std::string& reason) {
   std::lock_guard<std::mutex> lock(mu_);
+  running_.erase(id);
   ++finished_;
-  if (status == "failed") ++failed_;
-  if (!reused) {
-    ++worked_;
-    worked_seconds_ += seconds;
+  if (status == "failed") {
+    ++failed_;
+    failed_seconds_ += seconds;
+  } else if (!reused) {
+    ++done_;
+    done_seconds_ += seconds;
   }
   if (mode_ == Mode::kLines) {
     out_ << "batch: [" << finished_ << "/" << total_ << "] " << status << " " << id;
@@ -63,9 +82,15 @@ void ProgressReporter::DrawBar() {
   const int filled = total_ > 0 ? finished_ * kWidth / total_ : kWidth;
   std::string bar(filled, '#');
   bar += std::string(kWidth - filled, '.');
-  const double eta = Eta(worked_, worked_seconds_, total_ - finished_, workers_);
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const auto now = std::chrono::steady_clock::now();
+  std::vector<double> running_elapsed;
+  for (const auto& [id, t0] : running_) {
+    running_elapsed.push_back(std::chrono::duration<double>(now - t0).count());
+  }
+  const int running = static_cast<int>(running_.size());
+  const double eta = Eta(MeanFilmSeconds(done_, done_seconds_, failed_, failed_seconds_, running),
+                         running_elapsed, total_ - finished_ - running, workers_);
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
   out_ << "\r\033[K[" << bar << "] " << finished_ << "/" << total_;
   if (failed_ > 0) out_ << " (" << failed_ << " failed)";
   out_ << "  elapsed " << FormatDuration(elapsed) << "  ETA "

@@ -7,11 +7,24 @@
 namespace hapcine::batch {
 namespace {
 
-TEST(ProgressTest, EtaUsesOnlyWorkedFilmsAndWorkers) {
-  EXPECT_LT(ProgressReporter::Eta(0, 0.0, 10, 2), 0.0);  // unknown before any film was worked
-  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(2, 20.0, 10, 2), 50.0);
-  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(2, 20.0, 0, 2), 0.0);
-  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(1, 5.0, 3, 0), 15.0);  // workers clamped to 1
+TEST(ProgressTest, EtaCountsPendingAndTheRestOfRunningFilms) {
+  EXPECT_LT(ProgressReporter::Eta(-1, {}, 10, 2), 0.0);  // unknown before any film finished
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(10, {}, 10, 2), 50.0);
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(10, {}, 0, 2), 0.0);
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(5, {}, 3, 0), 15.0);  // workers clamped to 1
+  // Two running films 4 s and 12 s in (a film takes 10 s), 2 pending:
+  // (6 + 0 + 2 x 10) / 2 workers.
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(10, {4, 12}, 2, 2), 13.0);
+  EXPECT_DOUBLE_EQ(ProgressReporter::Eta(-1, {}, 0, 2), 0.0);  // nothing left
+}
+
+TEST(ProgressTest, InstantFailuresDoNotMakeTheEtaShort) {
+  // Three 0.5 s failures, one 10 s film done: the mean is the done film's.
+  EXPECT_DOUBLE_EQ(ProgressReporter::MeanFilmSeconds(1, 10, 3, 1.5, 2), 10.0);
+  // Only failures so far and films still running: unknown, not 0.5 s.
+  EXPECT_LT(ProgressReporter::MeanFilmSeconds(0, 0, 3, 1.5, 2), 0.0);
+  // Only failures and nothing running: their mean.
+  EXPECT_DOUBLE_EQ(ProgressReporter::MeanFilmSeconds(0, 0, 3, 1.5, 0), 0.5);
 }
 
 TEST(ProgressTest, FormatDuration) {
