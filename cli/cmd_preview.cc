@@ -6,6 +6,7 @@
 
 #include "cli/command.h"
 #include "datasets/preview.h"
+#include "player/simulate_seat.h"
 
 namespace hapcine::cli {
 
@@ -13,7 +14,8 @@ int RunPreview(int argc, char** argv) {
   CLI::App app{
       "Render VIDEO with an inset showing the HapSeat's three actuators following the haptic "
       "track\n"
-      "(top view of each 0.10 m workspace with a 1 s trail, and a gauge for height).",
+      "(top view of each 0.10 m workspace with a 1 s trail, and a gauge for height): the target\n"
+      "as a dot and, unless --no-sim, the simulated grip (sim device, Eq. 7 loop) as a ring.",
       "hapcine preview"};
   PreviewOptions o;
   app.add_option("video", o.video, "The video file")->required();
@@ -26,7 +28,18 @@ int RunPreview(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--trail", o.trail_s, "Trail length, seconds")->capture_default_str();
   app.add_option("--crf", o.crf, "x264 quality (0 best .. 51 worst)")->capture_default_str();
+  bool no_sim = false;
+  app.add_flag("--no-sim", no_sim, "Draw the targets only, not the simulated grips");
+  LoopOptions loop;
+  app.add_option("--k", loop.k_n_m, "Spring constant k of Eq. 7 for the simulation, N/m")
+      ->capture_default_str();
+  app.add_option("--d", loop.d_n_s_m, "Damping constant d of Eq. 7 for the simulation, N s/m")
+      ->capture_default_str();
   return RunApp(app, argc, argv, [&] {
+    if (!no_sim) {
+      loop.Check();
+      o.simulate = [&loop](const HapticTrack& t) { return SimulateSeat(t, loop); };
+    }
     const bool tty = isatty(STDERR_FILENO);
     int last = 0;
     const int n = RenderPreview(o, [&](int done, int total) {

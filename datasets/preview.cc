@@ -17,7 +17,7 @@ constexpr double kHalfWorkspaceM = 0.05;
 
 // One panel: top view of the workspace and a Y gauge.
 void DrawPanel(cv::Mat& img, const cv::Rect& r, const char* name, const HapticTrack& track,
-               double t, double trail_s) {
+               const HapticTrack* response, double t, double trail_s) {
   cv::Mat roi = img(r);
   cv::Mat shade(roi.size(), roi.type(), cv::Scalar(30, 30, 30));
   cv::addWeighted(shade, 0.75, roi, 0.25, 0, roi);
@@ -53,7 +53,13 @@ void DrawPanel(cv::Mat& img, const cv::Rect& r, const char* name, const HapticTr
     prev = p;
   }
   track.Sample(t, pos);
-  cv::circle(img, to_px(pos[a]), std::max(3, side / 20), cv::Scalar(40, 220, 255), -1, cv::LINE_AA);
+  const int dot_r = std::max(3, side / 20);
+  cv::circle(img, to_px(pos[a]), dot_r, cv::Scalar(40, 220, 255), -1, cv::LINE_AA);
+  Eigen::Vector3d actual[kNumActuators];
+  if (response) {
+    response->Sample(t, actual);
+    cv::circle(img, to_px(actual[a]), dot_r + 3, cv::Scalar(255, 200, 60), 2, cv::LINE_AA);
+  }
   // Y gauge: up is up.
   const cv::Rect gauge(square.x + side + pad, square.y, gauge_w, side);
   cv::rectangle(img, gauge, cv::Scalar(120, 120, 120), 1);
@@ -62,6 +68,11 @@ void DrawPanel(cv::Mat& img, const cv::Rect& r, const char* name, const HapticTr
   cv::rectangle(img, cv::Point(gauge.x, std::min(gy, gauge.y + side / 2)),
                 cv::Point(gauge.x + gauge_w, std::max(gy, gauge.y + side / 2)),
                 cv::Scalar(40, 220, 255), -1);
+  if (response) {
+    const double ya = std::clamp(actual[a].y() / kHalfWorkspaceM, -1.0, 1.0);
+    const int gya = gauge.y + side / 2 - static_cast<int>(std::lround(ya * side / 2));
+    cv::line(img, {gauge.x - 3, gya}, {gauge.x + gauge_w + 3, gya}, cv::Scalar(255, 200, 60), 2);
+  }
   const double font = std::max(0.3, r.height / 260.0);
   cv::putText(img, name, cv::Point(r.x + pad, r.y + pad + r.height / 9), cv::FONT_HERSHEY_SIMPLEX,
               font, cv::Scalar(230, 230, 230), 1, cv::LINE_AA);
@@ -89,6 +100,8 @@ int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& 
       throw Error(o.video, "no --track given and no " + track_path + " beside the video");
   }
   const HapticTrack track = ReadHapticTrackFile(track_path);
+  HapticTrack response;
+  if (o.simulate) response = o.simulate(track);
   FrameSourceOptions fo;
   fo.max_working_side = o.max_side;
   fo.want_color = true;
@@ -114,7 +127,7 @@ int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& 
     const char* names[kNumActuators] = {"head", "left", "right"};
     for (int a = 0; a < kNumActuators; ++a)
       DrawPanel(img, cv::Rect(x0 + a * panel_w, y0, panel_w, panel_h), names[a], track,
-                frame.time_s, o.trail_s);
+                o.simulate ? &response : nullptr, frame.time_s, o.trail_s);
     writer.Write(img);
     ++n;
     if (progress && n % 10 == 0) progress(n, total);

@@ -5,12 +5,17 @@
 // For each frame at time t, the inset has three panels (head, left hand,
 // right hand). Each panel is the actuator's 0.10 m workspace seen from above
 // (X to the right, Z backward = down in the panel) with a dot at G'_A(t) and
-// a fading trail of the last second, plus a vertical gauge for Y (up). The
-// video is re-encoded as H.264 MP4 (datasets/video_writer.h: written under a
+// a fading trail of the last second, plus a vertical gauge for Y (up). When
+// `simulate` is given (the CLI passes player/simulate_seat.h), the grips'
+// simulated response is drawn too: a ring where each actuator actually is,
+// lagging and overshooting the target dot as a Falcon with a hand on it
+// does, and a tick on the Y gauge. The video is re-encoded as H.264 MP4 (datasets/video_writer.h: written under a
 // temporary name, renamed when complete).
 
 #include <functional>
 #include <string>
+
+#include "core/haptic_track.h"
 
 namespace hapcine {
 
@@ -22,7 +27,9 @@ struct PreviewOptions {
   double inset_fraction = 0.45;  // inset width as a fraction of the frame width
   double trail_s = 1.0;          // length of the trail
   int crf = 20;                  // x264 quality
-  void Check() const;            // throws UsageError
+  // Optional: the seat's response to the track (where the grips are).
+  std::function<HapticTrack(const HapticTrack& targets)> simulate;
+  void Check() const;  // throws UsageError
 };
 
 // Renders; `progress(done, total_estimate)` is called every few frames.

@@ -50,6 +50,37 @@ TEST(Preview, RendersEveryFrameWithTheInsetAndWritesAtomically) {
   const cv::Rect inset(f.bgr.cols / 2, f.bgr.rows / 2, f.bgr.cols / 2, f.bgr.rows / 2);
   EXPECT_GT(cv::mean(f.bgr(inset))[0] + cv::mean(f.bgr(inset))[1], 5.0);
   EXPECT_LT(cv::mean(f.bgr(cv::Rect(0, 0, 20, 20)))[0], 5.0);
+  // With a simulated response, its ring (light blue) is drawn too; the
+  // callback gets the track that was read.
+  auto count_ring_pixels = [](const cv::Mat& bgr) {
+    int n = 0;
+    for (int y = 0; y < bgr.rows; ++y)
+      for (int x = 0; x < bgr.cols; ++x) {
+        const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+        n += p[0] > 180 && p[1] > 130 && p[1] < 230 && p[2] < 110;
+      }
+    return n;
+  };
+  o.inset_fraction = 1;  // panels big enough to draw at 160x120
+  fs::remove(o.output);
+  ASSERT_EQ(RenderPreview(o), 20);
+  auto src1 = OpenFrameSource(o.output, fo);
+  ASSERT_TRUE(src1->Next(&f));
+  EXPECT_EQ(count_ring_pixels(f.bgr), 0);
+  size_t rows_seen = 0;
+  o.simulate = [&rows_seen](const HapticTrack& targets) {
+    rows_seen = targets.samples.size();
+    HapticTrack r = targets;
+    for (auto& s : r.samples) s.pos_m[2] = Eigen::Vector3d(-0.03, 0.02, 0.03);
+    return r;
+  };
+  fs::remove(o.output);
+  EXPECT_EQ(RenderPreview(o), 20);
+  EXPECT_EQ(rows_seen, t.samples.size());
+  auto src2 = OpenFrameSource(o.output, fo);
+  ASSERT_TRUE(src2->Next(&f));
+  EXPECT_GT(count_ring_pixels(f.bgr), 5);
+  o.simulate = nullptr;
   // Bad input: no output left behind.
   o.video = (d / "missing.mp4").string();
   o.track = (d / "clip.haptic.csv").string();
