@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <climits>
+#include <filesystem>
 #include <thread>
 
 #include "batch/content_hash.h"
@@ -48,11 +49,40 @@ std::string BatchOptions::ResolvedStepExe() const {
   return step_exe.empty() ? SelfExecutable() : step_exe;
 }
 
+nlohmann::json ArgumentFileHashes(const std::vector<std::string>& args) {
+  nlohmann::json files = nlohmann::json::object();
+  for (const std::string& word : args) {
+    std::string path = word;
+    if (word.rfind("-", 0) == 0) {
+      const size_t eq = word.find('=');
+      if (eq == std::string::npos) continue;  // a flag or an option name
+      path = word.substr(eq + 1);
+    }
+    std::error_code ec;
+    if (path.empty() || !std::filesystem::is_regular_file(path, ec)) continue;
+    try {
+      files[word] = FullFileHash(path);
+    } catch (const std::exception&) {
+      files[word] = "unreadable";  // the step will fail on it and say why
+    }
+  }
+  return files;
+}
+
 nlohmann::json SettingsJson(const BatchOptions& options) {
-  return {{"hapcine_version", HapcineVersion()},
-          {"estimate_args", options.estimate_args},
-          {"haptics_args", options.haptics_args},
-          {"models", options.models}};
+  nlohmann::json j = {{"hapcine_version", HapcineVersion()},
+                      {"estimate_args", options.estimate_args},
+                      {"haptics_args", options.haptics_args},
+                      {"models", options.models}};
+  // Only when there are any, so settings hashes of runs without file
+  // arguments stay what they were.
+  if (const auto f = ArgumentFileHashes(options.estimate_args); !f.empty()) {
+    j["estimate_arg_files"] = f;
+  }
+  if (const auto f = ArgumentFileHashes(options.haptics_args); !f.empty()) {
+    j["haptics_arg_files"] = f;
+  }
+  return j;
 }
 
 std::string SettingsHash(const BatchOptions& options) {
@@ -62,6 +92,9 @@ std::string SettingsHash(const BatchOptions& options) {
 std::string EstimateStepKey(const BatchOptions& options) {
   nlohmann::json j = {{"hapcine_version", HapcineVersion()},
                       {"estimate_args", options.estimate_args}};
+  if (const auto f = ArgumentFileHashes(options.estimate_args); !f.empty()) {
+    j["estimate_arg_files"] = f;
+  }
   return Fnv1a64Hex(j.dump());
 }
 
@@ -70,6 +103,13 @@ std::string HapticsStepKey(const BatchOptions& options, const std::string& model
                       {"estimate_args", options.estimate_args},
                       {"haptics_args", options.haptics_args},
                       {"model", model}};
+  // The camera path it reads depends on the estimate settings, already in.
+  if (const auto f = ArgumentFileHashes(options.estimate_args); !f.empty()) {
+    j["estimate_arg_files"] = f;
+  }
+  if (const auto f = ArgumentFileHashes(options.haptics_args); !f.empty()) {
+    j["haptics_arg_files"] = f;
+  }
   return Fnv1a64Hex(j.dump());
 }
 

@@ -50,10 +50,17 @@ struct BatchOptions {
 
 // Settings that change outputs, as recorded in done.json, and their hashes.
 // Each step has its own key so a change of haptic model does not redo the
-// (slow) estimate step.
+// (slow) estimate step. A step argument naming an existing file (`--seat
+// seat.json`, `--keyframes=k.csv`) counts with the file's content, so editing
+// that file makes the outputs made with it stale.
 nlohmann::json SettingsJson(const BatchOptions& options);
 std::string SettingsHash(const BatchOptions& options);
 std::string EstimateStepKey(const BatchOptions& options);
 std::string HapticsStepKey(const BatchOptions& options, const std::string& model);
+
+// {"<word>": "fnv1a64:<hex>"} for each argument word (or the value of a
+// `--name=value` word) that names an existing regular file, relative paths
+// taken from the current folder (where the steps run).
+nlohmann::json ArgumentFileHashes(const std::vector<std::string>& args);
 
 }  // namespace hapcine::batch

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "batch/content_hash.h"
 #include "batch/fake_step_for_test.h"
 #include "batch/library.h"
 #include "batch/state_files.h"
@@ -158,6 +159,39 @@ TEST_F(BatchTest, ChangedSettingsRedoOnlyTheStepsTheyAffect) {
   s = RunLocalBatch(options_);
   EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
   EXPECT_EQ(LogLines(log_, "estimate ").size(), 15u);
+}
+
+TEST_F(BatchTest, EditingAFileNamedInStepArgumentsRedoesTheStepsThatReadIt) {
+  const std::string seat = dir_.path() + "/seat.json";
+  WriteFile(seat, "{\"k\": 1}\n");
+  options_.haptics_args = {"--seat", seat, "--keyframes=" + seat};
+  RunLocalBatch(options_);
+  BatchSummary s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kSkipped), 5);  // same file, same content: up to date
+
+  WriteFile(seat, "{\"k\": 2}\n");  // same name, same size, new content
+  s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 5);
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 5u);  // the camera paths do not read it
+  EXPECT_EQ(LogLines(log_, "haptics cinematic ").size(), 10u);
+  const auto done = ReadJsonFile(FilmDir("a.mp4") + "/done.json");
+  ASSERT_TRUE(done.has_value());
+  EXPECT_EQ((*done)["settings"]["haptics_arg_files"][seat], FullFileHash(seat));
+  EXPECT_TRUE((*done)["settings"]["haptics_arg_files"].contains("--keyframes=" + seat));
+}
+
+TEST(BatchOptionsTest, ArgumentFileHashesSeeOnlyExistingFiles) {
+  TempDir dir("batch_argfiles");
+  const std::string f = dir.path() + "/k.csv";
+  WriteFile(f, "0,1,zoom,1\n");
+  const auto h = ArgumentFileHashes({"--keyframes", f, "--rate=100", "--x=" + f, "--no-washout",
+                                     dir.path(), dir.path() + "/missing.csv"});
+  EXPECT_EQ(h.size(), 2u);  // f and --x=f; not the folder, the missing file or the numbers
+  EXPECT_EQ(h[f], FullFileHash(f));
+  EXPECT_EQ(h["--x=" + f], FullFileHash(f));
+  BatchOptions a;
+  EXPECT_TRUE(ArgumentFileHashes(a.haptics_args).empty());
+  EXPECT_FALSE(SettingsJson(a).contains("haptics_arg_files"));  // old hashes unchanged
 }
 
 TEST_F(BatchTest, CrashingSilentAndMissingStepProgramsAreRecordedNotFatal) {
