@@ -152,6 +152,7 @@ bool HapticLoop::Tick(double now_s) {
     rec.media_s = t;
     rec.flags = 0;
     rec.gain = static_cast<float>(gain);
+    bool all_homed = true;
     for (int a = 0; a < kNumActuators; ++a) {
       Device* dev = seat_.devices[a].get();
       if (!dev) continue;
@@ -189,7 +190,9 @@ bool HapticLoop::Tick(double now_s) {
         rec.force_n[a][k] = static_cast<float>(force_n_[a][k]);
       }
       if (s.fault != DeviceFault::kNone) return Fail(DeviceFaultName(s.fault));
+      all_homed = all_homed && s.homed;
     }
+    all_homed_.store(all_homed, std::memory_order_relaxed);
 
     if (r.valid && !r.paused && !ending_) {
       const double after = now_fn_ ? now_fn_() : now_s;

@@ -83,6 +83,9 @@ class HapticLoop {
   const DeviceState& last_state(int a) const { return state_[a]; }
   // Media time of the last tick; readable from another thread (progress).
   double last_media_s() const { return last_media_s_.load(std::memory_order_relaxed); }
+  // Every device of the seat reported homed at the last tick; readable from
+  // another thread (the player starts the film then).
+  bool all_homed() const { return all_homed_.load(std::memory_order_relaxed); }
   double gain() const { return watchdog_.gain(); }
   // Writes the ring buffer (oldest first) as CSV. Not real-time safe.
   void DumpRecent(std::ostream& out) const;
@@ -111,6 +114,7 @@ class HapticLoop {
   bool have_last_tick_ = false;
   double last_tick_s_ = 0;
   std::atomic<double> last_media_s_{0};
+  std::atomic<bool> all_homed_{false};
   ClockReading prev_reading_;
   bool ending_ = false;
   double end_start_s_ = 0;

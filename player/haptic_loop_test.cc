@@ -325,9 +325,11 @@ TEST(HapticLoop, NoPositionForceBeforeHoming) {
   for (int i = 0; i < 499; ++i) {
     ASSERT_TRUE(drv.Step(loop));
     ASSERT_EQ(Sim(seat, 0).last_force_n(), Eigen::Vector3d::Zero()) << i;
+    ASSERT_FALSE(loop.all_homed()) << i;
   }
   // After homing the start ramp begins where the grip is.
   for (int i = 0; i < 3; ++i) drv.Step(loop);
+  EXPECT_TRUE(loop.all_homed());
   EXPECT_NEAR(loop.last_target_m(0).x(), -0.02, 1e-3);
 }
 

@@ -116,12 +116,6 @@ HapSeat MakeSeat(const PlayOptions& o, std::ostream& log) {
 
 namespace {
 
-bool AllHomed(const HapSeat& seat, const HapticLoop& loop) {
-  for (int a = 0; a < kNumActuators; ++a)
-    if (seat.devices[a] && !loop.last_state(a).homed) return false;
-  return true;
-}
-
 // Checks the track's length against the video's (mpv's duration).
 void CheckDuration(const PlayOptions& o, const std::string& track_path, double track_end_s,
                    double video_s, PlayResult* result) {
@@ -225,7 +219,7 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
   auto progress = [&] {
     const double now = SteadySeconds();
     if (holding) {
-      if (!AllHomed(seat, loop)) return;
+      if (!loop.all_homed()) return;
       holding = false;
       log << "all Falcons homed: playing\n";
       if (mpv) mpv->SetPause(false);
