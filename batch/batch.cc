@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -76,6 +77,24 @@ std::string BatchSummary::ToText() const {
       << Count(FilmStatus::kSkipped) << " skipped (up to date), " << Count(FilmStatus::kFailed)
       << " failed, " << Count(FilmStatus::kDuplicate) << " duplicate";
   if (Count(FilmStatus::kBusy) > 0) out << ", " << Count(FilmStatus::kBusy) << " busy elsewhere";
+  // Where the time went: steps run (not reused), by kind (estimate, haptics-<model>).
+  std::map<std::string, std::pair<int, double>> by_step;
+  for (const FilmOutcome& f : films) {
+    for (const StepRecord& st : f.steps) {
+      if (st.reused) continue;
+      by_step[st.name].first += 1;
+      by_step[st.name].second += st.seconds;
+    }
+  }
+  if (!by_step.empty()) {
+    out << "\nsteps run:";
+    const char* sep = " ";
+    for (const auto& [name, n_s] : by_step) {
+      out << sep << name << " " << n_s.first << "x, " << n_s.second << " s (mean "
+          << n_s.second / n_s.first << " s)";
+      sep = "; ";
+    }
+  }
   out << "\n\n";
   for (const FilmOutcome& f : films) {
     out << std::left << std::setw(9) << FilmStatusName(f.status) << " " << std::right

@@ -109,6 +109,10 @@ TEST_F(BatchTest, FirstRunDoesGoodFilmsRecordsFailuresAndDuplicates) {
   EXPECT_NE(text.find("9 films: 5 done, 0 skipped (up to date), 3 failed, 1 duplicate"),
             std::string::npos)
       << text;
+  // Timings by step: estimate ran for the 5 good films and the 2 that failed
+  // in it (not the empty file, failed before any step); haptics for the 5.
+  EXPECT_NE(text.find("steps run: estimate 7x, "), std::string::npos) << text;
+  EXPECT_NE(text.find("; haptics-cinematic 5x, "), std::string::npos) << text;
 }
 
 TEST_F(BatchTest, RerunSkipsWhatIsDoneAndRetriesFailures) {
