@@ -1,9 +1,11 @@
 // Fills the frames a keyframe-only camera path skipped (the COLMAP peer sees
-// every Nth frame): between two estimated frames at most --max-gap apart the
+// every Nth frame). Frames with confidence 0 (`hapcine convert --from-colmap`
+// writes those for frames COLMAP did not register) count as skipped. Between two estimated frames at most --max-gap apart the
 // pose is interpolated (slerp, linear centre, geometric focal); wider gaps
 // and the ends stay empty, so `hapcine eval` counts them as not estimated.
 //
 //   hapcine_path_fill IN.camera.csv OUT.camera.csv --fps 24 [--max-gap 8]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -23,7 +25,12 @@ int main(int argc, char** argv) {
     const double fps = std::stod(bench::ArgValue(argc, argv, "--fps", "0"));
     const int max_gap = std::stoi(bench::ArgValue(argc, argv, "--max-gap", "8"));
     if (!(fps > 0) || max_gap < 1) throw UsageError("--fps must be > 0 and --max-gap >= 1");
-    const CameraPath in = ReadCameraPathFile(argv[1]);
+    CameraPath in = ReadCameraPathFile(argv[1]);
+    const size_t rows = in.frames.size();
+    in.frames.erase(std::remove_if(in.frames.begin(), in.frames.end(),
+                                   [](const CameraFrame& f) { return f.confidence && *f.confidence <= 0; }),
+                    in.frames.end());
+    if (in.frames.empty()) throw Error(argv[1], "no frame with a non-zero confidence");
     CameraPath out;
     out.metadata = in.metadata;
     out.metadata["fps"] = std::to_string(fps);
@@ -44,7 +51,8 @@ int main(int argc, char** argv) {
       }
     }
     WriteCameraPathFile(out, argv[2]);
-    std::fprintf(stderr, "path_fill: %zu estimated frames -> %zu frames\n", in.frames.size(), out.frames.size());
+    std::fprintf(stderr, "path_fill: %zu of %zu rows estimated -> %zu frames\n", in.frames.size(), rows,
+                 out.frames.size());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hapcine_path_fill: %s\n", e.what());
     return 1;
