@@ -15,6 +15,8 @@ PACKAGES=(
   slurmctld slurmd slurm-client munge
   # Headless playback tests and screenshots.
   xvfb
+  # Benchmarks (bench/run.sh): /usr/bin/time for wall time and peak RSS.
+  time
 )
 
 missing=()
