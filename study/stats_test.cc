@@ -173,6 +173,19 @@ TEST(ShapiroWilkTest, ToothGrowthLength) {
   EXPECT_NEAR(s.p, r.p, 1e-10);
 }
 
+TEST(ShapiroWilkTest, ShapiroWilk1965WeightsOfElevenMen) {
+  // The worked example of Shapiro & Wilk (1965, Biometrika 52): weights in
+  // pounds of 11 men, W = 0.79 (significant at the 1% level). R:
+  // shapiro.test(c(148,154,158,160,161,162,166,170,182,195,236)) gives
+  // W = 0.78881, p-value = 0.006704. Exercises the 4 <= n <= 11 branch of
+  // Royston's p-value.
+  const auto r = ShapiroWilk({148, 154, 158, 160, 161, 162, 166, 170, 182, 195, 236});
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_EQ(r.n, 11);
+  EXPECT_NEAR(r.w, 0.78881, 5e-6);
+  EXPECT_NEAR(r.p, 0.006704, 5e-7);
+}
+
 TEST(ShapiroWilkTest, ExactForThree) {
   // n = 3: a = (-sqrt(.5), 0, sqrt(.5)). x = {1, 2, 4}: (a.x)^2 = 4.5,
   // SS = 42/9 -> W = 0.9642857; p = (6/pi)(asin(sqrt W) - pi/3) = 0.6368868.
