@@ -88,7 +88,7 @@ bool HapticLoop::Tick(double now_s) {
     ++stats_.ticks;
     if (!std::isfinite(now_s)) return Fail("non-finite wall time");
 
-    if (StopRequested()) {
+    if (o_.stop_on_request && StopRequested()) {
       ZeroAll();
       status_ = LoopStatus::kStopped;
       return false;

@@ -43,6 +43,7 @@ struct LoopOptions {
   double end_ramp_s = 1.0;    // back to the centre at the end of the film
   double seek_jump_s = 0.25;  // a clock jump larger than this is a seek
   bool finish_at_end = true;  // Tick() returns false at the film's end, back at the centre
+  bool stop_on_request = true;  // StopRequested() (SIGINT/SIGTERM) stops the loop
   SafetyOptions safety;
   void Check() const;  // throws UsageError
 };

@@ -25,6 +25,7 @@ HapticTrack SimulateSeat(const HapticTrack& track, const LoopOptions& loop_optio
   FakeClock clock;
   LoopOptions lo = loop_options;
   lo.finish_at_end = true;
+  lo.stop_on_request = false;  // offline, no device: a stale stop flag must not cut it short
   HapticLoop loop(track, seat, clock, lo);
 
   HapticTrack out;
