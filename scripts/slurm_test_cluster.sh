@@ -146,7 +146,7 @@ cmd=$1; shift
 case "$cmd" in
   estimate)
     in=$1; out=$3
-    sleep 0.2
+    sleep "${FAKE_ESTIMATE_DELAY:-0.2}"
     IFS= read -r -d '' content < "$in"
     if [[ $content == *corrupt* ]]; then echo "hapcine estimate: $in: corrupt video stream" >&2; exit 1; fi
     if [[ $content != FAKEVIDEO* ]]; then echo "hapcine estimate: $in: no video stream found" >&2; exit 1; fi
@@ -184,6 +184,48 @@ counts() {
 outputs() {
   (cd "$1" && find . -type f \( -name '*.camera.csv' -o -name '*.haptic.csv' -o -name '*.hjif' \) \
      -not -path '*/.tmp/*' -print0 | sort -z | xargs -0 -r sha256sum)
+}
+
+# A job array cancelled midway (scancel: tasks and their steps killed) and
+# submitted again must finish the films left, skip the ones done, and give
+# the same outputs as the local run, with no temporary left behind.
+cancel_resume_test() {
+  local exe=$1 fake=$2 out=$WORK/cancel
+  log "Slurm run cancelled midway (scancel), then submitted again"
+  FAKE_ESTIMATE_DELAY=2 "$exe" batch "$WORK/library" -o "$out" --slurm --shards 2 --jobs 1 \
+    --no-wait --hapcine-exe "$fake" 2>"$WORK/cancel.err" || { cat "$WORK/cancel.err" >&2; fail "submit"; }
+  local job
+  job=$(tail -n1 "$out/slurm/sbatch.log" | cut -d';' -f1)
+  [[ "$job" =~ ^[0-9]+$ ]] || fail "no job id in $out/slurm/sbatch.log"
+  local n=0
+  for _ in $(seq 600); do
+    n=$(find "$out" -mindepth 2 -maxdepth 2 -name done.json | wc -l)
+    [ "$n" -ge 1 ] && break
+    sleep 0.1
+  done
+  [ "$n" -ge 1 ] || fail "no film finished within 60 s of submission"
+  scancel "$job" || fail "scancel $job"
+  for _ in $(seq 300); do
+    [ -z "$(squeue -h -j "$job" 2>/dev/null)" ] && break
+    sleep 0.1
+  done
+  [ -z "$(squeue -h -j "$job" 2>/dev/null)" ] || fail "job $job still queued 30 s after scancel"
+  sleep 0.5  # killed steps go
+  n=$(find "$out" -mindepth 2 -maxdepth 2 -name done.json | wc -l)
+  [ "$n" -lt 6 ] || fail "scancel came too late to test (all 6 films done)"
+  "$exe" batch --status "$out" | grep -q "pending" || fail "status after scancel: $("$exe" batch --status "$out")"
+
+  local rc=0
+  "$exe" batch "$WORK/library" -o "$out" --slurm --shards 2 --jobs 1 --hapcine-exe "$fake" \
+    2>"$WORK/cancel2.err" || rc=$?
+  [ $rc -eq 1 ] || { cat "$WORK/cancel2.err" >&2; fail "re-submission exit $rc"; }
+  [ "$(counts "$out/summary.json")" = "$((6 - n)) $n 3 1" ] \
+    || fail "after scancel + re-submission: counts $(counts "$out/summary.json"), expected $((6 - n)) $n 3 1"
+  outputs "$out" | diff "$WORK/local.sums" - >&2 || fail "outputs after scancel + re-submission differ from the local run's"
+  local left
+  left=$(find "$out" \( -name .tmp -o -name '*.tmp-*' \) | head -n3)
+  [ -z "$left" ] || fail "temporaries left: $left"
+  log "cancelled with $n of 6 films done; re-submission did the other $((6 - n)), outputs equal the local run's"
 }
 
 # The real pipeline (synth -> estimate -> haptics) on a library of two
@@ -309,6 +351,7 @@ run_test() {
     || fail "re-run counts $(counts "$WORK/slurm/summary.json"), expected 0 6 3 1"
   outputs "$WORK/slurm" | diff "$WORK/local.sums" - >&2 || fail "re-run changed outputs"
 
+  cancel_resume_test "$exe" "$fake"
   real_pipeline_test "$exe"
   log "PASS in $((SECONDS - t0)) s (cluster up ${t_up} s, first job array ${t_array} s)"
 }
