@@ -2,6 +2,7 @@
 
 #include <libusb.h>
 
+#include <cstdio>
 #include <sstream>
 
 #include "core/error.h"
@@ -103,6 +104,23 @@ std::string DescribeFalconUsbDevices(const std::vector<UsbDeviceInfo>& devices) 
     if (!d.problem.empty()) s << ": " << d.problem;
     s << "]";
   }
+  return s.str();
+}
+
+std::string DescribeAllUsbDevices() {
+  libusb_device** list = nullptr;
+  const ssize_t n = libusb_get_device_list(Context(), &list);
+  std::ostringstream s;
+  int shown = 0;
+  for (ssize_t i = 0; i < n; ++i) {
+    libusb_device_descriptor desc;
+    if (libusb_get_device_descriptor(list[i], &desc) != 0) continue;
+    char id[16];
+    std::snprintf(id, sizeof(id), "%04x:%04x", desc.idVendor, desc.idProduct);
+    s << (shown++ ? ", " : "USB devices present: ") << id;
+  }
+  if (list) libusb_free_device_list(list, 1);
+  if (shown == 0) return "libusb sees no USB devices at all (no access to /dev/bus/usb?)";
   return s.str();
 }
 

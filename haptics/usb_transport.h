@@ -57,6 +57,10 @@ struct UsbDeviceInfo {
 std::vector<UsbDeviceInfo> ListFalconUsbDevices();
 // "none found" or one line per device, for error messages.
 std::string DescribeFalconUsbDevices(const std::vector<UsbDeviceInfo>& devices);
+// Every USB device libusb sees, as "vid:pid" (Falcon or not), for the "no
+// Falcon" message: "USB devices present: 1d6b:0002, 046d:c52b" or a note
+// that libusb sees none at all.
+std::string DescribeAllUsbDevices();
 
 // Opens the Falcon with FTDI serial `serial` (empty: the only one present),
 // detaching ftdi_sio and claiming interface 0. Throws hapcine::Error naming

@@ -98,8 +98,11 @@ HapSeat MakeSeat(const PlayOptions& o, std::ostream& log) {
     if (!d.problem.empty()) throw Error("falcon", DescribeFalconUsbDevices(found));
     serials.push_back(d.serial);
   }
-  if (serials.empty())
-    throw Error("falcon", DescribeFalconUsbDevices(found) + " (is it plugged in and powered?)");
+  if (serials.empty()) {
+    std::string what = DescribeFalconUsbDevices(found) + " (is it plugged in and powered?)";
+    if (!o.list_falcons) what += "; " + DescribeAllUsbDevices();  // the real bus only
+    throw Error("falcon", what);
+  }
   std::sort(serials.begin(), serials.end());
   // Without a config: 1 Falcon -> head; 2 -> left, right; 3 -> head, left,
   // right in serial order.
