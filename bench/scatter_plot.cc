@@ -109,7 +109,11 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
   if (chart.y_from_zero && !chart.log_y) y_lo = std::min(0.0, y_lo);
 
   cv::Mat img(chart.height_px, chart.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
-  const int left = 80, right = 230, top = 50, bottom = 60;
+  // The legend column is as wide as the longest name.
+  int legend_w = 0;
+  for (const auto& s : chart.series)
+    legend_w = std::max(legend_w, cv::getTextSize(s.name, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, nullptr).width);
+  const int left = 80, right = legend_w + 60, top = 64, bottom = chart.x_categories.empty() ? 60 : 76;
   const cv::Rect area(left, top, chart.width_px - left - right, chart.height_px - top - bottom);
   if (area.width < 50 || area.height < 50) throw Error(chart.title, "chart too small");
   auto map = [](double v, double lo, double hi, bool log) {
@@ -121,11 +125,25 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
   };
   const cv::Scalar black(0, 0, 0), grid(225, 225, 225);
   const int font = cv::FONT_HERSHEY_SIMPLEX;
-  for (double t : AxisTicks(x_lo, x_hi, chart.log_x)) {
-    const int px = to_px(t, y_lo).x;
-    cv::line(img, {px, area.y}, {px, area.y + area.height}, grid, 1);
-    const std::string s = TickText(t);
-    cv::putText(img, s, {px - 4 * static_cast<int>(s.size()), area.y + area.height + 20}, font, 0.45, black, 1, cv::LINE_AA);
+  if (chart.x_categories.empty()) {
+    for (double t : AxisTicks(x_lo, x_hi, chart.log_x)) {
+      const int px = to_px(t, y_lo).x;
+      cv::line(img, {px, area.y}, {px, area.y + area.height}, grid, 1);
+      const std::string s = TickText(t);
+      cv::putText(img, s, {px - 4 * static_cast<int>(s.size()), area.y + area.height + 20}, font, 0.45, black, 1, cv::LINE_AA);
+    }
+  } else {
+    // Labels on two alternating rows so neighbours do not overlap.
+    for (size_t k = 0; k < chart.x_categories.size(); ++k) {
+      const double t = k + 1.0;
+      if (t < x_lo || t > x_hi) continue;
+      const int px = to_px(t, y_lo).x;
+      cv::line(img, {px, area.y}, {px, area.y + area.height}, grid, 1);
+      const std::string& s = chart.x_categories[k];
+      const int w = cv::getTextSize(s, font, 0.38, 1, nullptr).width;
+      cv::putText(img, s, {px - w / 2, area.y + area.height + 18 + 16 * static_cast<int>(k % 2)}, font, 0.38, black, 1,
+                  cv::LINE_AA);
+    }
   }
   for (double t : AxisTicks(y_lo, y_hi, chart.log_y)) {
     const int py = to_px(x_lo, t).y;
@@ -134,7 +152,7 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
     cv::putText(img, s, {area.x - 10 - 9 * static_cast<int>(s.size()), py + 5}, font, 0.45, black, 1, cv::LINE_AA);
   }
   cv::rectangle(img, area, black, 1);
-  cv::putText(img, chart.title, {left, 30}, font, 0.65, black, 1, cv::LINE_AA);
+  cv::putText(img, chart.title, {left, 26}, font, 0.65, black, 1, cv::LINE_AA);
   cv::putText(img, chart.x_label, {area.x + area.width / 2 - 4 * static_cast<int>(chart.x_label.size()),
                                    chart.height_px - 18}, font, 0.5, black, 1, cv::LINE_AA);
   cv::putText(img, chart.y_label, {8, top - 10}, font, 0.5, black, 1, cv::LINE_AA);

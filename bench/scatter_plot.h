@@ -23,6 +23,8 @@ struct ScatterChart {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
   bool y_from_zero = false;  // linear y axis starting at 0
+  // Category axis: when set, x ticks sit at 1..N with these labels.
+  std::vector<std::string> x_categories;
   int width_px = 900, height_px = 560;
   std::vector<ScatterSeries> series;
 };
