@@ -58,7 +58,9 @@ int RunStudy(int argc, char** argv) {
   CLI::App* run = app.add_subcommand(
       "run",
       "Run one participant's session: training (each clip once with one random condition), then "
-      "each pair (stimulus 1 then 2) and the answer 1 or 2. Every answer is journalled at once "
+      "each pair (stimulus 1 then 2) and the answer: one key press (1 or 2, r replays, q stops) "
+      "on a terminal, one line per answer from a pipe, or --responses FILE. Every answer is "
+      "journalled at once "
       "(fsync): stop at any time (q, Ctrl-C) and run the same command again to resume. Exit 0 when "
       "complete (results file written), 1 if stopped early or on failure.");
   run->add_option("plan", run_opt.plan_path, "Plan file from `hapcine study plan`")->required();
