@@ -71,10 +71,8 @@ DeviceState FalconDevice::Exchange(const Eigen::Vector3d& force_n) {
   if (homed && force_n.allFinite()) {
     const Eigen::Vector3d falcon_force = options_.seat_from_falcon.transpose() * force_n;
     Eigen::Vector3d tau;
-    if (kin_.ForceToTorque(falcon_pos_m_, falcon_force, &tau)) {
-      counts = options_.counts_per_nm * tau;
-      sent_n = force_n.norm();
-    }
+    if (kin_.ForceToTorque(falcon_pos_m_, falcon_force, &tau))
+      sent_n = force_n.norm() * TorqueCounts(tau, options_.counts_per_nm, &counts);
   }
   for (int i = 0; i < 3; ++i) {
     cmd.torque[i] = SaturateTorque(counts[i]);

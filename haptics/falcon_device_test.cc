@@ -91,6 +91,16 @@ TEST(FalconDevice, TorquesSaturateAndNonFiniteForceSendsZero) {
   for (int k = 0; k < 3; ++k) EXPECT_EQ(std::abs(rig.fake->last_command().torque[k]), 32767);
   rig.dev->Exchange(Eigen::Vector3d(std::nan(""), 0, 0));
   for (int k = 0; k < 3; ++k) EXPECT_EQ(rig.fake->last_command().torque[k], 0);
+  // A huge sideways force: the largest torque is at the limit and the three
+  // keep the proportions of J^T F, so the rendered force keeps its direction.
+  const Eigen::Vector3d f(1e9, 2e8, 0);
+  rig.dev->Exchange(f);
+  Eigen::Vector3d tau;
+  ASSERT_TRUE(FalconKinematics().ForceToTorque(rig.fake->falcon_pos_m, f, &tau));
+  const Eigen::Vector3d want = tau * (32767.0 / tau.cwiseAbs().maxCoeff());
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(std::abs(rig.fake->last_command().torque[k]), std::abs(want[k]), 1.0) << k;
+  }
 }
 
 TEST(FalconDevice, UnplugAndSilenceAreFaults) {

@@ -129,4 +129,14 @@ bool FalconKinematics::ForceToTorque(const Eigen::Vector3d& p_m, const Eigen::Ve
   return true;
 }
 
+double TorqueCounts(const Eigen::Vector3d& torque_nm, double counts_per_nm,
+                    Eigen::Vector3d* counts) {
+  *counts = counts_per_nm * torque_nm;
+  const double peak = counts->cwiseAbs().maxCoeff();
+  if (!(peak > 32767.0)) return 1.0;
+  const double scale = 32767.0 / peak;
+  *counts *= scale;
+  return scale;
+}
+
 }  // namespace hapcine

@@ -43,6 +43,13 @@ constexpr double kFalconAngleOffsetDeg = 35.0;
 double EncoderToAngleRad(int16_t counts);
 double AngleRadToEncoder(double theta1_rad);  // not rounded; for tests/sim
 
+// Motor command counts for arm torques: counts_per_nm * tau, all three
+// scaled together when the largest exceeds 16 bits (near a singularity a
+// modest force can need that), so the force keeps its direction; clipping
+// one motor alone would push another way. Returns the scale (<= 1).
+double TorqueCounts(const Eigen::Vector3d& torque_nm, double counts_per_nm,
+                    Eigen::Vector3d* counts);
+
 class FalconKinematics {
  public:
   explicit FalconKinematics(const FalconGeometry& g = FalconGeometry());

@@ -113,5 +113,16 @@ TEST(FalconKinematics, ForwardFromAnglesNoPositionProducesFailsCleanly) {
   EXPECT_TRUE(p.allFinite());
 }
 
+TEST(FalconKinematics, TorqueCountsScaleAllThreeTogetherPast16Bits) {
+  Eigen::Vector3d counts;
+  EXPECT_EQ(TorqueCounts(Eigen::Vector3d(0.1, -0.2, 0.3), -10000, &counts), 1.0);
+  EXPECT_TRUE(counts.isApprox(Eigen::Vector3d(-1000, 2000, -3000)));
+  const double scale = TorqueCounts(Eigen::Vector3d(10, -5, 2), -10000, &counts);
+  EXPECT_NEAR(scale, 32767.0 / 100000.0, 1e-12);
+  EXPECT_NEAR(counts[0], -32767, 1e-9);
+  EXPECT_NEAR(counts[1] / counts[0], -0.5, 1e-12);  // proportions kept
+  EXPECT_NEAR(counts[2] / counts[0], 0.2, 1e-12);
+}
+
 }  // namespace
 }  // namespace hapcine

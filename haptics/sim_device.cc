@@ -47,7 +47,8 @@ Eigen::Vector3d SimDevice::RenderedForce(const Eigen::Vector3d& force_n) const {
   if (!kin_.ForceToTorque(p, force_n, &tau) || !kin_.AngleJacobian(p, &dtheta_dp))
     return Eigen::Vector3d::Zero();
   Eigen::Vector3d counts;
-  for (int i = 0; i < 3; ++i) counts[i] = SaturateTorque(options_.counts_per_nm * tau[i]);
+  TorqueCounts(tau, options_.counts_per_nm, &counts);  // as FalconDevice sends them
+  for (int i = 0; i < 3; ++i) counts[i] = SaturateTorque(counts[i]);
   // F = (dtheta/dp)^T tau.
   return dtheta_dp.transpose() * (counts / options_.counts_per_nm);
 }
