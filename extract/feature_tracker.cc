@@ -80,6 +80,8 @@ struct FeatureTracker::Impl {
   std::vector<cv::Point2f> prev_points;
   std::vector<long> prev_ids;
   // The current run of transition-flagged frames, as the tracker saw it.
+  bool after_blank = false;    // the previous frame was blank
+  RelinkResult bridge;         // re-links across a fade through black
   bool run_tracked = true;    // every frame of the run kept kMotionRunSurvival of its tracks
   double run_motion_px = 0;   // sum over the run of the median track displacement
 
@@ -247,10 +249,19 @@ struct FeatureTracker::Impl {
       first = false;
     } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.cols)) {
       // Gradual change explained by tracked motion: same shot, keep tracking.
+    } else if (decision.boundary == ShotBoundary::kFade && after_blank &&
+               options.descriptor_recovery && relinker.has_keyframe() &&
+               (bridge = relinker.Relink(frame.gray, 2 * options.max_tracks)).points.size() >=
+                   kMinTracksForCollapse &&
+               !bridge.current_from_key.empty()) {
+      // Fade through black within one shot: the picture after the black
+      // matches the last good frame before it, so the shot goes on and the
+      // re-linked tracks carry the motion made in the dark.
     } else if (decision.boundary != ShotBoundary::kNone) {
       out.boundary = decision.boundary;
       ++shot;
       DropTracks();
+      bridge = {};
     }
     if (!decision.transition) {
       run_tracked = true;
@@ -260,9 +271,15 @@ struct FeatureTracker::Impl {
     out.blank = decision.blank;
     out.transition = decision.transition;
     if (decision.blank) {
-      DropTracks();
+      // Tracks end, but the relinker keeps the last good frame before the
+      // black, to bridge a fade through black (above).
+      prev_pyramid.clear();
+      prev_points.clear();
+      prev_ids.clear();
+      after_blank = true;
       return out;
     }
+    after_blank = false;
 
     const cv::Size size = frame.gray.size();
     std::vector<cv::Mat> pyramid = std::move(spare_pyramid);
@@ -282,7 +299,24 @@ struct FeatureTracker::Impl {
     const bool collapsed =
         had_tracks && before >= kMinTracksForCollapse && survived < kCollapseFraction * before;
     RelinkResult r;
-    if (collapsed && options.descriptor_recovery && relinker.has_keyframe()) {
+    if (!bridge.points.empty()) {
+      // Sub-pixel refinement against the keyframe, on a copy of this frame
+      // with the keyframe's mean and contrast (a fade-in is dimmer, and LK
+      // assumes constant brightness). Too few refined: the matched corners.
+      r = std::move(bridge);
+      bridge = {};
+      cv::Scalar key_mean, key_std, cur_mean, cur_std;
+      cv::meanStdDev(relinker.key_gray(), key_mean, key_std);
+      cv::meanStdDev(frame.gray, cur_mean, cur_std);
+      const double gain = key_std[0] / std::max(cur_std[0], 1e-3);
+      cv::Mat matched;
+      frame.gray.convertTo(matched, -1, gain, key_mean[0] - gain * cur_mean[0]);
+      std::vector<cv::Mat> matched_pyramid;
+      cv::buildOpticalFlowPyramid(matched, matched_pyramid, Window(), options.pyramid_levels - 1, true);
+      RelinkResult refined = r;
+      RefineRelinked(matched_pyramid, size, &refined);
+      if (refined.points.size() >= kMinTracksForCollapse) r = std::move(refined);
+    } else if (collapsed && options.descriptor_recovery && relinker.has_keyframe()) {
       r = relinker.Relink(frame.gray, 2 * options.max_tracks);
       if (!r.points.empty()) RefineRelinked(pyramid, size, &r);
     }

@@ -322,6 +322,38 @@ TEST(FeatureTrackerTest, FadeThroughBlackSplitsShots) {
   EXPECT_GT(out[40].quality, 0.8);
 }
 
+TEST(FeatureTrackerTest, FadeThroughBlackOnTheSameSceneKeepsTheShot) {
+  // A panning camera fades to black and back on the same scene: the frame
+  // after the black re-links to the last good frame before it (descriptor
+  // matching), so there is no boundary and track ids carry on.
+  const cv::Mat a = NoiseTexture({1000, 800}, 14, {0.5, 0.0, -0.5});
+  FeatureTracker tracker(SmallOptions());
+  std::vector<FrameTracks> out;
+  for (int i = 0; i <= 40; ++i) {
+    double gain = 1;
+    if (i >= 10 && i < 20) gain = 1 - (i - 9) / 10.0;
+    if (i >= 20 && i < 23) gain = 0;
+    if (i >= 23 && i < 33) gain = (i - 22) / 10.0;
+    cv::Mat img = Shifted(a, 3.0 * i, 0, kDecoded);
+    img.convertTo(img, -1, gain, 0);
+    out.push_back(tracker.Process(MakeFrame(img, i, 0.5)));
+  }
+  for (int i = 20; i < 23; ++i) EXPECT_TRUE(out[i].blank) << i;
+  for (const auto& t : out) {
+    EXPECT_EQ(t.shot, 0) << t.index;
+    EXPECT_NE(t.boundary, ShotBoundary::kFade) << t.index;
+  }
+  // Some ids seen before the black are seen again after it.
+  std::set<long> before;
+  for (int i = 0; i < 20; ++i)
+    for (const auto& p : out[i].points) before.insert(p.track_id);
+  int first_after = 23;  // the first frame bright enough not to be blank
+  while (first_after < 40 && out[first_after].blank) ++first_after;
+  int shared = 0;
+  for (const auto& p : out[first_after].points) shared += before.count(p.track_id);
+  EXPECT_GE(shared, 20) << "frame " << first_after;
+}
+
 TEST(FeatureTrackerTest, DissolveIsAGradualBoundary) {
   const cv::Mat a = NoiseTexture({1000, 800}, 12, {0.8, 0.0, -0.6});
   const cv::Mat b = NoiseTexture({1000, 800}, 13, {-0.6, 0.2, 0.8});
