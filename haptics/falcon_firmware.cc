@@ -68,6 +68,7 @@ std::string TryLoad(UsbTransport& usb, const std::vector<uint8_t>& image,
   static const uint8_t kAnswer[4] = {0x0A, 0x44, 0x2C, 0x0D};
   bool greeted = false;
   for (int t = 0; t < o.handshake_tries && !greeted; ++t) {
+    if (o.cancelled && o.cancelled()) return "cancelled";
     if (usb.BulkWrite(kHello, 3, 100) != 3) return "USB write failed during the handshake";
     uint8_t reply[4] = {0, 0, 0, 0};
     greeted = ReadFtdiPayload(usb, reply, 4, o.handshake_timeout_ms) == 4 &&
@@ -111,6 +112,8 @@ int LoadFalconFirmware(UsbTransport& usb, const std::vector<uint8_t>& image,
   for (int attempt = 1; attempt <= options.max_attempts; ++attempt) {
     reason = TryLoad(usb, image, options);
     if (reason.empty()) return attempt;
+    if (options.cancelled && options.cancelled())
+      throw Error(usb.Describe(), "firmware load cancelled");
     if (progress)
       progress("firmware attempt " + std::to_string(attempt) + "/" +
                std::to_string(options.max_attempts) + " failed: " + reason);

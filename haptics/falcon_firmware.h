@@ -24,7 +24,10 @@ struct FirmwareOptions {
   int handshake_tries = 100;      // 0A 43 0D repeats per attempt
   int handshake_timeout_ms = 20;  // wait for each handshake answer
   int echo_timeout_ms = 500;      // wait for each chunk's echo
-  void Check() const;             // throws UsageError
+  // Optional: polled between handshakes and attempts; true stops loading
+  // with Error "... cancelled" (the player passes StopRequested: Ctrl-C).
+  std::function<bool()> cancelled;
+  void Check() const;  // throws UsageError
 };
 
 // Reads the image; Error if missing, empty or implausibly large (> 64 KiB).

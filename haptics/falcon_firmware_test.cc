@@ -67,6 +67,22 @@ TEST(FalconFirmware, PersistentMismatchGivesAClearErrorAfterTheRetries) {
   EXPECT_EQ(fake.load_attempts(), 4);
 }
 
+TEST(FalconFirmware, ACancelledLoadStopsAtTheNextCheck) {
+  FakeFalconTransport fake(Image());
+  fake.corrupt_echo_attempts = 1000;
+  FirmwareOptions o = Fast();
+  o.max_attempts = 100;
+  int polls = 0;
+  o.cancelled = [&polls] { return ++polls > 3; };
+  try {
+    LoadFalconFirmware(fake, Image(), o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cancelled"), std::string::npos) << e.what();
+  }
+  EXPECT_LE(fake.load_attempts(), 3);
+}
+
 TEST(FalconFirmware, WrongImageStreamsButDoesNotBoot) {
   FakeFalconTransport fake(Image());
   FirmwareOptions o = Fast();

@@ -57,6 +57,7 @@ std::unique_ptr<Device> MakeFalcon(const PlayOptions& o, const std::string& seri
   fo.seat_from_falcon = mount;
   fo.max_force_n = max_force_n;
   fo.firmware = o.firmware_options;
+  fo.firmware.cancelled = [] { return StopRequested(); };  // Ctrl-C while loading
   fo.progress = [&log, serial](const std::string& line) {
     log << "falcon " << serial << ": " << line << "\n";
   };
@@ -169,7 +170,12 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
   for (auto& d : seat.devices) {
     if (!d) continue;
     log << "opening " << d->Name() << "...\n";
-    d->Open();
+    try {
+      d->Open();
+    } catch (const Error&) {
+      if (StopRequested()) return stopped_early();  // e.g. firmware loading cancelled
+      throw;
+    }
     if (StopRequested()) return stopped_early();
   }
   // Falcons must be homed before the film starts: the clock is held paused

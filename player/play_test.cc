@@ -182,6 +182,7 @@ struct FakeFalcons {
   std::map<std::string, FakeFalconTransport*> by_serial;
   std::string firmware_path;
   int corrupt_echo_attempts = 0;
+  int ignore_handshakes = 0;
 
   explicit FakeFalcons(std::vector<std::string> serials) {
     firmware_path = (TempDir() / "fake_fw.bin").string();
@@ -203,6 +204,7 @@ struct FakeFalcons {
     o->open_falcon = [this](const std::string& serial) {
       auto fake = std::make_unique<FakeFalconTransport>(image);
       fake->corrupt_echo_attempts = corrupt_echo_attempts;
+      fake->ignore_handshakes = ignore_handshakes;
       by_serial[serial] = fake.get();
       return std::unique_ptr<UsbTransport>(std::move(fake));
     };
@@ -279,6 +281,30 @@ TEST(Play, FirmwareThatWillNotLoadIsRetriedThenAClearError) {
         << e.what();
   }
   EXPECT_NE(log.str().find("firmware attempt 2/3 failed"), std::string::npos) << log.str();
+  // Ctrl-C while the firmware keeps failing: stopped at once, not after
+  // every retry.
+  // A bootloader that never answers: each attempt takes 100 handshakes.
+  fakes.ignore_handshakes = 1 << 30;
+  o.firmware_options.max_attempts = 1000;
+  std::thread ctrl_c([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    kill(getpid(), SIGINT);
+  });
+  const double t0 = SteadySeconds();
+  PlayResult stopped;
+  try {
+    stopped = Play(o, log);
+  } catch (...) {
+    ctrl_c.join();
+    throw;
+  }
+  ctrl_c.join();
+  EXPECT_EQ(stopped.status, LoopStatus::kStopped);
+  EXPECT_EQ(stopped.stop_signal, SIGINT);
+  EXPECT_LT(SteadySeconds() - t0, 3.0);
+  EXPECT_EQ(stopped.stats.ticks, 0);
+  o.firmware_options.max_attempts = 3;
+  fakes.ignore_handshakes = 0;
   // A firmware path that does not exist is named before any USB work.
   o.firmware = (d / "no_such_firmware.bin").string();
   try {
