@@ -119,8 +119,14 @@ int main(int argc, char** argv) {
     t0 = Clock::now();
     // Match confidences as in the stitching_detailed sample (0.65 SIFT/SURF, 0.3 ORB).
     cv::detail::BestOf2NearestRangeMatcher matcher(range, false, kind == "sift" ? 0.65f : 0.3f);
+    // A keyframe with (almost) no features, e.g. black in a fade, would trip
+    // an assertion in the FLANN matcher: it is left out of matching (which
+    // cuts the chain there).
+    cv::Mat_<uchar> mask(n, n, uchar(1));
+    for (int k = 0; k < n; ++k)
+      if (features[k].keypoints.size() < 10) mask.row(k).setTo(0), mask.col(k).setTo(0);
     std::vector<cv::detail::MatchesInfo> pairwise;
-    matcher(features, pairwise);
+    matcher(features, pairwise, mask.getUMat(cv::ACCESS_READ));
     matcher.collectGarbage();
     // The matcher zeroes the confidence of pairs that overlap almost fully
     // (num_inliers / (8 + 0.3 matches) > 3): a panorama gains nothing from

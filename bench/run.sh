@@ -59,9 +59,9 @@ else
   CLIPS=(crane_shot dutch_angle arcing traveling tilting zoom_in vertigo
          slow_pan whip_pan handheld_shake telephoto_zoom_pan dolly_zoom_parallax low_texture
          noise_compression hard_cut fade_to_black static_camera)
-  # The default setting runs on every clip, the sweep over settings on four
-  # Table 1 clips (general motion, translation, rotation, zoom).
-  SWEEP_CLIPS=(arcing traveling tilting zoom_in)
+  # The default setting runs on every clip, the sweep over settings on the
+  # seven Table 1 clips.
+  SWEEP_CLIPS=(crane_shot dutch_angle arcing traveling tilting zoom_in vertigo)
   SETTINGS=("480px 200tr w60|--max-side 480 --tracks 200 --window 60"
             "640px 300tr w120|--max-side 640 --tracks 300"
             "960px 600tr w120 (default)|"
@@ -70,11 +70,13 @@ else
   # apart from the 1.5 cm of handheld_shake and the second shot of hard_cut).
   STITCH_CLIPS=(dutch_angle tilting zoom_in slow_pan whip_pan handheld_shake telephoto_zoom_pan
                 low_texture hard_cut fade_to_black static_camera)
-  # COLMAP needs translation to initialise: two Table 1 clips that move, plus
-  # one rotation clip to show the failure. Every 6th frame at 480 px.
-  COLMAP_CLIPS=(traveling arcing tilting) COLMAP_STEP=6 COLMAP_SIDE=480 COLMAP_TIMEOUT=240
+  # COLMAP needs translation to initialise: the Table 1 clips that move and
+  # the strong dolly zoom, plus one rotation clip to show the failure.
+  # Every 6th frame at 480 px.
+  COLMAP_CLIPS=(crane_shot arcing traveling vertigo dolly_zoom_parallax tilting)
+  COLMAP_STEP=6 COLMAP_SIDE=480 COLMAP_TIMEOUT=240
   FLOOR_CLIP=traveling FLOOR_1080=1
-  MEM_MINUTES=(1 10 60) MEM_FPS=2
+  MEM_MINUTES=(1 10 60) MEM_FPS=3
   LOOP_S=10
 fi
 mkdir -p "$OUT/clips" "$OUT/est" "$OUT/eval" "$OUT/logs" "$OUT/fig"
@@ -170,11 +172,11 @@ floor "${H}p" "$OUT/clips/$FLOOR_CLIP.mp4"
 # The source is shrunk to 320x180 at MEM_FPS frames/s and estimated at
 # --max-side 320 --tracks 150, so an hour fits the time budget; every loop
 # is a hard cut, i.e. a new shot, as in a film.
-small="$OUT/clips/mem-source.mp4"
+small="$OUT/clips/mem-source-${MEM_FPS}fps.mp4"
 [ -f "$small" ] || ffmpeg -nostdin -loglevel error -y -i "$OUT/clips/$FLOOR_CLIP.mp4" \
   -vf "scale=320:180,fps=$MEM_FPS" -c:v libx264 -preset ultrafast -crf 23 "$small"
 for m in "${MEM_MINUTES[@]}"; do
-  long="$OUT/clips/mem-${m}min.mp4"
+  long="$OUT/clips/mem-${m}min-${MEM_FPS}fps.mp4"
   secs=$(awk "BEGIN{print $m * 60}")
   [ -f "$long" ] || ffmpeg -nostdin -loglevel error -y -stream_loop -1 -i "$small" -t "$secs" -c copy "$long"
   record memory hapcine "320px 150tr, ${MEM_FPS} fps" "$m" "$(frames_of "$long")" "$OUT/est/mem-$m.camera.csv" "" -- \
