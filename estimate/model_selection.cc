@@ -138,7 +138,14 @@ TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
   Eigen::Matrix3d R_rz = R_rot;
   std::vector<double> e_rz(n, std::numeric_limits<double>::infinity());
   double best_rz_cost = std::numeric_limits<double>::infinity();
-  for (double f1_try : {f1, f_rot}) {
+  // Also a coarse ladder around f1: while the focal is still the prior (50
+  // deg), a telephoto pan with zoom (true focal 4x the prior) has no
+  // rotation+zoom fit near f1 and f_rot (a constant-focal fit, biased by
+  // the zoom); the general homography then wins with a spurious translation.
+  std::vector<double> f1_tries = {f1};
+  if (f_rot != f1) f1_tries.push_back(f_rot);
+  for (double k : {0.5, 2.0, 4.0}) f1_tries.push_back(f1 * k);
+  for (double f1_try : f1_tries) {
     ro.max_error = thr;
     const auto rz = Ransac<RotationZoomEstimator>(Scaled(u1, 1 / f1_try), u2, ro);
     if (!rz.success) continue;
@@ -156,7 +163,6 @@ TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
       R_rz = R;
       e_rz = e;
     }
-    if (f_rot == f1) break;
   }
 
   // --- general homography (planar scene with translation)

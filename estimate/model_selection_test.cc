@@ -55,6 +55,14 @@ TEST(ModelSelection, Static) {
   EXPECT_EQ(Pick(Make(Eigen::Matrix3d::Identity(), kZero, kF, kF, 2, 20, 0.3, 1)), MotionModel::kStatic);
 }
 
+TEST(ModelSelection, TelephotoPanWithZoomFarFromThePriorFocalIsRotationZoom) {
+  // 15 deg FOV (f = 3.8) while the estimator still holds the 50 deg prior
+  // (synth telephoto_zoom_pan's first window): a small pan with a 1 % zoom.
+  const double f = 3.8;
+  const Scene s = Make(Tilted(0.15), kZero, f, f * 1.01, 5, 50, 0.3, 21, 500);
+  EXPECT_EQ(Pick(s, kF), MotionModel::kRotationZoom);
+}
+
 TEST(ModelSelection, Zoom) {
   EXPECT_EQ(Pick(Make(Eigen::Matrix3d::Identity(), kZero, kF, kF * 1.05, 2, 20, 0.3, 2)), MotionModel::kZoom);
 }
