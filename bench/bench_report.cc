@@ -328,7 +328,9 @@ int main(int argc, char** argv) {
 
     md << "\n### Speed against error\n";
     md << "\nEach point: the median over the clips of the hapcine sweep (those every hapcine setting ran) that "
-          "the method ran, failures left out (\"n/m ok\"); time is the median wall time per frame.\n";
+          "the method ran, failures left out (\"n/m ok\" counts those clips); time is the median wall time per frame. "
+          "The zoom chart uses only the zoom clips among them (zoom_in and vertigo in the full run), so its median "
+          "is the mean of a small and a large error; methods without a zoom clip are not drawn.\n";
     TryWritePng(SpeedChart(t, "Rotation error against time per frame (sweep clips)", "rotation err (deg, median over clips, log)",
                            &MethodStats::rot),
                 fig_dir + "/speed_rotation.png", md, fig_link + "/speed_rotation.png", "rotation error against time");

@@ -14,9 +14,11 @@
 #                 <name>.camera.csv) from DIR instead of rendering them
 #     --publish   copy the report into docs/benchmarks.md (between the
 #                 GENERATED markers) and the figures into docs/benchmarks/
+#     --report-only  measure nothing: redraw the report of the run in OUT
+#                 (e.g. with --publish after checking it)
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-MODE=full OUT="" BUILD="$ROOT/build" SEED="" PUBLISH=0
+MODE=full OUT="" BUILD="$ROOT/build" SEED="" PUBLISH=0 REPORT_ONLY=0
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) MODE=quick ;;
@@ -24,7 +26,8 @@ while [ $# -gt 0 ]; do
     --build) BUILD=$2; shift ;;
     --clips) SEED=$2; shift ;;
     --publish) PUBLISH=1 ;;
-    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
+    --report-only) REPORT_ONLY=1 ;;
+    -h|--help) sed -n 2,18p "$0"; exit 0 ;;
     *) echo "run.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -36,10 +39,15 @@ for tool in ffmpeg ffprobe colmap /usr/bin/time timeout; do
 done
 
 # ---- Build (timed apart from the run) ----
+# The commit measured is the one built (others may commit during the run).
+commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
+dirty=$(git -C "$ROOT" status --porcelain --untracked-files=no 2>/dev/null | grep -c . || true)
 build_start=$(date +%s)
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null || exit 1
-cmake --build "$BUILD" -j2 --target hapcine hapcine_loop_bench hapcine_peer_stitch hapcine_peer_videostab \
-  hapcine_path_fill hapcine_bench_report >/dev/null || { echo "run.sh: build failed" >&2; exit 1; }
+targets="hapcine hapcine_loop_bench hapcine_peer_stitch hapcine_peer_videostab hapcine_path_fill hapcine_bench_report"
+[ $REPORT_ONLY = 1 ] && targets=hapcine_bench_report
+# shellcheck disable=SC2086
+cmake --build "$BUILD" -j2 --target $targets >/dev/null || { echo "run.sh: build failed" >&2; exit 1; }
 build_s=$(( $(date +%s) - build_start ))
 HC="$BUILD/cli/hapcine"
 
@@ -81,10 +89,11 @@ else
 fi
 mkdir -p "$OUT/clips" "$OUT/est" "$OUT/eval" "$OUT/logs" "$OUT/fig"
 RUNS="$OUT/runs.tsv"
+log() { echo "[$(date +%H:%M:%S)] $*"; }
+if [ $REPORT_ONLY = 0 ]; then
 printf 'group\ttool\tsetting\tclip\trc\twall_s\tuser_s\tsys_s\tmaxrss_kb\tframes\teval_json\tnote\n' >"$RUNS"
 run_start=$(date +%s)
 load_start=$(cut -d' ' -f1-3 /proc/loadavg)
-log() { echo "[$(date +%H:%M:%S)] $*"; }
 
 # ---- Clips (rendered unless cached or seeded) ----
 render_start=$(date +%s)
@@ -189,19 +198,20 @@ log "haptic loop, $LOOP_S s"
 
 # ---- Report ----
 run_s=$(( $(date +%s) - run_start ))
-commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
-dirty=$(git -C "$ROOT" status --porcelain --untracked-files=no 2>/dev/null | grep -c . || true)
 {
   echo "command: \`bash bench/run.sh $([ $MODE = quick ] && echo --quick)\` ($MODE mode), $(date -u '+%Y-%m-%d %H:%M UTC')"
-  echo "hapcine commit: $commit ($dirty tracked files modified in the working tree at run time)"
+  echo "hapcine commit: $commit ($dirty tracked files modified in the working tree when it was built)"
   echo "machine: $(nproc) cores, $(awk '/MemTotal/{printf "%.0f GiB", $2/1048576}' /proc/meminfo); load average at start $load_start, at end $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "clips: ${#CLIPS[@]} presets at ${W}x$H, $DUR s, 24 fps ($([ ${#missing[@]} -gt 0 ] && echo "${#missing[@]} rendered in this run, " )render $render_s s, build $build_s s; neither counted below)"
   echo "measured run (everything after rendering): $((run_s - render_s)) s wall"
   echo "tools: $(colmap -h 2>/dev/null | head -n 1 | cut -c1-40); OpenCV $(pkg-config --modversion opencv4 2>/dev/null); $(ffmpeg -version | head -n 1 | cut -d' ' -f1-3)"
 } >"$OUT/meta.txt"
+log "measured in $run_s s"
+fi  # REPORT_ONLY
+[ -f "$RUNS" ] && [ -f "$OUT/meta.txt" ] || { echo "run.sh: no run in $OUT to report" >&2; exit 1; }
 "$BUILD/bench/hapcine_bench_report" --runs "$RUNS" --md "$OUT/report.md" --figures "$OUT/fig" \
   --figure-link fig --loop "$OUT/loop.txt" --meta "$OUT/meta.txt" || exit 1
-log "done in $run_s s: $OUT/report.md"
+log "report: $OUT/report.md"
 
 if [ $PUBLISH = 1 ]; then
   doc="$ROOT/docs/benchmarks.md"

@@ -105,8 +105,10 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
     }
   };
   pad(x_lo, x_hi, chart.log_x);
+  const bool from_zero = chart.y_from_zero && !chart.log_y && y_lo >= 0;
+  if (from_zero) y_lo = 0;
   pad(y_lo, y_hi, chart.log_y);
-  if (chart.y_from_zero && !chart.log_y) y_lo = std::min(0.0, y_lo);
+  if (from_zero) y_lo = 0;  // padding only above
 
   cv::Mat img(chart.height_px, chart.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
   // The legend column is as wide as the longest name.
@@ -169,7 +171,7 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
     }
     if (s.line && pts.size() > 1) cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
     for (const auto& p : pts) DrawMarker(img, p, s.marker, color);
-    if (!s.name.empty()) {
+    if (!s.name.empty() && !pts.empty()) {  // no legend entry for a series with nothing drawn
       const cv::Point lp(area.x + area.width + 20, legend_y);
       if (s.line) cv::line(img, lp + cv::Point(-8, 0), lp + cv::Point(8, 0), color, 2, cv::LINE_AA);
       DrawMarker(img, lp, s.marker, color);
