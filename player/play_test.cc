@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -176,10 +177,28 @@ TEST(Play, MpvPauseAndSeekReachTheClock) {
   ASSERT_TRUE(wait_for([](const ClockReading& r) { return r.eof; })) << "never reached the end";
 }
 
+// Hands Play() a transport whose fake Falcon stays with the test, so the
+// test can read what the device was sent after Play() has closed it.
+class SharedFakeTransport : public UsbTransport {
+ public:
+  explicit SharedFakeTransport(std::shared_ptr<FakeFalconTransport> fake) : fake_(std::move(fake)) {}
+  bool Control(uint8_t request, uint16_t value) override { return fake_->Control(request, value); }
+  int BulkWrite(const uint8_t* data, int n, int timeout_ms) override {
+    return fake_->BulkWrite(data, n, timeout_ms);
+  }
+  int BulkRead(uint8_t* buf, int capacity, int timeout_ms) override {
+    return fake_->BulkRead(buf, capacity, timeout_ms);
+  }
+  std::string Describe() const override { return fake_->Describe(); }
+
+ private:
+  std::shared_ptr<FakeFalconTransport> fake_;
+};
+
 // A seat of fake Falcons (the protocol byte for byte) behind Play().
 struct FakeFalcons {
   std::vector<uint8_t> image = std::vector<uint8_t>(300, 0x3C);
-  std::map<std::string, FakeFalconTransport*> by_serial;
+  std::map<std::string, std::shared_ptr<FakeFalconTransport>> by_serial;
   std::string firmware_path;
   int corrupt_echo_attempts = 0;
   int ignore_handshakes = 0;
@@ -202,11 +221,11 @@ struct FakeFalcons {
       return out;
     };
     o->open_falcon = [this](const std::string& serial) {
-      auto fake = std::make_unique<FakeFalconTransport>(image);
+      auto fake = std::make_shared<FakeFalconTransport>(image);
       fake->corrupt_echo_attempts = corrupt_echo_attempts;
       fake->ignore_handshakes = ignore_handshakes;
-      by_serial[serial] = fake.get();
-      return std::unique_ptr<UsbTransport>(std::move(fake));
+      by_serial[serial] = fake;
+      return std::unique_ptr<UsbTransport>(std::make_unique<SharedFakeTransport>(fake));
     };
   }
 };
