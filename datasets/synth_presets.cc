@@ -218,7 +218,7 @@ std::string MotionClass(const CameraState& a, const CameraState& b) {
   const bool moved = (a.center - b.center).norm() > 1e-9;
   const bool turned = AngleBetweenDeg(a.world_from_cam(), b.world_from_cam()) > 1e-7;
   const bool zoomed = std::abs(a.fov_deg - b.fov_deg) > 1e-9;
-  if (moved) return "general";
+  if (moved) return zoomed ? "general+zoom" : "general";
   if (turned && zoomed) return "rotation+zoom";
   if (turned) return "rotation";
   if (zoomed) return "zoom";

@@ -67,7 +67,8 @@ double PresetBrightnessAt(const PresetInfo& preset, double t_s, const ClipTiming
 int PresetCutFrame(const PresetInfo& preset, const ClipTiming& timing);
 
 // Motion class between two camera states, as the estimator's model names:
-// "static", "zoom", "rotation", "rotation+zoom" or "general" (any translation).
+// "static", "zoom", "rotation", "rotation+zoom", "general" (any translation at a
+// constant focal) or "general+zoom" (translation and a focal change: a dolly zoom).
 std::string MotionClass(const CameraState& a, const CameraState& b);
 
 // Pan and tilt (degrees) that point the camera at `center` towards `target`.

@@ -168,7 +168,10 @@ TEST(SynthPresets, ModelColumnNamesTheTrueMotion) {
   EXPECT_EQ(model_at("dutch_angle", 80), "rotation");
   EXPECT_EQ(model_at("tilting", 80), "rotation");
   EXPECT_EQ(model_at("traveling", 80), "general");
-  EXPECT_EQ(model_at("vertigo", 80), "general");
+  // Dolly zooms translate *and* change the focal: the estimator's general+zoom.
+  EXPECT_EQ(model_at("vertigo", 80), "general+zoom");
+  EXPECT_EQ(model_at("dolly_zoom_parallax", 80), "general+zoom");
+  EXPECT_EQ(model_at("crane_shot", 80), "general");
   EXPECT_EQ(model_at("telephoto_zoom_pan", 80), "rotation+zoom");
   EXPECT_EQ(model_at("traveling", 160), "static");
   for (const auto& f : SynthGroundTruth("static_camera", Opts()).frames) {
