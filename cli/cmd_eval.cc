@@ -50,6 +50,10 @@ int RunEval(int argc, char** argv) {
                  "GT path length below which the GT camera counts as not moving (ATE % n/a, "
                  "estimated path length reported as spurious translation), GT units")
       ->capture_default_str();
+  app.add_option("--shot-tolerance", opt.shot_tolerance_frames,
+                 "an estimated shot boundary within this many frames of a ground-truth one is "
+                 "found (shot boundaries: precision/recall)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--per-frame", per_frame_out, "write per-frame errors as CSV (atomic)");
   bool haptic = false;
   std::string haptic_model = "cinematic";

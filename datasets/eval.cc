@@ -349,6 +349,7 @@ void EvalOptions::Check() const {
   if (!(static_path_length >= 0) || !std::isfinite(static_path_length)) {
     throw UsageError("static path length must be a finite number >= 0");
   }
+  if (shot_tolerance_frames < 0) throw UsageError("shot tolerance must be >= 0 frames");
 }
 
 ErrorStats ComputeErrorStats(std::vector<double> v) {
@@ -411,6 +412,15 @@ EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
   for (const auto& f : gt.frames) gt_shots |= f.shot.has_value();
   for (const auto& f : est.frames) est_shots |= f.shot.has_value();
   const bool by_shot = options.per_shot && (gt_shots || est_shots);
+  if (gt_shots && est_shots) {
+    std::vector<ShotSample> samples;
+    for (const auto& p : pairs)
+      samples.push_back({gt.frames[p.gt].frame, gt.frames[p.gt].shot.value_or(-1),
+                         est.frames[p.est].shot.value_or(-1)});
+    std::stable_sort(samples.begin(), samples.end(),
+                     [](const ShotSample& a, const ShotSample& b) { return a.frame < b.frame; });
+    report.shot_boundaries = ScoreShotBoundaries(samples, options.shot_tolerance_frames);
+  }
   std::map<int, std::vector<MatchedPair>> groups;
   for (auto& p : pairs) {
     if (by_shot) {
@@ -452,6 +462,15 @@ std::string FormatEvalTable(const EvalReport& r) {
     << FormatDouble(r.overall.align_scale) << (r.shots.size() > 1 ? ", median over shots" : "")
     << "), RPE delta " << r.options.rpe_delta << " frame(s)\n\n";
   o << SegmentTable(r.overall, r.options.rpe_delta);
+  if (r.shot_boundaries) {
+    const ShotBoundaryScore& b = *r.shot_boundaries;
+    const auto frac = [](const std::optional<double>& v) {
+      return v ? FormatDouble(*v) : std::string("n/a");
+    };
+    o << "shot boundaries (+-" << b.tolerance_frames << " frames): gt " << b.gt_boundaries.size()
+      << ", estimate " << b.est_boundaries.size() << ", matched " << b.matched
+      << ": precision " << frac(b.precision) << ", recall " << frac(b.recall) << "\n";
+  }
   if (!r.shots.empty()) {
     o << "\nper shot (each aligned on its own first frame):\n";
     o << " shot frames   rot mean    rot max   fov mean  zoom mean   ATE rmse      ATE %"
@@ -476,7 +495,8 @@ nlohmann::json EvalReportToJson(const EvalReport& r) {
                   {"rpe_delta_frames", r.options.rpe_delta},
                   {"matching", FrameMatchingName(r.options.matching)},
                   {"per_shot", r.options.per_shot},
-                  {"static_path_length", r.options.static_path_length}};
+                  {"static_path_length", r.options.static_path_length},
+                  {"shot_tolerance_frames", r.options.shot_tolerance_frames}};
   j["matching"] = FrameMatchingName(r.matching_used);
   j["frames"] = {{"gt", r.gt_frames},
                  {"est", r.est_frames},
@@ -486,6 +506,19 @@ nlohmann::json EvalReportToJson(const EvalReport& r) {
   j["overall"] = SegmentJson(r.overall);
   j["shots"] = nlohmann::json::array();
   for (const auto& s : r.shots) j["shots"].push_back(SegmentJson(s));
+  j["shot_boundaries"] = nullptr;
+  if (r.shot_boundaries) {
+    const ShotBoundaryScore& b = *r.shot_boundaries;
+    const auto opt = [](const std::optional<double>& v) {
+      return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    j["shot_boundaries"] = {{"tolerance_frames", b.tolerance_frames},
+                            {"gt", b.gt_boundaries},
+                            {"est", b.est_boundaries},
+                            {"matched", b.matched},
+                            {"precision", opt(b.precision)},
+                            {"recall", opt(b.recall)}};
+  }
   return j;
 }
 

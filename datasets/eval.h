@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/camera_path.h"
+#include "datasets/shot_boundaries.h"
 
 namespace hapcine {
 
@@ -42,6 +43,9 @@ struct EvalOptions {
   // is reported as n/a and the estimate's path length is the spurious
   // translation figure.
   double static_path_length = 1e-6;
+  // An estimated shot boundary within this many frames of a ground-truth one
+  // is found (shot_boundaries below).
+  int shot_tolerance_frames = 2;
   void Check() const;  // throws UsageError
 };
 
@@ -103,6 +107,9 @@ struct EvalReport {
   int unmatched_est = 0;
   SegmentReport overall;              // pooled over shots
   std::vector<SegmentReport> shots;   // empty without a shot column
+  // Precision/recall of the estimate's shot boundaries; only when both paths
+  // have a `shot` column.
+  std::optional<ShotBoundaryScore> shot_boundaries;
   std::vector<FrameError> per_frame;  // matched frames, GT order
 };
 

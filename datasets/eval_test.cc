@@ -259,6 +259,36 @@ TEST(EvalTest, ModelAgreement) {
   EXPECT_FALSE(EvaluateCameraPaths(MovingPath(5), MovingPath(5), {}).overall.model_agreement);
 }
 
+TEST(EvalTest, ShotBoundaryPrecisionRecall) {
+  CameraPath gt = MovingPath(40);
+  CameraPath est = gt;
+  for (auto& f : gt.frames) f.shot = f.frame >= 20;
+  // The estimate finds the cut one frame late and splits again at 30.
+  for (auto& f : est.frames) f.shot = (f.frame >= 21) + (f.frame >= 30);
+  EvalOptions opt;
+  opt.shot_tolerance_frames = 1;
+  EvalReport r = EvaluateCameraPaths(gt, est, opt);
+  ASSERT_TRUE(r.shot_boundaries.has_value());
+  EXPECT_EQ(r.shot_boundaries->gt_boundaries, std::vector<int>({20}));
+  EXPECT_EQ(r.shot_boundaries->est_boundaries, std::vector<int>({21, 30}));
+  EXPECT_EQ(r.shot_boundaries->matched, 1);
+  EXPECT_DOUBLE_EQ(*r.shot_boundaries->precision, 0.5);
+  EXPECT_DOUBLE_EQ(*r.shot_boundaries->recall, 1);
+  EXPECT_NE(FormatEvalTable(r).find("shot boundaries (+-1 frames): gt 1, estimate 2, matched 1: "
+                                    "precision 0.5, recall 1"),
+            std::string::npos)
+      << FormatEvalTable(r);
+  EXPECT_EQ(EvalReportToJson(r)["shot_boundaries"]["matched"], 1);
+  opt.shot_tolerance_frames = 0;
+  EXPECT_EQ(EvaluateCameraPaths(gt, est, opt).shot_boundaries->matched, 0);
+  opt.shot_tolerance_frames = -1;
+  EXPECT_THROW(opt.Check(), UsageError);
+  // Only one path with a shot column: nothing to compare.
+  r = EvaluateCameraPaths(gt, MovingPath(40), {});
+  EXPECT_FALSE(r.shot_boundaries.has_value());
+  EXPECT_TRUE(EvalReportToJson(r)["shot_boundaries"].is_null());
+}
+
 TEST(EvalTest, RpeDeltaAndTranslationScale) {
   const CameraPath gt = MovingPath(20);
   CameraPath est = gt;
