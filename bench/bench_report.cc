@@ -19,10 +19,11 @@
 #include "bench/scatter_plot.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/statistics.h"
 
 namespace {
 
-using hapcine::bench::Median;
+using hapcine::Median;  // of the finite values, NaN (n/a) when none
 using hapcine::bench::RunRow;
 
 const std::set<std::string> kTable1 = {"crane_shot", "dutch_angle", "arcing", "traveling",

@@ -46,7 +46,4 @@ struct RunRow {
 std::vector<RunRow> ReadRuns(const std::string& file);
 EvalSummary ReadEvalSummary(const std::string& json_file);
 
-// Median of the finite values (NaN when none).
-double Median(std::vector<double> v);
-
 }  // namespace hapcine::bench

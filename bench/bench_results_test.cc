@@ -23,13 +23,6 @@ fs::path TempDir() {
 
 const char* kHeader = "group\ttool\tsetting\tclip\trc\twall_s\tuser_s\tsys_s\tmaxrss_kb\tframes\teval_json\tnote\n";
 
-TEST(Median, OddEvenAndNonFinite) {
-  EXPECT_DOUBLE_EQ(Median({3, 1, 2}), 2);
-  EXPECT_DOUBLE_EQ(Median({4, 1, 2, 3}), 2.5);
-  EXPECT_DOUBLE_EQ(Median({NAN, 5}), 5);
-  EXPECT_TRUE(std::isnan(Median({})));
-}
-
 TEST(ReadRuns, JoinsTheEvalReport) {
   const fs::path d = TempDir();
   {

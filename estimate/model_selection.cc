@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "estimate/two_view_estimators.h"
 #include "estimate/two_view_geometry.h"
 
@@ -43,12 +44,6 @@ std::vector<T> Select(const std::vector<T>& v, const std::vector<char>& mask) {
   for (size_t i = 0; i < v.size(); ++i)
     if (mask[i]) out.push_back(v[i]);
   return out;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 std::vector<char> Mask(const std::vector<double>& sq, double thr) {
@@ -98,7 +93,7 @@ TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
     std::vector<double> inlier_abs;
     for (int i = 0; i < n; ++i)
       if (ess.success && ess.inlier_mask[i]) inlier_abs.push_back(std::sqrt(e_ess[i]));
-    sigma = std::max(options.noise_floor, 1.4826 * Median(inlier_abs));
+    sigma = std::max(options.noise_floor, 1.4826 * Median(inlier_abs, 0.0));
     if (4 * sigma <= thr) break;
     thr = 4 * sigma;
   }

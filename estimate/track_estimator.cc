@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/rotation.h"
+#include "core/statistics.h"
 #include "estimate/axial_ambiguity.h"
 #include "estimate/smoothing.h"
 #include "estimate/two_view_geometry.h"
@@ -28,12 +29,6 @@ void TrackEstimatorOptions::Check() const {
 }
 
 namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 // Angle between the optical axes (roll about the axis does not count: it
 // does not tell the focal length).
@@ -435,7 +430,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       for (double e : ez.back())
         if (std::isfinite(e)) finite.push_back(e);
     }
-    const double sigma = std::max(Median(finite) / 1.1774, options_.two_view.noise_floor);
+    const double sigma = std::max(Median(finite, 0.0) / 1.1774, options_.two_view.noise_floor);
     auto chi2 = [&](const std::vector<double>& e) {
       double sum = 0;
       for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
