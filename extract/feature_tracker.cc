@@ -59,6 +59,10 @@ constexpr double kTransitionQualityCap = 0.25;
 // all agree on a large motion.
 constexpr double kMotionRunSurvival = 0.2;
 constexpr double kMotionRunShare = 0.05;
+// A cut between look-alike shots: at most this share of last frame's tracks
+// still verified (after the collapse's consistency check). Synth hard_cut:
+// 0 of 541; the blurred whip pan keeps 22-35 % (docs/extract.md).
+constexpr double kCutSurvival = 0.1;
 
 }  // namespace
 
@@ -98,11 +102,13 @@ struct FeatureTracker::Impl {
   // tracks (KLT survivors and descriptor re-links) of `before`, and the
   // displacements of the tracks that moved (KLT: since the last frame;
   // re-links after a collapse: since the relinker's keyframe, as a whip pan
-  // outruns KLT).
-  void AccumulateRun(size_t before, size_t verified, std::vector<float> disp) {
+  // outruns KLT). Tracking lost *after* the run has shown camera motion
+  // does not undo it: that is a whip pan at its fastest, blurred past what
+  // KLT and the descriptors can match (a dissolve keeps its tracks still).
+  void AccumulateRun(size_t before, size_t verified, std::vector<float> disp, int working_width) {
     if (before < kMinTracksForCollapse || disp.empty() ||
         verified < kMotionRunSurvival * static_cast<double>(before)) {
-      run_tracked = false;
+      if (run_motion_px < kMotionRunShare * working_width) run_tracked = false;
       return;
     }
     std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
@@ -111,6 +117,34 @@ struct FeatureTracker::Impl {
 
   bool RunWasCameraMotion(int working_width) const {
     return run_tracked && !prev_points.empty() && run_motion_px >= kMotionRunShare * working_width;
+  }
+
+  // A hard cut the histogram test missed (two views of the same set look
+  // alike): all three cues on one frame -- the histogram distance spikes
+  // against the shot's recent distances, KLT loses nearly every track, and
+  // descriptor matching against the last good frame finds no common plane.
+  // Each cue alone fires on ordinary footage (a spike at the start of every
+  // move, a collapse in a whip pan, no re-link after a long fast pan).
+  static bool IsLookAlikeCut(const ShotDecision& decision, bool collapsed, size_t before,
+                             size_t survived, const RelinkResult& relink) {
+    return decision.spike && collapsed && survived <= kCutSurvival * static_cast<double>(before) &&
+           relink.current_from_key.empty();
+  }
+
+  // Makes the current frame the first of a new shot: the tracks of the old
+  // one (and its recovery keyframe) end here; the caller detects fresh ones.
+  void StartShotAtThisFrame(FrameTracks* out, std::vector<cv::Point2f>* points,
+                            std::vector<long>* ids) {
+    out->boundary = ShotBoundary::kCut;
+    out->shot = ++shot;
+    out->transition = false;
+    out->recovered = false;
+    points->clear();
+    ids->clear();
+    DropTracks();
+    shots.MarkCut();
+    run_tracked = true;
+    run_motion_px = 0;
   }
 
   // New corners on the half-resolution pyramid level (4x cheaper than the
@@ -287,7 +321,7 @@ struct FeatureTracker::Impl {
 
     std::vector<cv::Point2f> points, from;
     std::vector<long> ids;
-    const bool had_tracks = !prev_points.empty();
+    bool had_tracks = !prev_points.empty();
     const size_t before = prev_points.size();
     Track(pyramid, size, &points, &ids, &from);
     size_t survived = points.size();
@@ -341,13 +375,16 @@ struct FeatureTracker::Impl {
       }
       out.recovered = relinked > 0;
     }
-    if (decision.transition) {
+    if (had_tracks && IsLookAlikeCut(decision, collapsed, before, survived, r)) {
+      StartShotAtThisFrame(&out, &points, &ids);
+      had_tracks = false;  // counts as the shot's first tracked frame
+    } else if (decision.transition) {
       if (relinked > 0 && klt_disp.size() < kMotionRunSurvival * static_cast<double>(before)) {
         klt_disp.clear();  // KLT collapsed: the re-links carry the motion
         for (size_t i = 0; i < r.points.size(); ++i)
           klt_disp.push_back(static_cast<float>(cv::norm(r.points[i] - r.key_points[i])));
       }
-      AccumulateRun(before, survived + relinked, std::move(klt_disp));
+      AccumulateRun(before, survived + relinked, std::move(klt_disp), frame.gray.cols);
     }
 
     // Top up when well below max_tracks and either the count fell since the

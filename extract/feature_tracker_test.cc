@@ -265,6 +265,99 @@ TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
   }
 }
 
+// A cut between two views of the same set: the histograms stay close (under
+// the cut threshold), but tracking collapses at once and the descriptors find
+// nothing in common, on a frame whose histogram distance jumps well above the
+// pan's steady change. That is a cut (synth hard_cut).
+TEST(FeatureTrackerTest, CutBetweenTwoViewsOfTheSameSceneSplits) {
+  const cv::Mat scene = NoiseTexture({3200, 800}, 23);
+  const auto view = [&](int i) {
+    // Shot 0 pans right at 4 px/frame; shot 1 shows another part of the set,
+    // 1600 px away (no overlap), panning the other way.
+    const double x = i < 12 ? 4.0 * i : 1600 - 4.0 * (i - 12);
+    return MakeFrame(Shifted(scene, -x, 0, kDecoded, {200, 100}), i, 0.5);
+  };
+  ShotDetector histograms_only;
+  FeatureTracker tracker(SmallOptions());
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 24; ++i) {
+    const Frame frame = view(i);
+    const ShotDecision d = histograms_only.Update(frame);
+    EXPECT_EQ(d.boundary, ShotBoundary::kNone) << "the histograms alone must not see it, " << i;
+    if (i == 12) {
+      EXPECT_LT(d.distance, SmallOptions().cut_threshold);
+      EXPECT_TRUE(d.spike);
+    }
+    out.push_back(tracker.Process(frame));
+  }
+  long max_id_before = -1;
+  for (int i = 0; i < 12; ++i) {
+    EXPECT_EQ(out[i].shot, 0) << i;
+    for (const auto& p : out[i].points) max_id_before = std::max(max_id_before, p.track_id);
+  }
+  EXPECT_EQ(out[12].boundary, ShotBoundary::kCut);
+  EXPECT_FALSE(out[12].recovered);
+  EXPECT_GT(out[12].points.size(), 250u) << "the new shot is tracked from its first frame";
+  for (const auto& p : out[12].points) EXPECT_GT(p.track_id, max_id_before);
+  for (int i = 12; i < 24; ++i) EXPECT_EQ(out[i].shot, 1) << i;
+  for (int i = 13; i < 24; ++i) EXPECT_EQ(out[i].boundary, ShotBoundary::kNone) << i;
+  EXPECT_GT(out.back().quality, 0.8);
+}
+
+// A whip pan across changing colours with motion blur: KLT collapses and
+// the histograms change on every frame, but steadily, with no spike on the
+// collapsing frames. One shot.
+TEST(FeatureTrackerTest, BlurredWhipPanIsNotACut) {
+  const cv::Mat a = NoiseTexture({4000, 800}, 24, {-0.8, -0.6, -0.4});
+  const cv::Mat b = NoiseTexture({4000, 800}, 25, {0.6, 0.8, 0.9});
+  cv::Mat wide(a.size(), a.type());
+  for (int x = 0; x < a.cols; ++x) {
+    const double w = std::clamp((x - 1000) / 2000.0, 0.0, 1.0);
+    cv::addWeighted(a.col(x), 1 - w, b.col(x), w, 0, wide.col(x));
+  }
+  // Still for 8 frames, 2400 px (decoded) in 16 frames on an eased profile
+  // (peak ~240 px/frame), still again. 180-degree shutter: the motion over
+  // the middle half of the frame interval, as a horizontal box blur (exact
+  // for a translation, up to the border).
+  const auto position = [](double t) {
+    const double s = std::clamp((t - 8) / 16.0, 0.0, 1.0);
+    return 2400.0 * (0.5 - 0.5 * std::cos(M_PI * s));
+  };
+  FeatureTracker tracker(SmallOptions());
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 30; ++i) {
+    cv::Mat img = Shifted(wide, -position(i), 0, kDecoded, {200, 100});
+    const int blur = static_cast<int>(std::lround(position(i + 0.25) - position(i - 0.25)));
+    if (blur > 1) cv::blur(img, img, cv::Size(blur, 1));
+    out.push_back(tracker.Process(MakeFrame(img, i, 0.5)));
+  }
+  double min_quality = 1;
+  for (const auto& t : out) {
+    EXPECT_EQ(t.shot, 0) << t.index;
+    EXPECT_TRUE(t.boundary == ShotBoundary::kNone || t.index == 0) << t.index;
+    min_quality = std::min(min_quality, t.quality);
+  }
+  EXPECT_LT(min_quality, 0.15) << "tracking must collapse in the blur for this test to mean anything";
+}
+
+// A fade down to a dim (not blank) picture and back on a panning camera: the
+// histograms change gradually, tracks may die, one shot.
+TEST(FeatureTrackerTest, FadeThatStaysAboveBlackIsNotACut) {
+  const cv::Mat a = NoiseTexture({1600, 800}, 26, {0.3, 0.0, -0.3});
+  FeatureTracker tracker(SmallOptions());
+  for (int i = 0; i < 36; ++i) {
+    // 10..19 down to 25 % brightness, 20..29 back up.
+    double gain = 1;
+    if (i >= 10 && i < 20) gain = 1 - 0.075 * (i - 9);
+    if (i >= 20 && i < 30) gain = 0.25 + 0.075 * (i - 19);
+    cv::Mat img = Shifted(a, -3.0 * i, 0, kDecoded);
+    img.convertTo(img, -1, gain, 0);
+    const FrameTracks t = tracker.Process(MakeFrame(img, i, 0.5));
+    EXPECT_FALSE(t.blank) << i;
+    EXPECT_EQ(t.shot, 0) << i;
+  }
+}
+
 TEST(FeatureTrackerTest, BlankFramesAreFlaggedAndNotTracked) {
   const cv::Mat a = NoiseTexture({1000, 800}, 9);
   FeatureTracker tracker(SmallOptions());

@@ -21,6 +21,14 @@
 //    non-blank frame after them starts a new shot (kFade) if the shot had
 //    content before the black. That first frame is flagged `transition` (it
 //    is usually the start of a fade-in).
+//  - Spikes, for cuts between look-alike shots (two views of the same set
+//    have close histograms, under T_cut): `spike` is set when the distance
+//    is at least twice the median of the shot's last 5 distances (transition
+//    frames included, so a pan's steady change raises the bar) and above
+//    mean + 6 std of its calm distances. A spike alone is not a cut (the
+//    first frame of every camera move is one); FeatureTracker makes it one
+//    when tracking collapses on the same frame and the descriptors do not
+//    re-link, and then calls MarkCut().
 
 #include <deque>
 #include <opencv2/core.hpp>
@@ -43,6 +51,7 @@ struct ShotDecision {
   double distance = 0;      // histogram distance to the previous frame
   double mean_luma = 0;
   double luma_stddev = 0;
+  bool spike = false;       // distance far above the shot's recent ones (see above)
 };
 
 class ShotDetector {
@@ -51,13 +60,18 @@ class ShotDetector {
   // Frames in order. The first frame never reports a boundary (the caller
   // marks it kStart).
   ShotDecision Update(const Frame& frame);
+  // The caller found a cut on the frame last passed to Update(): start the
+  // shot's statistics over from that frame.
+  void MarkCut() { StartShot(); }
 
  private:
   void StartShot();
+  bool IsSpike(double d, double calm_limit) const;
 
   ShotDetectorOptions options_;
   cv::Mat prev_hist_;              // last non-blank frame's histogram
   std::deque<double> recent_;      // calm distances of the current shot
+  std::deque<double> local_;       // last distances of the shot, calm or not
   bool shot_has_content_ = false;  // a non-blank frame was seen in this shot
   bool in_blank_run_ = false;
   int calm_frames_ = 0;  // non-transition frames in this shot
