@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <opencv2/core.hpp>
 #include <string>
@@ -109,9 +110,16 @@ class FfmpegSource : public FrameSource {
     const AVCodecParameters* par = st->codecpar;
     info_.codec = avcodec_get_name(par->codec_id);
     const AVCodec* codec = avcodec_find_decoder(par->codec_id);
-    if (!codec)
+    if (!codec) {
+      if (par->codec_id == AV_CODEC_ID_NONE && par->codec_tag != 0) {  // say which, at least
+        char tag[AV_FOURCC_MAX_STRING_SIZE] = {0};
+        av_fourcc_make_string(tag, par->codec_tag);
+        throw Error(path, std::string("unsupported video codec: tag '") + tag +
+                              "' is unknown to this FFmpeg");
+      }
       throw Error(path,
                   "unsupported video codec '" + info_.codec + "' (no decoder in this FFmpeg)");
+    }
     CheckSize(par->width, par->height);
 
     dec_ = avcodec_alloc_context3(codec);
@@ -182,6 +190,7 @@ class FfmpegSource : public FrameSource {
         av_packet_unref(pkt_);
         continue;
       }
+      NoteVideoPacket();
       const int s = avcodec_send_packet(dec_, pkt_);
       av_packet_unref(pkt_);
       if (s < 0 && s != AVERROR(EAGAIN)) {  // corrupt packet: skip it
@@ -200,7 +209,62 @@ class FfmpegSource : public FrameSource {
   bool Finish() {
     finished_ = true;
     if (decoded_ == 0) throw Error(info_.path, "no video frame could be decoded");
+    CheckNotTruncated();
     return false;
+  }
+
+  // How far the demuxer got in the video stream (packets, and the end time of
+  // the latest one from the stream start), to tell a truncated file from a
+  // complete one when it ends.
+  void NoteVideoPacket() {
+    ++video_packets_;
+    const int64_t pts = pkt_->pts != AV_NOPTS_VALUE ? pkt_->pts : pkt_->dts;
+    if (pts == AV_NOPTS_VALUE) return;
+    const int64_t start = fmt_->streams[stream_index_]->start_time;
+    const int64_t end =
+        pts + std::max<int64_t>(pkt_->duration, 0) - (start != AV_NOPTS_VALUE ? start : 0);
+    read_end_s_ = std::max(read_end_s_, end * time_base_s_);
+  }
+
+  // The video's length as the container declares it: the stream's duration,
+  // else Matroska's per-track DURATION tag, else the file's duration when
+  // video is its only stream (an audio track may outlast the video). 0 when
+  // unknown.
+  double DeclaredVideoDuration() const {
+    const AVStream* st = fmt_->streams[stream_index_];
+    if (st->duration != AV_NOPTS_VALUE && st->duration > 0) return st->duration * time_base_s_;
+    const AVDictionaryEntry* tag = av_dict_get(st->metadata, "DURATION", nullptr, 0);
+    int h = 0, m = 0;
+    double s = 0;
+    if (tag && std::sscanf(tag->value, "%d:%d:%lf", &h, &m, &s) == 3) return h * 3600.0 + m * 60 + s;
+    if (fmt_->nb_streams == 1 && fmt_->duration != AV_NOPTS_VALUE && fmt_->duration > 0)
+      return static_cast<double>(fmt_->duration) / AV_TIME_BASE;
+    return 0;
+  }
+
+  // A file cut short (an interrupted copy or download) ends cleanly for the
+  // demuxer, but before what its header declares: an error, not a shorter
+  // video (the camera path would silently stop early). Truncated when the
+  // video packets end more than max(0.5 s, 3 frames) before the declared
+  // length, or over 5 % of the declared frame count is missing (AVI and MP4
+  // headers count frames; a truncated AVI loses its index and with it the
+  // right duration).
+  void CheckNotTruncated() const {
+    const double declared = DeclaredVideoDuration();
+    const double period = info_.fps > 0 ? 1 / info_.fps : 1.0 / 24;
+    const int64_t declared_frames = fmt_->streams[stream_index_]->nb_frames;
+    const bool short_time = declared > 0 && read_end_s_ + std::max(0.5, 3 * period) < declared;
+    const bool short_count =
+        declared_frames > 0 && video_packets_ + 1 < 0.95 * static_cast<double>(declared_frames);
+    if (!short_time && !short_count) return;
+    char buf[160];
+    if (short_time)
+      std::snprintf(buf, sizeof buf, "truncated: the video ends at %.2f s of the %.2f s declared",
+                    read_end_s_, declared);
+    else
+      std::snprintf(buf, sizeof buf, "truncated: %ld of the %ld frames declared", video_packets_,
+                    static_cast<long>(declared_frames));
+    throw Error(info_.path, buf);
   }
 
   double FrameTime() {
@@ -318,6 +382,8 @@ class FfmpegSource : public FrameSource {
   double last_time_s_ = 0;
   long decoded_ = 0;
   long bad_packets_ = 0;
+  long video_packets_ = 0;  // read from the demuxer
+  double read_end_s_ = 0;   // end of the latest video packet read, from the stream start
   bool draining_ = false;
   bool finished_ = false;
 };

@@ -3,8 +3,12 @@
 
 #include "extract/frame_source.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -44,6 +48,9 @@ std::unique_ptr<FrameSource> OpenFrameSource(const std::string& path,
   if (!is_file && IsImageSequencePath(path)) return OpenImageSequence(path, options);
   if (ec || !std::filesystem::exists(status)) throw Error(path, "no such file");
   if (!std::filesystem::is_regular_file(status)) throw Error(path, "not a regular file");
+  // Before FFmpeg, which would call it "not a media file ... (Permission denied)".
+  if (::access(path.c_str(), R_OK) != 0)
+    throw Error(path, std::string("cannot read the file (") + std::strerror(errno) + ")");
   if (std::filesystem::file_size(path, ec) == 0 && !ec) throw Error(path, "empty file (0 bytes)");
   return OpenFfmpegSource(path, options);
 }

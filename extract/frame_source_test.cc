@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -90,6 +91,42 @@ TEST_F(FrameSourceTest, DecodesAllFramesWithMonotoneTimes) {
   }
 }
 
+// The containers and codecs users bring: every frame, in order, at the right
+// size, with the container's times (12 frames at 24 fps, 160x120).
+TEST_F(FrameSourceTest, DecodesCommonContainersAndCodecs) {
+  struct Case {
+    const char* file;
+    const char* codec_args;
+    const char* codec;  // VideoInfo::codec
+  };
+  const Case cases[] = {
+      {"h264.mov", "-c:v libx264 -pix_fmt yuv420p", "h264"},
+      {"hevc.mkv", "-c:v libx265 -x265-params log-level=error", "hevc"},
+      {"vp9.webm", "-c:v libvpx-vp9 -deadline realtime -cpu-used 8", "vp9"},
+      {"mpeg4.avi", "-c:v mpeg4", "mpeg4"},
+      {"prores.mov", "-c:v prores_ks -profile:v 0", "prores"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = Make(
+        std::string("codec_") + c.file,
+        std::string("-f lavfi -i testsrc=size=160x120:rate=24 -frames:v 12 ") + c.codec_args);
+    auto source = OpenFrameSource(path, {});
+    EXPECT_EQ(source->info().codec, c.codec) << c.file;
+    std::vector<Frame> frames;
+    Frame f;
+    while (source->Next(&f)) frames.push_back(f);
+    ASSERT_EQ(frames.size(), 12u) << c.file;
+    for (size_t i = 0; i < frames.size(); ++i) {
+      EXPECT_NEAR(frames[i].time_s, i / 24.0, 2e-3) << c.file << " frame " << i;
+      EXPECT_EQ(frames[i].gray.size(), cv::Size(160, 120)) << c.file;
+    }
+    // A picture, not a blank or garbage-grey frame.
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(frames[0].gray, mean, stddev);
+    EXPECT_GT(stddev[0], 30) << c.file;
+  }
+}
+
 TEST_F(FrameSourceTest, ScalesToWorkingSizeInGrayAndColour) {
   FrameSourceOptions o;
   o.max_working_side = 160;
@@ -166,11 +203,28 @@ TEST_F(FrameSourceTest, BadInputsNameTheFile) {
   const std::string text = Path("notes.mp4");
   std::ofstream(text) << "this is not a video, just some words\n";
   ExpectError(text, "not a media file");
+  // No read permission (root reads anything, so only checked as another user).
+  const std::string locked = Path("locked.mp4");
+  fs::copy_file(Testsrc(), locked, fs::copy_options::overwrite_existing);
+  fs::permissions(locked, fs::perms::none);
+  if (::geteuid() != 0) ExpectError(locked, "cannot read the file (Permission denied)");
   const std::string txt = Path("notes.txt");
   std::ofstream(txt) << "plain text that the tty demuxer would happily play\n";
   ExpectError(txt, "not a media file");
   ExpectError(Make("tone.m4a", "-f lavfi -i sine=frequency=440:duration=0.5 -c:a aac"),
               "no video stream");
+  // An AVI whose codec tag no decoder knows (MPEG-4 with its FourCC replaced).
+  {
+    const std::string avi = Make("mpeg4.avi",
+                                 "-f lavfi -i testsrc=size=160x120:rate=24 -t 0.5 -c:v mpeg4");
+    std::ifstream in(avi, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (size_t at = bytes.find("FMP4"); at != std::string::npos; at = bytes.find("FMP4", at))
+      bytes.replace(at, 4, "QQQQ");
+    const std::string unknown = Path("unknown_codec.avi");
+    std::ofstream(unknown, std::ios::binary) << bytes;
+    ExpectError(unknown, "unsupported video codec: tag 'QQQQ' is unknown");
+  }
   // 20000 px wide raw video: a corrupt or hostile header as far as we care.
   ExpectError(Make("wide.nut",
                    "-f lavfi -i color=c=gray:s=20000x8:r=5 -frames:v 1 "
@@ -178,19 +232,50 @@ TEST_F(FrameSourceTest, BadInputsNameTheFile) {
               "absurd frame size");
 }
 
-TEST_F(FrameSourceTest, TruncatedFileDecodesWhatItCanThenStops) {
+// A file cut short decodes what it holds, then fails naming the file and
+// "truncated" (the header declares more), so no shortened camera path is
+// written as if it were the whole video.
+TEST_F(FrameSourceTest, TruncatedFileIsAnErrorAfterItsFrames) {
   const std::string full = Make("long.mkv",
                                 "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
                                 "-g 12 -pix_fmt yuv420p");
   const auto all = ReadAll(full);
   ASSERT_EQ(all.size(), 48u);
-  const std::string cut = Path("cut.mkv");
-  fs::copy_file(full, cut, fs::copy_options::overwrite_existing);
-  fs::resize_file(cut, fs::file_size(full) / 2);
-  const auto part = ReadAll(cut);
-  EXPECT_GT(part.size(), 5u);
-  EXPECT_LT(part.size(), 48u);
-  for (size_t i = 1; i < part.size(); ++i) EXPECT_GT(part[i].time_s, part[i - 1].time_s);
+  const std::string faststart = Make("long_faststart.mp4",
+                                     "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
+                                     "-g 12 -pix_fmt yuv420p -movflags +faststart");
+  ASSERT_EQ(ReadAll(faststart).size(), 48u);
+  const auto cut_copy = [&](const std::string& from, const std::string& name) {
+    const std::string cut = Path(name);
+    fs::copy_file(from, cut, fs::copy_options::overwrite_existing);
+    fs::resize_file(cut, fs::file_size(from) * 6 / 10);
+    return cut;
+  };
+  // Matroska (declared duration) and MP4 with its index first (the sample
+  // table lists frames past the end of the file).
+  for (const std::string& cut : {cut_copy(full, "cut.mkv"), cut_copy(faststart, "cut.mp4")}) {
+    auto source = OpenFrameSource(cut, {});
+    std::vector<Frame> part;
+    Frame f;
+    try {
+      while (source->Next(&f)) part.push_back(f);
+      ADD_FAILURE() << "no error for " << cut;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), cut);
+      EXPECT_NE(e.reason().find("truncated"), std::string::npos) << e.what();
+    }
+    EXPECT_GT(part.size(), 5u) << cut;
+    EXPECT_LT(part.size(), 48u) << cut;
+    for (size_t i = 1; i < part.size(); ++i) EXPECT_GT(part[i].time_s, part[i - 1].time_s);
+  }
+  // An audio track longer than the video is not a truncated video.
+  for (const char* name : {"short_video.mkv", "short_video.mp4"}) {
+    const std::string path =
+        Make(name,
+             "-f lavfi -i testsrc=size=160x120:rate=24 -f lavfi -i sine=duration=3 -t 3 "
+             "-map 0:v -map 1:a -c:v libx264 -frames:v 24 -c:a aac");
+    EXPECT_EQ(ReadAll(path).size(), 24u) << name;
+  }
   // Only the header survives: no frame at all is an error.
   const std::string stub = Path("stub.mkv");
   fs::copy_file(full, stub, fs::copy_options::overwrite_existing);

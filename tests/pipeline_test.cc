@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdlib>
+#include <map>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -164,12 +167,36 @@ TEST_F(PipelineTest, EstimateRejectsBadVideosWithOneLineAndNoOutput) {
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::ofstream(truncated, std::ios::binary) << bytes.substr(0, 2000);
   }
-  for (const fs::path& bad : {empty, text, truncated, dir_ / "missing.mp4"}) {
+  // Made from the clip with the ffmpeg CLI: audio only, one frame, and an MP4
+  // with its index first cut at 60 % (decodable frames, then the end of the
+  // file long before the declared length).
+  const auto ffmpeg = [&](const std::string& args, const fs::path& out) {
+    const std::string cmd =
+        "ffmpeg -nostdin -hide_banner -loglevel error -y " + args + " " + Quote(out);
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    return out;
+  };
+  const fs::path clip = dir_ / "tilting.mp4";
+  const fs::path audio =
+      ffmpeg("-f lavfi -i sine=frequency=440:duration=0.5 -c:a aac", dir_ / "tone.m4a");
+  const fs::path single = ffmpeg("-i " + Quote(clip) + " -frames:v 1", dir_ / "one frame.mp4");
+  const fs::path indexed =
+      ffmpeg("-i " + Quote(clip) + " -c copy -movflags +faststart", dir_ / "indexed.mp4");
+  const fs::path cut_short = dir_ / "cut short.mp4";
+  fs::copy_file(indexed, cut_short, fs::copy_options::overwrite_existing);
+  fs::resize_file(cut_short, fs::file_size(indexed) * 6 / 10);
+  const std::map<fs::path, std::string> reasons = {
+      {audio, "no video stream"}, {single, "at least two"}, {cut_short, "truncated"}};
+  for (const fs::path& bad :
+       {empty, text, truncated, dir_ / "missing.mp4", audio, single, cut_short}) {
     const fs::path out = dir_ / ("bad_" + bad.stem().string() + ".camera.csv");
     const RunResult r = RunHapcine("estimate -q " + Quote(bad) + " -o " + Quote(out), dir_);
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_NE(LastLine(r.err).find(bad.filename().string()), std::string::npos)
         << "the error must name the file: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    if (reasons.count(bad))
+      EXPECT_NE(r.err.find(reasons.at(bad)), std::string::npos) << r.err;
     EXPECT_EQ(CountFilesStartingWith(dir_, out.filename().string()), 0)
         << "output left behind for " << bad;
   }
