@@ -15,6 +15,7 @@
 namespace hapcine {
 namespace {
 
+using testing::BlendedAcross;
 using testing::MakeFrame;
 using testing::NoiseTexture;
 using testing::Shifted;
@@ -308,13 +309,8 @@ TEST(FeatureTrackerTest, CutBetweenTwoViewsOfTheSameSceneSplits) {
 // the histograms change on every frame, but steadily, with no spike on the
 // collapsing frames. One shot.
 TEST(FeatureTrackerTest, BlurredWhipPanIsNotACut) {
-  const cv::Mat a = NoiseTexture({4000, 800}, 24, {-0.8, -0.6, -0.4});
-  const cv::Mat b = NoiseTexture({4000, 800}, 25, {0.6, 0.8, 0.9});
-  cv::Mat wide(a.size(), a.type());
-  for (int x = 0; x < a.cols; ++x) {
-    const double w = std::clamp((x - 1000) / 2000.0, 0.0, 1.0);
-    cv::addWeighted(a.col(x), 1 - w, b.col(x), w, 0, wide.col(x));
-  }
+  const cv::Mat wide = BlendedAcross(NoiseTexture({4000, 800}, 24, {-0.8, -0.6, -0.4}),
+                                     NoiseTexture({4000, 800}, 25, {0.6, 0.8, 0.9}), 1000, 2000);
   // Still for 8 frames, 2400 px (decoded) in 16 frames on an eased profile
   // (peak ~240 px/frame), still again. 180-degree shutter: the motion over
   // the middle half of the frame interval, as a horizontal box blur (exact
@@ -477,13 +473,8 @@ TEST(FeatureTrackerTest, DissolveIsAGradualBoundary) {
 // there. KLT follows the content all the way, so it stays one shot.
 TEST(FeatureTrackerTest, PanAcrossChangingColoursIsNotADissolve) {
   // Two differently tinted textures side by side, blended over 200 px.
-  const cv::Mat a = NoiseTexture({2400, 800}, 21, {-0.9, -0.8, -0.6});
-  const cv::Mat b = NoiseTexture({2400, 800}, 22, {0.6, 0.9, 0.9});
-  cv::Mat wide(a.size(), a.type());
-  for (int x = 0; x < a.cols; ++x) {
-    const double w = std::clamp((x - 1100) / 200.0, 0.0, 1.0);
-    cv::addWeighted(a.col(x), 1 - w, b.col(x), w, 0, wide.col(x));
-  }
+  const cv::Mat wide = BlendedAcross(NoiseTexture({2400, 800}, 21, {-0.9, -0.8, -0.6}),
+                                     NoiseTexture({2400, 800}, 22, {0.6, 0.9, 0.9}), 1100, 200);
   FeatureTracker tracker(SmallOptions());
   ShotDetector histograms_only;
   int histogram_fades = 0;

@@ -3,6 +3,7 @@
 // textures (well-conditioned for KLT), warped by known motions, downscaled
 // the way the FrameSource does (pixel edges scale).
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -32,6 +33,18 @@ inline cv::Mat NoiseTexture(cv::Size size, int seed, cv::Scalar tint = {0, 0, 0}
   cv::merge(channels, 3, bgr32);
   bgr32.convertTo(bgr, CV_8UC3);
   return bgr;
+}
+
+// `a` on the left, `b` on the right (same size and type), blended linearly
+// over columns [from, from + width): a picture whose colours change along a
+// pan.
+inline cv::Mat BlendedAcross(const cv::Mat& a, const cv::Mat& b, int from, int width) {
+  cv::Mat out(a.size(), a.type());
+  for (int x = 0; x < a.cols; ++x) {
+    const double w = std::min(1.0, std::max(0.0, (x - from) / static_cast<double>(width)));
+    cv::addWeighted(a.col(x), 1 - w, b.col(x), w, 0, out.col(x));
+  }
+  return out;
 }
 
 // Decoded-size view of `texture` under decoded_from_texture (2x3 affine),
