@@ -1,0 +1,53 @@
+#include "core/statistics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace hapcine {
+namespace {
+
+TEST(MedianTest, OddCountIsTheMiddleValue) {
+  EXPECT_DOUBLE_EQ(Median({3, 1, 2}), 2);
+  EXPECT_DOUBLE_EQ(Median({5}), 5);
+  EXPECT_DOUBLE_EQ(Median({-1, -1, 7, 7, -1}), -1);
+}
+
+TEST(MedianTest, EvenCountIsTheMeanOfTheTwoMiddleValues) {
+  EXPECT_DOUBLE_EQ(Median({4, 1, 2, 3}), 2.5);
+  EXPECT_DOUBLE_EQ(Median({2, 2}), 2);
+  EXPECT_DOUBLE_EQ(Median({1e308, 1e308}), 1e308);  // no overflow in the mean
+}
+
+TEST(MedianTest, IgnoresNonFiniteValues) {
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_DOUBLE_EQ(Median({NAN, 5}), 5);
+  EXPECT_DOUBLE_EQ(Median({inf, -inf, 1, 3, NAN}), 2);
+}
+
+TEST(MedianTest, NoFiniteValueGivesTheFallback) {
+  EXPECT_TRUE(std::isnan(Median({})));
+  EXPECT_TRUE(std::isnan(Median({NAN, INFINITY})));
+  EXPECT_DOUBLE_EQ(Median({}, 0.0), 0);
+  EXPECT_DOUBLE_EQ(Median({NAN}, -1.0), -1);
+}
+
+// Against a full sort on random inputs with ties and both parities.
+TEST(MedianTest, MatchesASortedReference) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> value(-20, 20), size(1, 40);
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<double> v(size(rng));
+    for (double& x : v) x = value(rng) * 0.5;
+    std::vector<double> sorted = v;
+    std::sort(sorted.begin(), sorted.end());
+    const size_t n = sorted.size();
+    const double expected = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    EXPECT_DOUBLE_EQ(Median(v), expected) << "trial " << trial;
+  }
+}
+
+}  // namespace
+}  // namespace hapcine
