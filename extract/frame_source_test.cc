@@ -318,6 +318,29 @@ TEST_F(FrameSourceTest, ImageFolderAndPattern) {
   ExpectError(empty_folder.string(), "no image files");
 }
 
+// A PNG or JPEG cut short in the middle of a sequence is an error naming
+// that image (not a grey half-frame, not a second line from libpng/libjpeg).
+TEST_F(FrameSourceTest, TruncatedImageInASequence) {
+  cv::Mat img(120, 160, CV_8UC3);
+  cv::randu(img, 0, 255);
+  for (const std::string ext : {"png", "jpg"}) {
+    const fs::path folder = *dir_ / ("cut_" + ext);
+    fs::create_directories(folder);
+    for (int i = 0; i < 4; ++i)
+      cv::imwrite((folder / ("f" + std::to_string(i) + "." + ext)).string(), img);
+    EXPECT_EQ(ReadAll(folder.string()).size(), 4u) << ext << ": complete files";
+    const fs::path cut = folder / ("f2." + ext);
+    fs::resize_file(cut, fs::file_size(cut) / 2);
+    try {
+      ReadAll(folder.string());
+      ADD_FAILURE() << "no error for the cut " << ext;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), cut.string());
+      EXPECT_NE(e.reason().find("truncated"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(FrameSourceOptionsTest, Check) {
   FrameSourceOptions o;
   EXPECT_NO_THROW(o.Check());

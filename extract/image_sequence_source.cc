@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -19,6 +20,38 @@ namespace hapcine {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A PNG or JPEG cut short (an interrupted copy) either fails after libpng
+// printed its own line on stderr, or "decodes" with the missing part grey
+// (libjpeg, with a warning on stderr). Both end with a fixed marker, so look
+// for it first: the IEND chunk closes every PNG; a JPEG's last EOI marker
+// (FF D9, which cannot occur inside entropy-coded data) sits at its end,
+// allowing for a little padding. Empty when the file looks complete.
+std::string TruncatedImageReason(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[8] = {0};
+  in.read(head, sizeof head);
+  if (in.gcount() < 2) return {};
+  static const char kPng[8] = {'\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n'};
+  const bool png = in.gcount() == 8 && std::equal(head, head + 8, kPng);
+  const bool jpeg = head[0] == '\xff' && head[1] == '\xd8';
+  if (!png && !jpeg) return {};
+  in.clear();
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail_len = std::min<std::streamoff>(size, 4096);
+  std::string tail(static_cast<size_t>(tail_len), '\0');
+  in.seekg(size - tail_len);
+  in.read(&tail[0], tail_len);
+  if (png) {
+    static const std::string kIend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    return tail.size() >= 12 && tail.compare(tail.size() - 12, 12, kIend) == 0
+               ? std::string()
+               : "truncated PNG (no IEND chunk at the end)";
+  }
+  return tail.find("\xff\xd9") != std::string::npos ? std::string()
+                                                      : "truncated JPEG (no end-of-image marker)";
+}
 
 bool HasImageExtension(const fs::path& p) {
   std::string ext = p.extension().string();
@@ -142,6 +175,8 @@ class ImageSequenceSource : public FrameSource {
     if (p.empty()) return false;
     std::error_code ec;
     if (fs::file_size(p, ec) == 0) throw Error(p, "empty image file (0 bytes)");
+    const std::string truncated = TruncatedImageReason(p);
+    if (!truncated.empty()) throw Error(p, truncated);
     *image = cv::imread(p, cv::IMREAD_COLOR);
     if (image->empty()) throw Error(p, "not an image OpenCV can read");
     if (image->cols > kMaxFrameSidePx || image->rows > kMaxFrameSidePx)
