@@ -4,6 +4,8 @@
 
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "extract/shot_detector.h"
+#include "extract/threaded_frame_source.h"
 
 namespace hapcine {
 
@@ -16,7 +18,30 @@ void EstimatorOptions::Check() const {
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
 }
 
+void ApplyFastPreset(EstimatorOptions* options) {
+  options->frames.max_working_side = 640;
+  options->frames.skip_loop_filter = true;
+  options->tracker.max_tracks = 300;
+  options->tracker.klt_window = 15;
+  options->estimator.max_points = 200;
+}
+
+std::string FastPresetSummary() {
+  EstimatorOptions o;
+  ApplyFastPreset(&o);
+  std::ostringstream s;
+  s << "--max-side " << o.frames.max_working_side << " --tracks " << o.tracker.max_tracks
+    << " --points " << o.estimator.max_points << " --klt-window " << o.tracker.klt_window
+    << (o.frames.skip_loop_filter ? ", no deblocking when decoding" : "");
+  return s.str();
+}
+
 namespace {
+
+// Decoded frames allowed to wait for the tracker: enough to ride out one
+// slow frame (a bundle-adjustment window closing), few enough to keep
+// memory small (3 x 960x540 gray + thumbnails).
+constexpr int kDecodeQueueFrames = 3;
 
 std::string Num(double v) {
   std::ostringstream s;
@@ -71,8 +96,15 @@ CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& optio
 CameraPath EstimateCameraPathFromFile(const std::string& video, const EstimatorOptions& options,
                                       ProgressFn progress) {
   options.Check();
-  auto source = OpenFrameSource(video, options.frames);
-  return EstimateCameraPath(*source, options, progress);
+  FrameSourceOptions frames = options.frames;
+  // Our backend looks at colour only through the shot detector's thumbnail
+  // (COLMAP gets the working-size BGR images).
+  if (options.backend == "hapcine" && frames.color_max_side == 0)
+    frames.color_max_side = kShotThumbWidth;
+  // Decoding and scaling overlap tracking and estimation (memory stays
+  // flat: a few frames wait at most).
+  ThreadedFrameSource source(OpenFrameSource(video, frames), kDecodeQueueFrames);
+  return EstimateCameraPath(source, options, progress);
 }
 
 }  // namespace hapcine

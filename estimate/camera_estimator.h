@@ -26,6 +26,12 @@ struct EstimatorOptions {
   void Check() const;                // throws UsageError
 };
 
+// The `--fast` preset: cheaper settings measured on the synthetic clips
+// (docs/estimate.md "Speed"), applied over `options`.
+void ApplyFastPreset(EstimatorOptions* options);
+// One line naming what ApplyFastPreset() changes, for --help.
+std::string FastPresetSummary();
+
 // Progress: frames done, total frames (0 when unknown).
 using ProgressFn = std::function<void(long done, long total)>;
 
