@@ -1,9 +1,11 @@
 #include "estimate/camera_estimator.h"
 
 #include <sstream>
+#include <thread>
 
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
 #include "extract/threaded_frame_source.h"
 
@@ -44,6 +46,10 @@ namespace {
 // slow frame (a bundle-adjustment window closing), few enough to keep
 // memory small (3 x 960x540 gray + thumbnails).
 constexpr int kDecodeQueueFrames = 3;
+// Tracked frames allowed to wait for the estimator: a window solve takes
+// as long as tracking a few dozen frames, and FrameTracks are small (a few
+// hundred points), so this is generous and still flat.
+constexpr size_t kTrackQueueFrames = 48;
 
 std::string Num(double v) {
   std::ostringstream s;
@@ -68,6 +74,44 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
   }
 }
 
+// Tracking runs on its own thread, estimation (bundle-adjustment windows,
+// which arrive in bursts) on this one, with a bounded queue of FrameTracks
+// between them: on two cores the stages overlap instead of adding up. The
+// frames are processed in the same order as in one thread, so the result
+// is the same.
+CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options,
+                            const ProgressFn& progress) {
+  const VideoInfo& info = source.info();
+  FeatureTracker tracker(options.tracker);
+  TrackCameraEstimator estimator(info.width, info.height, options.estimator);
+  BoundedQueue<FrameTracks> queue(kTrackQueueFrames);
+  std::thread tracking([&] {
+    try {
+      Frame frame;
+      while (source.Next(&frame))
+        if (!queue.Push(tracker.Process(frame))) return;  // the estimator gave up
+      queue.Finish();
+    } catch (...) {
+      queue.Finish(std::current_exception());
+    }
+  });
+  try {
+    FrameTracks tracks;
+    long done = 0;
+    while (queue.Pop(&tracks)) {
+      estimator.AddFrame(tracks);
+      ++done;
+      if (progress) progress(done, info.frame_count);
+    }
+  } catch (...) {
+    queue.Cancel();
+    tracking.join();
+    throw;
+  }
+  tracking.join();
+  return estimator.Finish();
+}
+
 }  // namespace
 
 CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& options,
@@ -79,16 +123,7 @@ CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& optio
   if (options.backend == "colmap") {
     path = EstimateWithColmap(source, options.colmap_binary, progress);
   } else {
-    FeatureTracker tracker(options.tracker);
-    TrackCameraEstimator estimator(info.width, info.height, options.estimator);
-    Frame frame;
-    long done = 0;
-    while (source.Next(&frame)) {
-      estimator.AddFrame(tracker.Process(frame));
-      ++done;
-      if (progress) progress(done, info.frame_count);
-    }
-    path = estimator.Finish();
+    path = TrackAndEstimate(source, options, progress);
   }
   if (path.frames.empty()) throw Error(info.path, "no frames could be decoded");
   AddMetadata(source, options, &path);
