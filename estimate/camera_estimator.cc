@@ -20,8 +20,8 @@ void EstimatorOptions::Check() const {
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
 }
 
-// Measured on the 17 synthetic clips (docs/estimate.md "Speed"): about half
-// the CPU of the defaults. Skipping the deblocking filter was left out: 3 %
+// Measured on the 17 synthetic clips (docs/estimate.md "Speed"): 0.56x the
+// CPU of the defaults, less accurate (whip_pan is split into two shots). Skipping the deblocking filter was left out: 3 %
 // less CPU, but crane_shot 0.086 -> 0.11 deg and whip_pan 0.45 -> 0.63 deg.
 void ApplyFastPreset(EstimatorOptions* options) {
   options->frames.max_working_side = 640;
