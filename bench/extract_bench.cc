@@ -1,6 +1,6 @@
 // Extract speed: decode-only vs decode + shot detection + KLT tracking.
 //   hapcine_extract_bench <video> [--threads N] [--side PX] [--tracks N] [--cv-threads N]
-//   [--decode-only]
+//   [--color-side PX] [--skip-loop-filter] [--decode-only]
 // Prints frames, wall time and ms/frame for decoding (scaling included) and
 // for decoding + tracking, so the tracking overhead can be read directly.
 
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s <video> [--threads N] [--side PX] [--tracks N] [--cv-threads N] "
-                 "[--decode-only]\n",
+                 "[--color-side PX] [--skip-loop-filter] [--decode-only]\n",
                  argv[0]);
     return 2;
   }
@@ -42,6 +42,10 @@ int main(int argc, char** argv) {
       source_options.max_working_side = std::atoi(argv[++i]);
     else if (a == "--tracks" && i + 1 < argc)
       tracker_options.max_tracks = std::atoi(argv[++i]);
+    else if (a == "--color-side" && i + 1 < argc)
+      source_options.color_max_side = std::atoi(argv[++i]);
+    else if (a == "--skip-loop-filter")
+      source_options.skip_loop_filter = true;
     else if (a == "--cv-threads" && i + 1 < argc)
       cv::setNumThreads(std::atoi(argv[++i]));
     else if (a == "--decode-only")

@@ -73,7 +73,10 @@ int RunEstimate(int argc, char** argv) {
       argv[0]};
   std::string video, output;
   EstimatorOptions opt;
-  bool no_smooth = false, quiet = false;
+  bool no_smooth = false, quiet = false, fast = false;
+  // The preset goes in first, so options given beside --fast still win.
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--fast") ApplyFastPreset(&opt);
   app.add_option("video", video, "input video (anything FFmpeg reads) or image folder/pattern")
       ->required();
   app.add_option("-o,--output", output, "output camera path (*.camera.csv), written atomically")
@@ -107,6 +110,22 @@ int RunEstimate(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--threads", opt.estimator.num_threads, "Ceres solver threads")
       ->capture_default_str();
+  app.add_option("--decode-threads", opt.frames.decode_threads,
+                 "FFmpeg decoder threads (0 = FFmpeg's choice); decoding runs beside tracking")
+      ->capture_default_str();
+  app.add_flag("--fast", fast,
+               "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
+                   "; options given beside it win");
+  app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
+      ->capture_default_str();
+  // Tuning knobs for bench/speed.sh, not worth a line in --help.
+  app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
+      ->group("");
+  app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
+      ->group("");
+  app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,
+               "skip H.264 deblocking when decoding")
+      ->group("");
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress output");

@@ -4,7 +4,10 @@
 //
 // Streaming: frames are decoded and tracked one at a time and handed to
 // TrackCameraEstimator (track_estimator.h), which solves bundle-adjustment
-// windows as they fill, so memory stays flat in video length.
+// windows as they fill, so memory stays flat in video length. Three stages
+// overlap on their own threads with small bounded queues between them:
+// decoding (EstimateCameraPathFromFile), tracking, estimation (the caller's
+// thread, which also runs the progress callback).
 // Backends: "hapcine" (this pipeline) or "colmap" (colmap_backend.h).
 
 #include <functional>
@@ -25,6 +28,12 @@ struct EstimatorOptions {
   std::string colmap_binary = "colmap";  // used by the colmap backend
   void Check() const;                // throws UsageError
 };
+
+// The `--fast` preset: cheaper settings measured on the synthetic clips
+// (docs/estimate.md "Speed"), applied over `options`.
+void ApplyFastPreset(EstimatorOptions* options);
+// One line naming what ApplyFastPreset() changes, for --help.
+std::string FastPresetSummary();
 
 // Progress: frames done, total frames (0 when unknown).
 using ProgressFn = std::function<void(long done, long total)>;

@@ -129,6 +129,7 @@ class FfmpegSource : public FrameSource {
     dec_->pkt_timebase = st->time_base;
     dec_->thread_count = options_.decode_threads;  // 0 = automatic
     dec_->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
+    if (options_.skip_loop_filter) dec_->skip_loop_filter = AVDISCARD_ALL;
     r = avcodec_open2(dec_, codec, nullptr);
     if (r < 0) throw Error(path, "cannot open " + info_.codec + " decoder (" + AvError(r) + ")");
 
@@ -327,12 +328,16 @@ class FfmpegSource : public FrameSource {
     cv::Mat gray = rotate ? cv::Mat(work, CV_8UC1) : Reuse(&out->gray, work, CV_8UC1);
     // Gray feeds the tracker: proper bilinear filtering (antialiased when
     // shrinking). BGR only feeds shot statistics and previews: the fast
-    // path, which roughly halves its cost.
+    // path, which roughly halves its cost; a thumbnail (color_max_side) is
+    // area-averaged, as fast bilinear would skip most of the picture.
     Scale(&gray_sws_, AV_PIX_FMT_GRAY8, SWS_BILINEAR, &gray);
     cv::Mat bgr;
     if (options_.want_color) {
-      bgr = rotate ? cv::Mat(work, CV_8UC3) : Reuse(&out->bgr, work, CV_8UC3);
-      Scale(&bgr_sws_, AV_PIX_FMT_BGR24, SWS_FAST_BILINEAR, &bgr);
+      const int side = options_.color_max_side;
+      const bool thumb = side > 0 && side < std::max(work.width, work.height);
+      const cv::Size color = thumb ? WorkingSize(fw, fh, side) : work;
+      bgr = rotate ? cv::Mat(color, CV_8UC3) : Reuse(&out->bgr, color, CV_8UC3);
+      Scale(&bgr_sws_, AV_PIX_FMT_BGR24, thumb ? SWS_AREA : SWS_FAST_BILINEAR, &bgr);
     }
     int dec_w = fw, dec_h = fh;
     if (info_.rotation_deg != 0) {

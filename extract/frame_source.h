@@ -28,7 +28,7 @@ struct Frame {
   int index = 0;       // 0-based decoded frame index
   double time_s = 0;   // presentation time from the container, seconds
   cv::Mat gray;        // CV_8UC1 at working resolution
-  cv::Mat bgr;         // CV_8UC3 at working resolution (for shot detection/preview); may be empty
+  cv::Mat bgr;         // CV_8UC3 at working resolution, or smaller (color_max_side); may be empty
   double scale = 1.0;  // working size / decoded size (same for x and y)
   // Decoded frame size (after rotation). The working size is rounded to whole
   // pixels, so the exact per-axis scales are gray.cols / decoded_width and
@@ -43,6 +43,15 @@ struct FrameSourceOptions {
   // Longest side of the working images, pixels; 0 keeps the decoded size.
   int max_working_side = 960;
   bool want_color = true;  // fill Frame::bgr
+  // Longest side of Frame::bgr, pixels; 0 = the working size. Shot detection
+  // only needs colour statistics, so the estimator asks for a thumbnail
+  // (scaling straight from the decoded frame costs a fraction of a
+  // working-size BGR image).
+  int color_max_side = 0;
+  // Skip H.264/HEVC's in-loop deblocking filter (AVDISCARD_ALL): decoding
+  // gets cheaper, the picture gets slightly blockier, and drifts from the
+  // encoder's references until the next keyframe. For analysis only.
+  bool skip_loop_filter = false;
   int decode_threads = 0;  // 0 = FFmpeg's choice (all cores)
   // Image sequences carry no timestamps: frame i is at time i / this rate.
   double image_sequence_fps = 24;

@@ -147,6 +147,35 @@ TEST_F(FrameSourceTest, ScalesToWorkingSizeInGrayAndColour) {
   EXPECT_TRUE(gray_only[0].bgr.empty());
 }
 
+TEST_F(FrameSourceTest, ColourThumbnailBesideFullSizeGray) {
+  FrameSourceOptions o;
+  o.color_max_side = 80;
+  const auto frames = ReadAll(Testsrc(), o);
+  ASSERT_EQ(frames.size(), 24u);
+  EXPECT_EQ(frames[3].gray.size(), cv::Size(320, 240));
+  EXPECT_EQ(frames[3].bgr.size(), cv::Size(80, 60));
+  // The thumbnail is the same picture: its luma matches the gray image's
+  // area average (testsrc has large flat colour blocks).
+  cv::Mat luma, small;
+  cv::cvtColor(frames[3].bgr, luma, cv::COLOR_BGR2GRAY);
+  cv::resize(frames[3].gray, small, luma.size(), 0, 0, cv::INTER_AREA);
+  EXPECT_LT(cv::norm(luma, small, cv::NORM_L1) / luma.total(), 12.0);
+  // Never bigger than the working image.
+  o.color_max_side = 2000;
+  o.max_working_side = 160;
+  EXPECT_EQ(ReadAll(Testsrc(), o)[0].bgr.size(), cv::Size(160, 120));
+}
+
+TEST_F(FrameSourceTest, SkippingTheLoopFilterKeepsThePicture) {
+  FrameSourceOptions o;
+  o.skip_loop_filter = true;
+  const auto fast = ReadAll(Testsrc(), o);
+  const auto full = ReadAll(Testsrc());
+  ASSERT_EQ(fast.size(), full.size());
+  for (size_t i = 0; i < fast.size(); i += 7)
+    EXPECT_LT(cv::norm(fast[i].gray, full[i].gray, cv::NORM_L1) / fast[i].gray.total(), 3.0) << i;
+}
+
 TEST_F(FrameSourceTest, BlackIsBlackInGray) {
   // Limited-range video: black (Y=16) must come out near 0 for blank tests.
   const auto frames = ReadAll(Make("black.mp4",
@@ -348,6 +377,9 @@ TEST(FrameSourceOptionsTest, Check) {
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.decode_threads = -2;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.color_max_side = -1;
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.image_sequence_fps = 0;

@@ -9,7 +9,6 @@
 namespace hapcine {
 namespace {
 
-constexpr int kThumbWidth = 128;
 constexpr size_t kWindow = 30;
 constexpr int kMinCalmBeforeCandidate = 3;
 constexpr int kMaxCandidateLen = 90;
@@ -28,11 +27,11 @@ constexpr double kSpikeFloor = 0.02;
 // nearest-neighbour decimation costs ~50 us where area averaging of a
 // 960-px BGR frame costs over a millisecond.
 cv::Mat Thumb(const cv::Mat& image) {
-  if (image.cols <= kThumbWidth) return image;
+  if (image.cols <= kShotThumbWidth) return image;
   const int h =
-      std::max(1, static_cast<int>(std::lround(image.rows * double(kThumbWidth) / image.cols)));
+      std::max(1, static_cast<int>(std::lround(image.rows * double(kShotThumbWidth) / image.cols)));
   cv::Mat small;
-  cv::resize(image, small, cv::Size(kThumbWidth, h), 0, 0, cv::INTER_NEAREST);
+  cv::resize(image, small, cv::Size(kShotThumbWidth, h), 0, 0, cv::INTER_NEAREST);
   return small;
 }
 

@@ -38,6 +38,10 @@
 
 namespace hapcine {
 
+// Width of the thumbnail the statistics are measured on; a Frame::bgr this
+// small is used as it is.
+constexpr int kShotThumbWidth = 128;
+
 struct ShotDetectorOptions {
   double cut_threshold = 0.5;  // Bhattacharyya distance floor for a hard cut
   double blank_luma = 16;      // mean luma (0..255) under which a frame is blank
