@@ -32,6 +32,7 @@
 #include "extract/feature_tracker.h"
 #include "extract/frame_source.h"
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <cstdlib>
 
 using namespace hapcine;
@@ -83,8 +84,12 @@ int main(int argc, char** argv) {
 
   auto source = OpenFrameSource(dir + "/" + preset + ".mp4", FrameSourceOptions{});
   const int W = source->info().width, H = source->info().height;
-  FeatureTracker tracker{TrackerOptions{}};
+  TrackerOptions to;
+  if (getenv("KLT_WIN")) to.klt_window = atoi(getenv("KLT_WIN"));
+  if (getenv("FB")) to.fb_threshold_px = atof(getenv("FB"));
+  FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
+  std::vector<cv::Mat> grays;
   Frame frame;
   while (source->Next(&frame)) {
     if (getenv("CHECK_FRAME") && frame.index == atoi(getenv("CHECK_FRAME"))) {
@@ -96,6 +101,7 @@ int main(int argc, char** argv) {
       cv::imwrite("/tmp/acc/decoded.png", frame.bgr);
     }
     frames.push_back(tracker.Process(frame));
+    if (getenv("NCC_STATS")) grays.push_back(frame.gray.clone());
   }
 
   const int n_gt = static_cast<int>(gt.frames.size());
@@ -176,6 +182,71 @@ int main(int argc, char** argv) {
     }
     fit_max[id] = mx;
   }
+  // Is a track born next to a depth edge (rays within +-R px of its first
+  // observation hit depths differing by > 5 %)?
+  auto near_edge = [&](const Obs& o, double r) {
+    const synth::CameraView& v = views[o.frame];
+    double lo = 1e18, hi = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const Eigen::Vector3d d = v.world_from_cam * synth::CameraRayDirection(
+            o.px.x() + 0.5 + dx * r, o.px.y() + 0.5 + dy * r, W, H, v.focal_px());
+        synth::Hit hit;
+        if (!scene->Trace(v.center, d, &hit)) continue;
+        lo = std::min(lo, hit.t);
+        hi = std::max(hi, hit.t);
+      }
+    return hi > 1.05 * lo;
+  };
+  {
+    int bad = 0, bad_edge = 0, good = 0, good_edge = 0;
+    for (const auto& [id, obs] : obs_of) {
+      const bool e = near_edge(obs[0], 8);  // half the KLT window at 960 px, in decoded px ~ 14
+      if (fit_max[id] > 2) { ++bad; bad_edge += e; } else if (fit_max[id] < 1) { ++good; good_edge += e; }
+    }
+    std::printf("tracks born within 8 px of a depth edge: %.1f %% of bad (> 2 px, %d), %.1f %% of good (< 1 px, %d)\n",
+                100.0 * bad_edge / std::max(bad, 1), bad, 100.0 * good_edge / std::max(good, 1), good);
+  }
+  if (getenv("BAD_OUT")) {
+    FILE* bf = std::fopen(getenv("BAD_OUT"), "w");
+    for (const auto& [id, m] : fit_max) std::fprintf(bf, "%ld %.3f\n", id, m);
+    std::fclose(bf);
+  }
+  if (getenv("NCC_STATS")) {
+    // NCC of the patch at birth against the patch now (translation only),
+    // for good (< 1 px), mid and bad (> 2 px) tracks, by age.
+    const int hw = atoi(getenv("NCC_STATS"));
+    const double s = grays[0].cols / static_cast<double>(W);
+    auto patch = [&](int f, const Eigen::Vector2d& px, cv::Mat* out) {
+      const cv::Point2f c(static_cast<float>((px.x() + 0.5) * s - 0.5), static_cast<float>((px.y() + 0.5) * s - 0.5));
+      cv::getRectSubPix(grays[f], cv::Size(2 * hw + 1, 2 * hw + 1), c, *out, CV_32F);
+    };
+    auto ncc = [](const cv::Mat& a, const cv::Mat& b) {
+      cv::Scalar ma, sa, mb, sb;
+      cv::meanStdDev(a, ma, sa);
+      cv::meanStdDev(b, mb, sb);
+      const double cov = cv::mean((a - ma[0]).mul(b - mb[0]))[0];
+      return cov / std::max(sa[0] * sb[0], 1e-9);
+    };
+    const int ages[] = {6, 12, 24, 48};
+    for (int cls = 0; cls < 3; ++cls) {
+      std::printf("class %s:", cls == 0 ? "good" : cls == 1 ? "mid" : "bad");
+      for (int a : ages) {
+        std::vector<double> v;
+        for (const auto& [id, obs] : obs_of) {
+          const double m = fit_max[id];
+          const int c = m < 1 ? 0 : m > 2 ? 2 : 1;
+          if (c != cls || static_cast<int>(obs.size()) <= a) continue;
+          cv::Mat p0, p1;
+          patch(obs[0].frame, obs[0].px, &p0);
+          patch(obs[a].frame, obs[a].px, &p1);
+          v.push_back(ncc(p0, p1));
+        }
+        std::printf("  age %d n %zu: p10 %.3f p50 %.3f", a, v.size(), Percentile(v, 0.1), Percentile(v, 0.5));
+      }
+      std::printf("\n");
+    }
+  }
   int n1 = 0, n2 = 0, n4 = 0;
   for (const auto& [id, m] : fit_max) {
     n1 += m > 1;
@@ -230,7 +301,9 @@ int main(int argc, char** argv) {
   std::printf("observation residual against the rigid fit, px: median %.3f p90 %.3f p99 %.3f\n",
               Percentile(fit_err, 0.5), Percentile(fit_err, 0.9), Percentile(fit_err, 0.99));
 
-  TrackCameraEstimator est(W, H, TrackEstimatorOptions{});
+  TrackEstimatorOptions eo;
+  if (getenv("ACC_POINTS")) eo.max_points = atoi(getenv("ACC_POINTS"));
+  TrackCameraEstimator est(W, H, eo);
   for (const auto& ft : frames) est.AddFrame(ft);
   CameraPath path = est.Finish();
   if (!est_out.empty()) WriteCameraPathFile(path, est_out);
@@ -238,5 +311,10 @@ int main(int argc, char** argv) {
   std::printf("mode %s noise %.2f cut %.2f: rot mean %.4f max %.4f deg, fov err %.3f %%, ATE %.3f %%\n",
               mode.c_str(), noise, cut, r.overall.rotation_deg.mean, r.overall.rotation_deg.max,
               r.overall.fov_percent.mean, r.overall.ate_percent.value_or(-1));
+  if (getenv("PER_FRAME")) {
+    for (const FrameError& f : r.per_frame)
+      if (f.gt_frame % 6 == 0) std::printf("%d:%.3f ", f.gt_frame, f.rotation_deg);
+    std::printf("\n");
+  }
   return 0;
 }
