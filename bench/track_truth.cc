@@ -1,18 +1,24 @@
 // hapcine_track_truth: separates track errors from solver errors on a
 // synthetic clip (docs/estimate.md, "Where the rotation error comes from").
 //
-//   hapcine_track_truth PRESET CLIP_DIR [--mode klt|exact|visible] [--noise PX]
+//   hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad] [--cut PX]
+//                       [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]
 //                       [--est-out FILE] [--errors-out FILE]
 //
 // Tracks the clip with the real FeatureTracker, then casts the ray of every
 // track's first observation into the synthetic scene (ground-truth camera) to
 // find the 3-D point the track started on, and projects that point into every
-// later frame with the ground-truth camera. Prints the track errors (KLT
-// position minus exact projection) and the estimator's rotation error on
+// later frame with the ground-truth camera; also fits the rigid point that
+// best explains each whole track with the ground-truth cameras (its largest
+// residual says whether the track follows any 3-D point: occlusion-edge
+// corners do not). Prints those statistics and the estimator's rotation
+// error on
 //   klt      the KLT tracks (what `hapcine estimate` sees)
-//   exact    the same tracks (same ids, same frames) at their exact positions
-//   visible  exact, without observations whose point is hidden in that frame
-// (optionally with Gaussian pixel noise added to the exact positions).
+//   fit      the same tracks (same ids, frames) moved onto their rigid fit
+//   ray      the same tracks at the projection of their ray-cast point
+//   cut      KLT, without observations off their rigid fit by > --cut px
+//   dropbad  KLT, without tracks whose rigid fit is off by > --cut px
+// (--noise adds Gaussian pixel noise to fit/ray positions).
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdio>
@@ -31,8 +37,6 @@
 #include "estimate/track_estimator.h"
 #include "extract/feature_tracker.h"
 #include "extract/frame_source.h"
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <cstdlib>
 
 using namespace hapcine;
@@ -59,18 +63,23 @@ synth::CameraView ViewOf(const CameraFrame& f, int w, int h) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::cerr << "usage: hapcine_track_truth PRESET CLIP_DIR [--mode klt|exact|visible] [--noise PX]"
+    std::cerr << "usage: hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad]"
+                 " [--cut PX] [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]"
                  " [--est-out FILE] [--errors-out FILE]\n";
     return 2;
   }
   const std::string preset = argv[1], dir = argv[2];
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
+  int klt_window = 0, points = 0, per_frame = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--mode") mode = argv[i + 1];
     else if (a == "--noise") noise = std::stod(argv[i + 1]);
     else if (a == "--cut") cut = std::stod(argv[i + 1]);
+    else if (a == "--klt-window") klt_window = std::stoi(argv[i + 1]);
+    else if (a == "--points") points = std::stoi(argv[i + 1]);
+    else if (a == "--per-frame") per_frame = std::stoi(argv[i + 1]);
     else if (a == "--est-out") est_out = argv[i + 1];
     else if (a == "--errors-out") errors_out = argv[i + 1];
     else {
@@ -85,23 +94,12 @@ int main(int argc, char** argv) {
   auto source = OpenFrameSource(dir + "/" + preset + ".mp4", FrameSourceOptions{});
   const int W = source->info().width, H = source->info().height;
   TrackerOptions to;
-  if (getenv("KLT_WIN")) to.klt_window = atoi(getenv("KLT_WIN"));
-  if (getenv("FB")) to.fb_threshold_px = atof(getenv("FB"));
+  if (klt_window > 0) to.klt_window = klt_window;
   FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
-  std::vector<cv::Mat> grays;
   Frame frame;
   while (source->Next(&frame)) {
-    if (getenv("CHECK_FRAME") && frame.index == atoi(getenv("CHECK_FRAME"))) {
-      synth::RenderOptions ro;
-      ro.threads = 1;
-      cv::Mat r = synth::RenderView(*scene, ViewOf(gt.frames[frame.index], W, H), ro), r8, g;
-      r.convertTo(r8, CV_8UC3);
-      cv::imwrite("/tmp/acc/render.png", r8);
-      cv::imwrite("/tmp/acc/decoded.png", frame.bgr);
-    }
     frames.push_back(tracker.Process(frame));
-    if (getenv("NCC_STATS")) grays.push_back(frame.gray.clone());
   }
 
   const int n_gt = static_cast<int>(gt.frames.size());
@@ -207,46 +205,6 @@ int main(int argc, char** argv) {
     std::printf("tracks born within 8 px of a depth edge: %.1f %% of bad (> 2 px, %d), %.1f %% of good (< 1 px, %d)\n",
                 100.0 * bad_edge / std::max(bad, 1), bad, 100.0 * good_edge / std::max(good, 1), good);
   }
-  if (getenv("BAD_OUT")) {
-    FILE* bf = std::fopen(getenv("BAD_OUT"), "w");
-    for (const auto& [id, m] : fit_max) std::fprintf(bf, "%ld %.3f\n", id, m);
-    std::fclose(bf);
-  }
-  if (getenv("NCC_STATS")) {
-    // NCC of the patch at birth against the patch now (translation only),
-    // for good (< 1 px), mid and bad (> 2 px) tracks, by age.
-    const int hw = atoi(getenv("NCC_STATS"));
-    const double s = grays[0].cols / static_cast<double>(W);
-    auto patch = [&](int f, const Eigen::Vector2d& px, cv::Mat* out) {
-      const cv::Point2f c(static_cast<float>((px.x() + 0.5) * s - 0.5), static_cast<float>((px.y() + 0.5) * s - 0.5));
-      cv::getRectSubPix(grays[f], cv::Size(2 * hw + 1, 2 * hw + 1), c, *out, CV_32F);
-    };
-    auto ncc = [](const cv::Mat& a, const cv::Mat& b) {
-      cv::Scalar ma, sa, mb, sb;
-      cv::meanStdDev(a, ma, sa);
-      cv::meanStdDev(b, mb, sb);
-      const double cov = cv::mean((a - ma[0]).mul(b - mb[0]))[0];
-      return cov / std::max(sa[0] * sb[0], 1e-9);
-    };
-    const int ages[] = {6, 12, 24, 48};
-    for (int cls = 0; cls < 3; ++cls) {
-      std::printf("class %s:", cls == 0 ? "good" : cls == 1 ? "mid" : "bad");
-      for (int a : ages) {
-        std::vector<double> v;
-        for (const auto& [id, obs] : obs_of) {
-          const double m = fit_max[id];
-          const int c = m < 1 ? 0 : m > 2 ? 2 : 1;
-          if (c != cls || static_cast<int>(obs.size()) <= a) continue;
-          cv::Mat p0, p1;
-          patch(obs[0].frame, obs[0].px, &p0);
-          patch(obs[a].frame, obs[a].px, &p1);
-          v.push_back(ncc(p0, p1));
-        }
-        std::printf("  age %d n %zu: p10 %.3f p50 %.3f", a, v.size(), Percentile(v, 0.1), Percentile(v, 0.5));
-      }
-      std::printf("\n");
-    }
-  }
   int n1 = 0, n2 = 0, n4 = 0;
   for (const auto& [id, m] : fit_max) {
     n1 += m > 1;
@@ -302,7 +260,7 @@ int main(int argc, char** argv) {
               Percentile(fit_err, 0.5), Percentile(fit_err, 0.9), Percentile(fit_err, 0.99));
 
   TrackEstimatorOptions eo;
-  if (getenv("ACC_POINTS")) eo.max_points = atoi(getenv("ACC_POINTS"));
+  if (points > 0) eo.max_points = points;
   TrackCameraEstimator est(W, H, eo);
   for (const auto& ft : frames) est.AddFrame(ft);
   CameraPath path = est.Finish();
@@ -311,7 +269,7 @@ int main(int argc, char** argv) {
   std::printf("mode %s noise %.2f cut %.2f: rot mean %.4f max %.4f deg, fov err %.3f %%, ATE %.3f %%\n",
               mode.c_str(), noise, cut, r.overall.rotation_deg.mean, r.overall.rotation_deg.max,
               r.overall.fov_percent.mean, r.overall.ate_percent.value_or(-1));
-  if (getenv("PER_FRAME")) {
+  if (per_frame) {
     for (const FrameError& f : r.per_frame)
       if (f.gt_frame % 6 == 0) std::printf("%d:%.3f ", f.gt_frame, f.rotation_deg);
     std::printf("\n");
