@@ -14,7 +14,8 @@
 //     sharing the models dictate; the window overlaps the previous one by two
 //     keyframes, held constant, so memory is flat in video length.
 //     General windows are solved twice, with constant and with per-keyframe
-//     focal, and BIC decides "general" vs "general+zoom".
+//     focal, and BIC decides "general" vs "general+zoom". Tracks whose
+//     reprojection RMS exceeds `track_rms_cut_px` are dropped whole.
 //  4. Frames between keyframes get a pose-only solve against the window's
 //     points, with only the model's freedoms.
 //  5. At the end of the shot: zero-phase smoothing per segment, conversion to
@@ -46,6 +47,9 @@ struct TrackEstimatorOptions {
   bool smooth = true;                // zero-phase smoothing of the final path
   double smooth_sigma_frames = 1.5;  // Gaussian sigma of that smoothing, frames
   int ba_iterations = 40;            // Ceres iterations per window solve
+  // A track whose reprojection RMS in the window's BA exceeds this (pixels at
+  // 960 px width) is dropped whole (occlusion-edge tracks, slides).
+  double track_rms_cut_px = 0.4;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   void Check() const;                // throws UsageError
