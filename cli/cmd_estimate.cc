@@ -95,7 +95,15 @@ int RunEstimate(int argc, char** argv) {
                  "windows, so memory is flat)")
       ->capture_default_str();
   app.add_option("--points", opt.estimator.max_points,
-                 "3-D points per window (the longest tracks)")
+                 "3-D points per window")
+      ->capture_default_str();
+  app.add_option("--point-grid", opt.estimator.point_grid_cells,
+                 "spread each window's points over N x N image cells, longest tracks first in "
+                 "each cell (0: the longest tracks anywhere)")
+      ->capture_default_str();
+  app.add_option("--track-rms-cut", opt.estimator.track_rms_cut_px,
+                 "drop a window's track whole when its reprojection RMS exceeds this (pixels at "
+                 "960 px width; occlusion-edge tracks)")
       ->capture_default_str();
   app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
                  "horizontal field of view, degrees, assumed where the focal length cannot be "

@@ -38,7 +38,10 @@ namespace hapcine {
 struct TrackEstimatorOptions {
   double prior_hfov_deg = 50;        // focal prior (horizontal FOV) where focal is not observable
   int window_frames = 120;           // frames per bundle-adjustment window (long shots)
-  int max_points = 300;              // points per window (the longest tracks)
+  int max_points = 300;              // points per window
+  // Points spread over point_grid_cells^2 image cells (point_selection.h) in
+  // translating windows (not along the optical axis); 0 or 1: longest first.
+  int point_grid_cells = 6;
   double keyframe_motion = 0.02;     // median track motion for a new keyframe, fraction of width
   double keyframe_min_shared = 0.7;  // fraction of the last keyframe's tracks still alive
   int keyframe_max_gap = 6;          // frames; a keyframe at least this often
@@ -49,7 +52,10 @@ struct TrackEstimatorOptions {
   int ba_iterations = 40;            // Ceres iterations per window solve
   // A track whose reprojection RMS in the window's BA exceeds this (pixels at
   // 960 px width) is dropped whole (occlusion-edge tracks, slides).
-  double track_rms_cut_px = 0.4;
+  double track_rms_cut_px = 0.2;
+  // The same in windows without translation: no parallax, so an occlusion
+  // edge does not slide and the RMS is tracking noise (blur, fades).
+  double track_rms_cut_rotation_px = 0.4;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   void Check() const;                // throws UsageError

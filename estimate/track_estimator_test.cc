@@ -292,6 +292,9 @@ TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   o = {};
   o.track_rms_cut_px = 0;
   EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.point_grid_cells = -1;
+  EXPECT_THROW(o.Check(), UsageError);
   EXPECT_NO_THROW(TrackEstimatorOptions{}.Check());
 }
 
