@@ -391,6 +391,16 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
     return s;
   };
+  // The tight cut is for windows with parallax throughout: where a few
+  // intervals among rotation read as general (the blur of a whip pan), the
+  // tracks' RMS is mostly tracking noise, as without translation.
+  int translating = 0, free_keyframes = 0;
+  for (int i = 1; i < n; ++i) {
+    if (keyframes_[i].fixed) continue;
+    ++free_keyframes;
+    translating += HasTranslation(keyframes_[i].model);
+  }
+  const bool mostly_translating = has_translation && 2 * translating >= free_keyframes;
   // After the model choice (the comparison needs the same tracks in every
   // candidate, and the tracks in front of a dolly-zoom subject are the cue).
   auto drop_bad_tracks = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
@@ -429,7 +439,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       }
       if (finite.empty()) break;
       std::nth_element(finite.begin(), finite.begin() + finite.size() / 4, finite.end());
-      const double cut_px = has_translation ? options_.track_rms_cut_px : options_.track_rms_cut_rotation_px;
+      const double cut_px = mostly_translating ? options_.track_rms_cut_px : options_.track_rms_cut_rotation_px;
       const double cut = factor * std::max(cut_px / 960.0,  // normalised units
                                            2.0 * finite[finite.size() / 4]);
       std::vector<BaObservation> kept;

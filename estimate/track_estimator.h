@@ -53,8 +53,9 @@ struct TrackEstimatorOptions {
   // A track whose reprojection RMS in the window's BA exceeds this (pixels at
   // 960 px width) is dropped whole (occlusion-edge tracks, slides).
   double track_rms_cut_px = 0.2;
-  // The same in windows without translation: no parallax, so an occlusion
-  // edge does not slide and the RMS is tracking noise (blur, fades).
+  // The same in windows without translation, or where fewer than half the
+  // keyframe intervals translate: without parallax an occlusion edge does not
+  // slide and the RMS is tracking noise (blur of a whip pan, fades).
   double track_rms_cut_rotation_px = 0.4;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
