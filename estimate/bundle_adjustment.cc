@@ -32,24 +32,6 @@ bool Project(const T* q, const T* c, const T* log_f, const T* d, const T& rho,
   return true;
 }
 
-// Rotation-only window: the bearing alone (points at infinity relative to a fixed centre).
-struct BearingCost {
-  BearingCost(const Eigen::Vector2d& u, double inv_scale) : u_(u), inv_scale_(inv_scale) {}
-  template <typename T>
-  bool operator()(const T* q, const T* log_f, const T* d, T* r) const {
-    T p[2];
-    if (!Project<T>(q, nullptr, log_f, d, T(0), Eigen::Vector3d::Zero(), p)) return false;
-    r[0] = (p[0] - T(u_.x())) * inv_scale_;
-    r[1] = (p[1] - T(u_.y())) * inv_scale_;
-    return true;
-  }
-  static ceres::CostFunction* Create(const Eigen::Vector2d& u, double inv_scale) {
-    return new ceres::AutoDiffCostFunction<BearingCost, 2, 4, 1, 3>(new BearingCost(u, inv_scale));
-  }
-  Eigen::Vector2d u_;
-  double inv_scale_;
-};
-
 // Pose-only: the point is a constant.
 struct PoseCost {
   PoseCost(const Eigen::Vector2d& u, const BaPoint& point, bool use_depth, double inv_scale)
@@ -225,7 +207,7 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
       problem.AddResidualBlock(new DepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
                                new ceres::HuberLoss(1.0), q, c, lf, x);
     } else {
-      problem.AddResidualBlock(BearingCost::Create(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
+      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
     }
     point_used[o.point] = 1;
     ++summary.num_observations;

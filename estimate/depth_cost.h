@@ -1,6 +1,7 @@
 #pragma once
-// Reprojection residual of an anchored inverse-depth point in a camera with
-// free rotation, centre and log focal, with analytic Jacobians (the bundle
+// Reprojection residuals of the bundle adjustment with analytic Jacobians.
+// DepthCostFunction: an anchored inverse-depth point in a camera with free
+// rotation, centre and log focal (the bundle
 // adjustment's most frequent residual: auto-differentiation of it cost ~7 % of
 // `hapcine estimate`'s CPU). Conventions of bundle_adjustment.h:
 //   parameters  q (x, y, z, w; unit, EigenQuaternionManifold), c (3),
@@ -25,6 +26,18 @@ class DepthCostFunction : public ceres::SizedCostFunction<2, 4, 3, 1, 4> {
  private:
   Eigen::Vector2d u_;
   Eigen::Vector3d anchor_;
+  double inv_scale_;
+};
+
+// Rotation-only window: the bearing d alone (a point at infinity relative to a
+// fixed centre). Parameters q (4), log f (1), d (3, SphereManifold<3>).
+class BearingCostFunction : public ceres::SizedCostFunction<2, 4, 1, 3> {
+ public:
+  BearingCostFunction(const Eigen::Vector2d& u, double inv_scale) : u_(u), inv_scale_(inv_scale) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  Eigen::Vector2d u_;
   double inv_scale_;
 };
 
