@@ -9,6 +9,8 @@
 #include <limits>
 #include <map>
 
+#include "estimate/depth_cost.h"
+
 namespace hapcine {
 namespace {
 
@@ -29,46 +31,6 @@ bool Project(const T* q, const T* c, const T* log_f, const T* d, const T& rho,
   u[1] = f * p.y() / p.z();
   return true;
 }
-
-// Camera (q, c, log f) and point (d, rho) all free.
-struct DepthCost {
-  DepthCost(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
-      : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
-  template <typename T>
-  bool operator()(const T* q, const T* c, const T* log_f, const T* X, T* r) const {
-    T p[2];
-    if (!Project(q, c, log_f, X, X[3], anchor_, p)) return false;
-    r[0] = (p[0] - T(u_.x())) * inv_scale_;
-    r[1] = (p[1] - T(u_.y())) * inv_scale_;
-    return true;
-  }
-  static ceres::CostFunction* Create(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor,
-                                     double inv_scale) {
-    return new ceres::AutoDiffCostFunction<DepthCost, 2, 4, 3, 1, 4>(
-        new DepthCost(u, anchor, inv_scale));
-  }
-  Eigen::Vector2d u_;
-  Eigen::Vector3d anchor_;
-  double inv_scale_;
-};
-
-// Rotation-only window: the bearing alone (points at infinity relative to a fixed centre).
-struct BearingCost {
-  BearingCost(const Eigen::Vector2d& u, double inv_scale) : u_(u), inv_scale_(inv_scale) {}
-  template <typename T>
-  bool operator()(const T* q, const T* log_f, const T* d, T* r) const {
-    T p[2];
-    if (!Project<T>(q, nullptr, log_f, d, T(0), Eigen::Vector3d::Zero(), p)) return false;
-    r[0] = (p[0] - T(u_.x())) * inv_scale_;
-    r[1] = (p[1] - T(u_.y())) * inv_scale_;
-    return true;
-  }
-  static ceres::CostFunction* Create(const Eigen::Vector2d& u, double inv_scale) {
-    return new ceres::AutoDiffCostFunction<BearingCost, 2, 4, 1, 3>(new BearingCost(u, inv_scale));
-  }
-  Eigen::Vector2d u_;
-  double inv_scale_;
-};
 
 // Pose-only: the point is a constant.
 struct PoseCost {
@@ -242,10 +204,10 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
     double* x = X[o.point].data();
     if (options.use_depth) {
       double* c = b.c[b.cen[o.camera]].data();
-      problem.AddResidualBlock(DepthCost::Create(o.u, (*points)[o.point].anchor, inv_scale),
+      problem.AddResidualBlock(new DepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
                                new ceres::HuberLoss(1.0), q, c, lf, x);
     } else {
-      problem.AddResidualBlock(BearingCost::Create(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
+      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
     }
     point_used[o.point] = 1;
     ++summary.num_observations;
