@@ -1,25 +1,24 @@
 #include "player/mpv_clock.h"
 
-#include <mpv/client.h>
-
 #include <chrono>
 
 #include "core/error.h"
+#include "player/mpv_library.h"
 
 namespace hapcine {
 namespace {
 enum : uint64_t { kTimePos = 1, kPause, kSpeed, kEof, kDuration };
 }
 
-MpvClock::MpvClock(const std::string& video, const MpvOptions& o) : video_(video) {
-  mpv_ = mpv_create();
+MpvClock::MpvClock(const std::string& video, const MpvOptions& o) : video_(video), api_(&Mpv()) {
+  mpv_ = api_->create();
   if (!mpv_) throw Error(video, "cannot create the mpv player (libmpv)");
   auto set = [&](const char* k, const char* v) {
-    const int rc = mpv_set_option_string(mpv_, k, v);
+    const int rc = api_->set_option_string(mpv_, k, v);
     if (rc < 0) {
-      mpv_terminate_destroy(mpv_);
+      api_->terminate_destroy(mpv_);
       mpv_ = nullptr;
-      throw Error(video, std::string("mpv option ") + k + "=" + v + ": " + mpv_error_string(rc));
+      throw Error(video, std::string("mpv option ") + k + "=" + v + ": " + api_->error_string(rc));
     }
   };
   if (o.headless) {
@@ -35,37 +34,37 @@ MpvClock::MpvClock(const std::string& video, const MpvOptions& o) : video_(video
   set("keep-open", o.keep_open ? "yes" : "no");
   set("terminal", "no");
   if (o.start_paused) set("pause", "yes");
-  const int rc = mpv_initialize(mpv_);
+  const int rc = api_->initialize(mpv_);
   if (rc < 0) {
-    mpv_terminate_destroy(mpv_);
+    api_->terminate_destroy(mpv_);
     mpv_ = nullptr;
-    throw Error(video, std::string("cannot initialise mpv: ") + mpv_error_string(rc));
+    throw Error(video, std::string("cannot initialise mpv: ") + api_->error_string(rc));
   }
-  mpv_observe_property(mpv_, kTimePos, "time-pos", MPV_FORMAT_DOUBLE);
-  mpv_observe_property(mpv_, kPause, "pause", MPV_FORMAT_FLAG);
-  mpv_observe_property(mpv_, kSpeed, "speed", MPV_FORMAT_DOUBLE);
-  mpv_observe_property(mpv_, kEof, "eof-reached", MPV_FORMAT_FLAG);
-  mpv_observe_property(mpv_, kDuration, "duration", MPV_FORMAT_DOUBLE);
+  api_->observe_property(mpv_, kTimePos, "time-pos", MPV_FORMAT_DOUBLE);
+  api_->observe_property(mpv_, kPause, "pause", MPV_FORMAT_FLAG);
+  api_->observe_property(mpv_, kSpeed, "speed", MPV_FORMAT_DOUBLE);
+  api_->observe_property(mpv_, kEof, "eof-reached", MPV_FORMAT_FLAG);
+  api_->observe_property(mpv_, kDuration, "duration", MPV_FORMAT_DOUBLE);
   r_.paused = true;
   cell_.Store(r_);
   events_ = std::thread([this] { EventLoop(); });
   const char* cmd[] = {"loadfile", video_.c_str(), nullptr};
-  const int lrc = mpv_command(mpv_, cmd);
+  const int lrc = api_->command(mpv_, cmd);
   if (lrc < 0) {
     load_state_ = -1;
     std::lock_guard<std::mutex> lock(error_mutex_);
-    load_error_ = std::string("mpv loadfile: ") + mpv_error_string(lrc);
+    load_error_ = std::string("mpv loadfile: ") + api_->error_string(lrc);
   }
 }
 
 MpvClock::~MpvClock() {
   if (mpv_) {
     const char* cmd[] = {"quit", nullptr};
-    mpv_command(mpv_, cmd);
-    mpv_wakeup(mpv_);
+    api_->command(mpv_, cmd);
+    api_->wakeup(mpv_);
   }
   if (events_.joinable()) events_.join();
-  if (mpv_) mpv_terminate_destroy(mpv_);
+  if (mpv_) api_->terminate_destroy(mpv_);
 }
 
 void MpvClock::WaitLoaded(double timeout_s) {
@@ -81,18 +80,18 @@ void MpvClock::WaitLoaded(double timeout_s) {
 
 void MpvClock::SetPause(bool paused) {
   int flag = paused ? 1 : 0;
-  mpv_set_property(mpv_, "pause", MPV_FORMAT_FLAG, &flag);
+  api_->set_property(mpv_, "pause", MPV_FORMAT_FLAG, &flag);
 }
 
 void MpvClock::SeekAbsolute(double media_s) {
   const std::string t = std::to_string(media_s);
   const char* cmd[] = {"seek", t.c_str(), "absolute", nullptr};
-  mpv_command(mpv_, cmd);
+  api_->command(mpv_, cmd);
 }
 
 void MpvClock::Quit() {
   const char* cmd[] = {"quit", nullptr};
-  mpv_command(mpv_, cmd);
+  api_->command(mpv_, cmd);
 }
 
 void MpvClock::Publish() {
@@ -104,7 +103,7 @@ void MpvClock::Publish() {
 
 void MpvClock::EventLoop() {
   for (;;) {
-    mpv_event* ev = mpv_wait_event(mpv_, 1.0);
+    mpv_event* ev = api_->wait_event(mpv_, 1.0);
     switch (ev->event_id) {
       case MPV_EVENT_SHUTDOWN:
         r_.finished = true;
@@ -122,7 +121,7 @@ void MpvClock::EventLoop() {
         const auto* end = static_cast<mpv_event_end_file*>(ev->data);
         if (end->reason == MPV_END_FILE_REASON_ERROR && load_state_.load() == 0) {
           std::lock_guard<std::mutex> lock(error_mutex_);
-          load_error_ = std::string("mpv cannot play it: ") + mpv_error_string(end->error);
+          load_error_ = std::string("mpv cannot play it: ") + api_->error_string(end->error);
           load_state_ = -1;
         }
         r_.eof = true;

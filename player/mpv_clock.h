@@ -21,6 +21,8 @@ struct mpv_handle;
 
 namespace hapcine {
 
+struct MpvApi;
+
 struct MpvOptions {
   bool headless = false;  // vo=null, ao=null
   bool fullscreen = false;
@@ -30,7 +32,8 @@ struct MpvOptions {
 
 class MpvClock : public MediaClock {
  public:
-  // Starts mpv and loads `video`. Throws hapcine::Error if mpv cannot start.
+  // Starts mpv and loads `video`. Throws hapcine::Error if libmpv cannot be
+  // loaded or mpv cannot start.
   MpvClock(const std::string& video, const MpvOptions& options);
   ~MpvClock() override;
   MpvClock(const MpvClock&) = delete;
@@ -53,6 +56,7 @@ class MpvClock : public MediaClock {
   void Publish();
 
   std::string video_;
+  const MpvApi* api_;  // libmpv, opened on first use (player/mpv_library.h)
   mpv_handle* mpv_ = nullptr;
   std::thread events_;
   ClockCell cell_;
