@@ -8,6 +8,11 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libceres-dev
   libavformat-dev libavcodec-dev libavutil-dev libswscale-dev ffmpeg
   libusb-1.0-0-dev libmpv-dev
+  # Opened at run time (dlopen), not linked, so that start-up loads neither
+  # unless used: libmpv by `hapcine play` (player/mpv_library.h), OpenCV's
+  # image codecs by image I/O (lazy_imgcodecs/). The -dev packages above pull
+  # them in today; listed so that they stay installed whatever those depend on.
+  libmpv2 libopencv-imgcodecs406
   libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev
   colmap
