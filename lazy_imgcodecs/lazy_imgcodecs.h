@@ -2,8 +2,8 @@
 // Definitions of cv::imread, cv::imwrite and cv::imencode (declared by
 // <opencv2/imgcodecs.hpp>, which callers keep including) that open
 // libopencv_imgcodecs on their first call and forward to it. Linking the real
-// library made every hapcine command load ~140 shared libraries (GDAL and its
-// database, network and science formats, GDCM, OpenEXR, ...) at start-up,
+// library made every hapcine command load 79 more shared libraries (GDAL and
+// its database, network and science formats, GDCM, OpenEXR, ...) at start-up,
 // although only image sequences, the COLMAP export and PNG plots use it.
 //
 // Only these three functions are defined: a call to any other function of

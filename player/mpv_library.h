@@ -1,9 +1,8 @@
 #pragma once
 // libmpv, opened on first use instead of linked. Only the media clock of
-// `hapcine play` needs mpv, and linking it made every hapcine command load
-// mpv's ~200 shared libraries (X11, Wayland, PulseAudio, SDL, Lua, libass,
-// libavfilter, ...) and resolve their symbols at start-up: about 0.1 CPU-s
-// per run of `hapcine --help` or `hapcine estimate` (docs/player.md,
+// `hapcine play` needs mpv, and linking it made every hapcine command load 85
+// more shared libraries (X11, Wayland, PulseAudio, SDL, Lua, libass,
+// libavfilter, ...) and resolve their symbols at start-up (docs/player.md,
 // "Start-up"). The header <mpv/client.h> still gives the types, so each
 // entry below has exactly the type of the libmpv function it stands for.
 
