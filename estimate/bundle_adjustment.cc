@@ -2,7 +2,9 @@
 #include "estimate/bundle_adjustment.h"
 
 #include <ceres/ceres.h>
+#include <ceres/dynamic_autodiff_cost_function.h>
 #include <ceres/manifold.h>
+#include <ceres/product_manifold.h>
 #include <ceres/sphere_manifold.h>
 
 #include <cmath>
@@ -80,15 +82,21 @@ struct FocalPriorCost {
   double prior_, inv_sigma_;
 };
 
+// The centres sit at `offset_a` / `offset_b` of their blocks (4 in a merged
+// rotation + centre block, 0 in a centre block).
 struct ScaleCost {
-  ScaleCost(double distance, double inv_sigma) : distance_(distance), inv_sigma_(inv_sigma) {}
+  ScaleCost(double distance, double inv_sigma, int offset_a, int offset_b)
+      : distance_(distance), inv_sigma_(inv_sigma), offset_a_(offset_a), offset_b_(offset_b) {}
   template <typename T>
-  bool operator()(const T* a, const T* b, T* r) const {
+  bool operator()(T const* const* blocks, T* r) const {
+    const T* a = blocks[0] + offset_a_;
+    const T* b = blocks[1] + offset_b_;
     const T dx = b[0] - a[0], dy = b[1] - a[1], dz = b[2] - a[2];
     r[0] = (ceres::sqrt(dx * dx + dy * dy + dz * dz + T(1e-30)) - T(distance_)) * inv_sigma_;
     return true;
   }
   double distance_, inv_sigma_;
+  int offset_a_, offset_b_;
 };
 
 struct Blocks {
@@ -96,7 +104,37 @@ struct Blocks {
   std::vector<std::array<double, 3>> c;
   std::vector<double> lf;
   std::vector<int> rot, cen, foc;  // root block index per camera
+  // Roots whose rotation and centre are one block (q then c): every camera
+  // that uses either uses both.
+  std::vector<char> merged;
+  std::vector<std::array<double, 7>> pose;
+  double* CenterBlock(int camera) { return merged[cen[camera]] ? pose[cen[camera]].data() : c[cen[camera]].data(); }
+  double* RotationBlock(int camera) { return merged[rot[camera]] ? pose[rot[camera]].data() : q[rot[camera]].data(); }
 };
+
+// Merges rotation and centre where the sharing allows: fewer, larger blocks
+// for the Schur eliminator (with one thread it still locks a mutex per cell).
+void MergePoses(Blocks* b) {
+  const int n = static_cast<int>(b->q.size());
+  b->merged.assign(n, 0);
+  b->pose.resize(n);
+  for (int j = 0; j < n; ++j) b->merged[j] = b->rot[j] == j && b->cen[j] == j;
+  for (int i = 0; i < n; ++i)
+    if (b->rot[i] != b->cen[i]) b->merged[b->rot[i]] = b->merged[b->cen[i]] = 0;
+  for (int j = 0; j < n; ++j) {
+    if (!b->merged[j]) continue;
+    std::copy(b->q[j].begin(), b->q[j].end(), b->pose[j].begin());
+    std::copy(b->c[j].begin(), b->c[j].end(), b->pose[j].begin() + 4);
+  }
+}
+
+void SplitPoses(Blocks* b) {
+  for (size_t j = 0; j < b->merged.size(); ++j) {
+    if (!b->merged[j]) continue;
+    std::copy(b->pose[j].begin(), b->pose[j].begin() + 4, b->q[j].begin());
+    std::copy(b->pose[j].begin() + 4, b->pose[j].end(), b->c[j].begin());
+  }
+}
 
 int Root(const std::vector<int>& roots, int src, int self) { return src < 0 ? self : roots[src]; }
 
@@ -109,6 +147,8 @@ Blocks MakeBlocks(const std::vector<BaCamera>& cams) {
   b.rot.resize(n);
   b.cen.resize(n);
   b.foc.resize(n);
+  b.merged.assign(n, 0);
+  b.pose.resize(n);
   for (int i = 0; i < n; ++i) {
     const auto& cam = cams[i];
     const Eigen::Quaterniond q = cam.world_from_cam.normalized();
@@ -178,6 +218,7 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   BaSummary summary;
   if (cameras->empty()) return summary;
   Blocks b = MakeBlocks(*cameras);
+  if (options.use_depth) MergePoses(&b);
   std::vector<std::array<double, 4>> X(points->size());
   for (size_t i = 0; i < points->size(); ++i) {
     Eigen::Vector4d h = (*points)[i].homogeneous;
@@ -194,6 +235,7 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   ceres::EigenQuaternionManifold quat_manifold;
   ceres::SphereManifold<4> sphere4;
   ceres::SphereManifold<3> sphere3;
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
   const double inv_scale = 1.0 / options.huber_scale;
   std::vector<char> point_used(points->size(), 0);
   for (size_t i = 0; i < observations.size(); ++i) {
@@ -202,7 +244,10 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
     double* q = b.q[b.rot[o.camera]].data();
     double* lf = &b.lf[b.foc[o.camera]];
     double* x = X[o.point].data();
-    if (options.use_depth) {
+    if (options.use_depth && b.merged[b.rot[o.camera]]) {
+      problem.AddResidualBlock(new PoseDepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
+                               new ceres::HuberLoss(1.0), b.pose[b.rot[o.camera]].data(), lf, x);
+    } else if (options.use_depth) {
       double* c = b.c[b.cen[o.camera]].data();
       problem.AddResidualBlock(new DepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
                                new ceres::HuberLoss(1.0), q, c, lf, x);
@@ -246,26 +291,32 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   }
   for (int i = 0; i < n; ++i) {
     if (problem.HasParameterBlock(b.q[i].data())) problem.SetManifold(b.q[i].data(), &quat_manifold);
+    if (b.merged[i] && problem.HasParameterBlock(b.pose[i].data()))
+      problem.SetManifold(b.pose[i].data(), &pose_manifold);
   }
   // Gauge: fixed cameras' own blocks constant.
   for (int i = 0; i < n; ++i) {
     if ((*cameras)[i].fixed_focal && problem.HasParameterBlock(&b.lf[b.foc[i]]))
       problem.SetParameterBlockConstant(&b.lf[b.foc[i]]);
     if (!(*cameras)[i].fixed) continue;
-    if (problem.HasParameterBlock(b.q[b.rot[i]].data())) problem.SetParameterBlockConstant(b.q[b.rot[i]].data());
-    if (options.use_depth && problem.HasParameterBlock(b.c[b.cen[i]].data()))
-      problem.SetParameterBlockConstant(b.c[b.cen[i]].data());
+    if (problem.HasParameterBlock(b.RotationBlock(i))) problem.SetParameterBlockConstant(b.RotationBlock(i));
+    if (options.use_depth && problem.HasParameterBlock(b.CenterBlock(i)))
+      problem.SetParameterBlockConstant(b.CenterBlock(i));
   }
   if (options.fix_first_focal && problem.HasParameterBlock(&b.lf[b.foc[0]]))
     problem.SetParameterBlockConstant(&b.lf[b.foc[0]]);
   if (options.use_depth && options.scale_a >= 0 && options.scale_b >= 0) {
-    double* ca = b.c[b.cen[options.scale_a]].data();
-    double* cb = b.c[b.cen[options.scale_b]].data();
+    double* ca = b.CenterBlock(options.scale_a);
+    double* cb = b.CenterBlock(options.scale_b);
     if (ca != cb && problem.HasParameterBlock(ca) && problem.HasParameterBlock(cb) &&
         !(problem.IsParameterBlockConstant(ca) && problem.IsParameterBlockConstant(cb))) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScaleCost, 1, 3, 3>(new ScaleCost(
-                                   options.scale_distance, 1e3 / options.scale_distance)),
-                               nullptr, ca, cb);
+      const bool ma = b.merged[b.cen[options.scale_a]], mb = b.merged[b.cen[options.scale_b]];
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<ScaleCost>(
+          new ScaleCost(options.scale_distance, 1e3 / options.scale_distance, ma ? 4 : 0, mb ? 4 : 0));
+      cost->AddParameterBlock(ma ? 7 : 3);
+      cost->AddParameterBlock(mb ? 7 : 3);
+      cost->SetNumResiduals(1);
+      problem.AddResidualBlock(cost, nullptr, ca, cb);
     }
   }
 
@@ -273,7 +324,7 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   so.linear_solver_type = n <= 80 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
   so.max_num_iterations = options.max_iterations;
   so.num_threads = options.num_threads;
-  so.function_tolerance = 1e-7;
+  so.function_tolerance = options.function_tolerance;
   so.parameter_tolerance = 1e-9;
   so.logging_type = ceres::SILENT;
   ceres::Solver::Summary cs;
@@ -281,6 +332,7 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   summary.iterations = static_cast<int>(cs.iterations.size());
   summary.success = cs.IsSolutionUsable();
   if (!summary.success) return summary;
+  SplitPoses(&b);
   ReadBack(b, cameras);
   for (size_t i = 0; i < points->size(); ++i) {
     (*points)[i].homogeneous = Eigen::Vector4d(X[i][0], X[i][1], X[i][2], X[i][3]);

@@ -57,6 +57,8 @@ struct BaOptions {
   int scale_a = -1, scale_b = -1;
   double scale_distance = 1;
   int max_iterations = 50;
+  // Ceres' relative cost decrease at which the solve stops.
+  double function_tolerance = 1e-7;
   int num_threads = 1;
 };
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 
 namespace hapcine {
 namespace {
@@ -125,6 +126,60 @@ TEST(BundleAdjustment, InverseDepthWithPointsAtInfinityAndTranslation) {
     }
   }
   EXPECT_GT(at_infinity, 50);
+}
+
+// Translating window where one interval is rotation-only (camera 4 shares
+// camera 3's centre): rotation and centre are one block where a camera owns
+// both, two where the sharing splits them; the soft scale gauge may join a
+// merged and a split centre.
+TEST(BundleAdjustment, MixedSharingWithMergedAndSplitPoseBlocks) {
+  const double focal = 1.1;
+  Window truth = Pan(8, 0.7, focal, 0.3, true, 5);
+  // Rebuild with camera 4 at camera 3's centre (re-observe every point).
+  for (int i = 4; i < 8; ++i) truth.truth[i].center = Eigen::Vector3d(0.1 * (i - 1), 0, 0);
+  truth.obs.clear();
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 300; ++j) {
+      const BaPoint& p = truth.points_truth[j];
+      const Eigen::Vector3d v = p.homogeneous.head<3>() + p.homogeneous(3) * (p.anchor - truth.truth[i].center);
+      const Eigen::Vector3d pc = truth.truth[i].world_from_cam.conjugate() * v;
+      if (pc.z() <= 0) continue;
+      const Eigen::Vector2d uv = focal * pc.hnormalized();
+      if (std::abs(uv.x()) > 0.5 || std::abs(uv.y()) > 0.3) continue;
+      truth.obs.push_back({i, j, uv});
+    }
+  for (const auto& [scale_a, scale_b] : {std::pair<int, int>{1, 2}, {3, 5}}) {
+    std::vector<BaCamera> cams = truth.truth;
+    std::vector<BaPoint> pts = truth.points_truth;
+    std::mt19937 rng(6);
+    std::normal_distribution<double> g(0, 0.01);
+    for (int i = 1; i < 8; ++i) {
+      cams[i].center += Eigen::Vector3d(g(rng), g(rng), g(rng));
+      cams[i].world_from_cam = cams[i].world_from_cam * Eigen::Quaterniond(Eigen::AngleAxisd(0.2 * g(rng), Eigen::Vector3d::UnitY()));
+      cams[i].focal_source = i - 1;
+    }
+    cams[4].center_source = 3;
+    cams[4].center = cams[3].center;
+    for (auto& p : pts) {
+      p.homogeneous(3) *= 1.2;
+      p.homogeneous.normalize();
+    }
+    cams[0].fixed = true;
+    BaOptions opt;
+    opt.use_depth = true;
+    opt.fix_first_focal = true;
+    opt.scale_a = scale_a;
+    opt.scale_b = scale_b;
+    opt.scale_distance = (truth.truth[scale_b].center - truth.truth[scale_a].center).norm();
+    const BaSummary s = SolveBundle(&cams, &pts, truth.obs, opt);
+    ASSERT_TRUE(s.success) << scale_a;
+    EXPECT_LT(s.rms_after * 960, 0.01) << scale_a;
+    for (int i = 0; i < 8; ++i) {
+      EXPECT_LT((cams[i].center - truth.truth[i].center).norm(), 1e-3) << scale_a << " camera " << i;
+      EXPECT_LT(AngleDeg(cams[i].world_from_cam, truth.truth[i].world_from_cam), 0.01) << scale_a << " camera " << i;
+    }
+    EXPECT_EQ(cams[4].center, cams[3].center);  // shared block, exactly
+  }
 }
 
 TEST(BundleAdjustment, PoseOnlyRespectsFreedoms) {

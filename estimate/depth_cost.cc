@@ -57,33 +57,59 @@ void FocalJacobian(const double* r, const Eigen::Vector2d& u, double inv_scale, 
   j[1] = r[1] + u.y() * inv_scale;
 }
 
+// The depth residual with q, c, log f, X given separately; Jacobian outputs
+// (row-major 2x4, 2x3, 2x1, 2x4) may be null.
+bool DepthResidual(const double* q, const double* c_in, double log_f, const double* X,
+                   const Eigen::Vector3d& anchor, const Eigen::Vector2d& u, double inv_scale,
+                   double* residuals, double* j_q, double* j_c, double* j_f, double* j_x) {
+  const Eigen::Vector3d c(c_in[0], c_in[1], c_in[2]);
+  const double f = std::exp(log_f);
+  const double rho = X[3];
+  if (rho < 0) return false;  // beyond infinity: behind every camera
+  const Eigen::Vector3d v = Eigen::Vector3d(X[0], X[1], X[2]) + rho * (anchor - c);
+  RowMatrix24 dr_dq;
+  Eigen::Matrix<double, 2, 3> dr_dv;
+  const bool jac = j_q || j_c || j_f || j_x;
+  if (!ProjectResidual(q, f, v, u, inv_scale, residuals, j_q ? &dr_dq : nullptr, jac ? &dr_dv : nullptr))
+    return false;
+  if (j_q != nullptr) Eigen::Map<RowMatrix24>(j_q, 2, 4) = dr_dq;
+  if (j_c != nullptr) {
+    Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> j(j_c);
+    j = -rho * dr_dv;
+  }
+  if (j_f != nullptr) FocalJacobian(residuals, u, inv_scale, j_f);
+  if (j_x != nullptr) {
+    Eigen::Map<RowMatrix24> j(j_x);
+    j.leftCols<3>() = dr_dv;
+    j.col(3) = dr_dv * (anchor - c);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool DepthCostFunction::Evaluate(double const* const* parameters, double* residuals,
                                  double** jacobians) const {
-  const Eigen::Vector3d c(parameters[1][0], parameters[1][1], parameters[1][2]);
-  const double f = std::exp(parameters[2][0]);
-  const double* X = parameters[3];
-  const double rho = X[3];
-  if (rho < 0) return false;  // beyond infinity: behind every camera
-  const Eigen::Vector3d v = Eigen::Vector3d(X[0], X[1], X[2]) + rho * (anchor_ - c);
-  RowMatrix24 dr_dq;
-  Eigen::Matrix<double, 2, 3> dr_dv;
-  const bool jac = jacobians != nullptr;
-  if (!ProjectResidual(parameters[0], f, v, u_, inv_scale_, residuals,
-                       jac && jacobians[0] ? &dr_dq : nullptr, jac ? &dr_dv : nullptr))
+  auto jac = [&](int k) { return jacobians != nullptr ? jacobians[k] : nullptr; };
+  return DepthResidual(parameters[0], parameters[1], parameters[2][0], parameters[3], anchor_, u_,
+                       inv_scale_, residuals, jac(0), jac(1), jac(2), jac(3));
+}
+
+bool PoseDepthCostFunction::Evaluate(double const* const* parameters, double* residuals,
+                                     double** jacobians) const {
+  const double* pose = parameters[0];
+  double j_q[8], j_c[6];
+  double* j_pose = jacobians != nullptr ? jacobians[0] : nullptr;
+  if (!DepthResidual(pose, pose + 4, parameters[1][0], parameters[2], anchor_, u_, inv_scale_, residuals,
+                     j_pose ? j_q : nullptr, j_pose ? j_c : nullptr,
+                     jacobians != nullptr ? jacobians[1] : nullptr,
+                     jacobians != nullptr ? jacobians[2] : nullptr))
     return false;
-  if (!jac) return true;
-  if (jacobians[0] != nullptr) Eigen::Map<RowMatrix24>(jacobians[0], 2, 4) = dr_dq;
-  if (jacobians[1] != nullptr) {
-    Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> j(jacobians[1]);
-    j = -rho * dr_dv;
-  }
-  if (jacobians[2] != nullptr) FocalJacobian(residuals, u_, inv_scale_, jacobians[2]);
-  if (jacobians[3] != nullptr) {
-    Eigen::Map<RowMatrix24> j(jacobians[3]);
-    j.leftCols<3>() = dr_dv;
-    j.col(3) = dr_dv * (anchor_ - c);
+  if (j_pose != nullptr) {
+    for (int r = 0; r < 2; ++r) {  // row-major 2x7: the 2x4 then the 2x3
+      for (int k = 0; k < 4; ++k) j_pose[7 * r + k] = j_q[4 * r + k];
+      for (int k = 0; k < 3; ++k) j_pose[7 * r + 4 + k] = j_c[3 * r + k];
+    }
   }
   return true;
 }

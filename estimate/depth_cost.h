@@ -29,6 +29,21 @@ class DepthCostFunction : public ceres::SizedCostFunction<2, 4, 3, 1, 4> {
   double inv_scale_;
 };
 
+// The same residual with rotation and centre in one block (q x, y, z, w, c;
+// ProductManifold of EigenQuaternionManifold and R^3): where a camera owns
+// both, one 6-dof block instead of two halves the Schur eliminator's cells.
+class PoseDepthCostFunction : public ceres::SizedCostFunction<2, 7, 1, 4> {
+ public:
+  PoseDepthCostFunction(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
+      : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  Eigen::Vector2d u_;
+  Eigen::Vector3d anchor_;
+  double inv_scale_;
+};
+
 // Rotation-only window: the bearing d alone (a point at infinity relative to a
 // fixed centre). Parameters q (4), log f (1), d (3, SphereManifold<3>).
 class BearingCostFunction : public ceres::SizedCostFunction<2, 4, 1, 3> {
