@@ -483,7 +483,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     try_zoom(zoom_cams);
     int pivot = 0;  // last held keyframe: the branch before it is decided
     while (pivot + 1 < n && keyframes_[pivot + 1].fixed) ++pivot;
-    if (IsAxialMotion(cams, pivot)) {
+    const bool axial = IsAxialMotion(cams, pivot);
+    if (axial) {
       std::vector<BaCamera> solved = zoom_cams;  // sharing of the zoom variant, values of the solve
       for (int i = 0; i < n; ++i) {
         solved[i].world_from_cam = cams[i].world_from_cam;
@@ -513,9 +514,19 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
       return sum;
     };
+    // Along the optical axis the fit cannot tell the branches apart: the
+    // occlusion order can (occlusion_order.h). A candidate it contradicts,
+    // when another agrees with it, is out of the choice; [0]: constant focal.
+    std::vector<char> ruled_out(zoomed.size() + 1, 0);
+    if (axial) {
+      std::vector<const std::vector<BaCamera>*> candidate_cams{&cams};
+      for (const Candidate& c : zoomed) candidate_cams.push_back(&c.cams);
+      ruled_out = ContradictedByOcclusion(OcclusionVotesOf(candidate_cams));
+    }
     int best = -1;
     double best_chi2 = 0;
     for (size_t c = 0; c < zoomed.size(); ++c) {
+      if (ruled_out[c + 1]) continue;
       const double x = chi2(ez[c]);
       if (best < 0 || x < best_chi2) {
         best = static_cast<int>(c);
@@ -527,7 +538,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
       const double m = 2.0 * obs.size();
       const double bic0 = chi2(e0), bic1 = best_chi2 + extra * std::log(std::max(m, 2.0));
-      if (bic1 < bic0) {
+      if (bic1 < bic0 || ruled_out[0]) {
         Candidate& c = zoomed[best];
         cams = c.cams;
         pts = c.pts;
