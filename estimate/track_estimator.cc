@@ -460,6 +460,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   std::vector<BaPoint> pts = points;
   std::vector<BaObservation> ob = obs;
   BaSummary summary = solve(&cams, &pts, &ob);
+  bool branch_by_occlusion = false;
   if (summary.success && has_general) {
     // BIC: does a per-keyframe focal in the general segments pay for itself?
     // Per-keyframe focal candidates: from the two-view initialisation and,
@@ -522,6 +523,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       std::vector<const std::vector<BaCamera>*> candidate_cams{&cams};
       for (const Candidate& c : zoomed) candidate_cams.push_back(&c.cams);
       ruled_out = ContradictedByOcclusion(OcclusionVotesOf(candidate_cams));
+      for (char r : ruled_out) branch_by_occlusion |= r;
     }
     int best = -1;
     double best_chi2 = 0;
@@ -553,10 +555,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   }
   // Not along the optical axis: there the tracks in front of the subject are
   // the only cue between the two branches of the dolly/zoom ambiguity, and
-  // the branch not taken leaves them with the largest residuals.
+  // the branch not taken leaves them with the largest residuals. Unless the
+  // occlusion order chose the branch: then the residuals are not the cue.
   int first_free = 0;
   while (first_free + 1 < n && keyframes_[first_free + 1].fixed) ++first_free;
-  if (summary.success && !(has_translation && IsAxialMotion(cams, first_free)))
+  if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, first_free))))
     drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
   if (summary.success) {
     for (int i = 0; i < n; ++i) {
