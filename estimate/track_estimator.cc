@@ -474,6 +474,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   std::vector<BaPoint> pts = points;
   std::vector<BaObservation> ob = obs;
   BaSummary summary = solve(&cams, &pts, &ob);
+  bool branch_by_occlusion = false;
   if (summary.success && has_general) {
     // BIC: does a per-keyframe focal in the general segments pay for itself?
     // Per-keyframe focal candidates: from the two-view initialisation and,
@@ -497,7 +498,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     try_zoom(zoom_cams);
     int pivot = 0;  // last held keyframe: the branch before it is decided
     while (pivot + 1 < n && keyframes_[pivot + 1].fixed) ++pivot;
-    if (IsAxialMotion(cams, pivot)) {
+    const bool axial = IsAxialMotion(cams, pivot);
+    if (axial) {
       std::vector<BaCamera> solved = zoom_cams;  // sharing of the zoom variant, values of the solve
       for (int i = 0; i < n; ++i) {
         solved[i].world_from_cam = cams[i].world_from_cam;
@@ -527,9 +529,20 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
       return sum;
     };
+    // Along the optical axis the fit cannot tell the branches apart: the
+    // occlusion order can (occlusion_order.h). A candidate it contradicts,
+    // when another agrees with it, is out of the choice; [0]: constant focal.
+    std::vector<char> ruled_out(zoomed.size() + 1, 0);
+    if (axial) {
+      std::vector<const std::vector<BaCamera>*> candidate_cams{&cams};
+      for (const Candidate& c : zoomed) candidate_cams.push_back(&c.cams);
+      ruled_out = ContradictedByOcclusion(OcclusionVotesOf(candidate_cams));
+      for (char r : ruled_out) branch_by_occlusion |= r;
+    }
     int best = -1;
     double best_chi2 = 0;
     for (size_t c = 0; c < zoomed.size(); ++c) {
+      if (ruled_out[c + 1]) continue;
       const double x = chi2(ez[c]);
       if (best < 0 || x < best_chi2) {
         best = static_cast<int>(c);
@@ -541,7 +554,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
       const double m = 2.0 * obs.size();
       const double bic0 = chi2(e0), bic1 = best_chi2 + extra * std::log(std::max(m, 2.0));
-      if (bic1 < bic0) {
+      if (bic1 < bic0 || ruled_out[0]) {
         Candidate& c = zoomed[best];
         cams = c.cams;
         pts = c.pts;
@@ -556,10 +569,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   }
   // Not along the optical axis: there the tracks in front of the subject are
   // the only cue between the two branches of the dolly/zoom ambiguity, and
-  // the branch not taken leaves them with the largest residuals.
+  // the branch not taken leaves them with the largest residuals. Unless the
+  // occlusion order chose the branch: then the residuals are not the cue.
   int first_free = 0;
   while (first_free + 1 < n && keyframes_[first_free + 1].fixed) ++first_free;
-  if (summary.success && !(has_translation && IsAxialMotion(cams, first_free)))
+  if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, first_free))))
     drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
   if (summary.success) {
     for (int i = 0; i < n; ++i) {

@@ -31,6 +31,7 @@
 #include "estimate/bundle_adjustment.h"
 #include "estimate/model_selection.h"
 #include "estimate/motion_model.h"
+#include "estimate/occlusion_order.h"
 #include "extract/tracks.h"
 
 namespace hapcine {
@@ -109,6 +110,9 @@ class TrackCameraEstimator {
   void FinishShot();
   void ProcessWindow(bool final);
   void AddKeyframe(int pos, bool force_static);
+  // Occlusion-order votes of candidate reconstructions of the current window
+  // (track_estimator_occlusion.cc).
+  std::vector<OcclusionVotes> OcclusionVotesOf(const std::vector<const std::vector<BaCamera>*>& candidates) const;
   const BufferedFrame& At(int pos) const { return frames_[pos - buffer_start_]; }
   Eigen::Vector2d Normalise(const Eigen::Vector2d& px) const;
 
