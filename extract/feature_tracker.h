@@ -19,6 +19,10 @@ struct TrackerOptions {
   int klt_window = 21;             // KLT window side, working pixels
   int pyramid_levels = 4;
   double fb_threshold_px = 0.5;    // forward-backward error limit, working pixels
+  // KLT stops at 30 iterations or a step below 0.01 px at the finest level;
+  // on the coarser levels (which only seed the next one) at these.
+  int klt_coarse_iterations = 30;
+  double klt_coarse_step_px = 0.01;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
