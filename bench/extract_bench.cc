@@ -1,6 +1,7 @@
 // Extract speed: decode-only vs decode + shot detection + KLT tracking.
 //   hapcine_extract_bench <video> [--threads N] [--side PX] [--tracks N] [--cv-threads N]
-//   [--color-side PX] [--skip-loop-filter] [--decode-only]
+//   [--color-side PX] [--skip-loop-filter] [--decode-only] [--klt-window N]
+//   [--coarse-iterations N] [--coarse-step PX]
 // Prints frames, wall time and ms/frame for decoding (scaling included) and
 // for decoding + tracking, so the tracking overhead can be read directly.
 
@@ -27,7 +28,8 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s <video> [--threads N] [--side PX] [--tracks N] [--cv-threads N] "
-                 "[--color-side PX] [--skip-loop-filter] [--decode-only]\n",
+                 "[--color-side PX] [--skip-loop-filter] [--decode-only] [--klt-window N] "
+                 "[--coarse-iterations N] [--coarse-step PX]\n",
                  argv[0]);
     return 2;
   }
@@ -42,6 +44,12 @@ int main(int argc, char** argv) {
       source_options.max_working_side = std::atoi(argv[++i]);
     else if (a == "--tracks" && i + 1 < argc)
       tracker_options.max_tracks = std::atoi(argv[++i]);
+    else if (a == "--klt-window" && i + 1 < argc)
+      tracker_options.klt_window = std::atoi(argv[++i]);
+    else if (a == "--coarse-iterations" && i + 1 < argc)
+      tracker_options.klt_coarse_iterations = std::atoi(argv[++i]);
+    else if (a == "--coarse-step" && i + 1 < argc)
+      tracker_options.klt_coarse_step_px = std::atof(argv[++i]);
     else if (a == "--color-side" && i + 1 < argc)
       source_options.color_max_side = std::atoi(argv[++i]);
     else if (a == "--skip-loop-filter")

@@ -129,6 +129,12 @@ int RunEstimate(int argc, char** argv) {
   // Tuning knobs for bench/speed.sh, not worth a line in --help.
   app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
       ->group("");
+  app.add_option("--klt-coarse-iterations", opt.tracker.klt_coarse_iterations,
+                 "KLT iterations on the coarser pyramid levels")
+      ->group("");
+  app.add_option("--klt-coarse-step", opt.tracker.klt_coarse_step_px,
+                 "KLT stop step on the coarser pyramid levels, pixels of that level")
+      ->group("");
   app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
       ->group("");
   app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,

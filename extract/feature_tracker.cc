@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
+#include "extract/pyramid_lk.h"
 #include "extract/shot_detector.h"
 
 namespace hapcine {
@@ -33,6 +34,10 @@ void TrackerOptions::Check() const {
     throw UsageError("klt_window must be odd, 5..101");
   if (pyramid_levels < 1 || pyramid_levels > 8) throw UsageError("pyramid_levels must be 1..8");
   if (!(fb_threshold_px > 0)) throw UsageError("fb_threshold_px must be > 0");
+  if (klt_coarse_iterations < 1 || klt_coarse_iterations > 100)
+    throw UsageError("klt_coarse_iterations must be 1..100");
+  if (!(klt_coarse_step_px > 0 && klt_coarse_step_px <= 1))
+    throw UsageError("klt_coarse_step_px must be in (0, 1]");
   if (!(cut_threshold > 0 && cut_threshold <= 1))
     throw UsageError("cut_threshold must be in (0, 1]");
   if (!(blank_luma >= 0 && blank_luma < 255)) throw UsageError("blank_luma must be in [0, 255)");
@@ -97,6 +102,18 @@ struct FeatureTracker::Impl {
   }
 
   cv::Size Window() const { return {options.klt_window, options.klt_window}; }
+
+  // 30 iterations or a 0.01-px step at level 0; the coarse levels only seed
+  // the next finer one (pyramid_lk.h).
+  PyramidLkOptions LkOptions() const {
+    PyramidLkOptions o;
+    o.window = Window();
+    o.max_level = options.pyramid_levels - 1;
+    o.fine = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    o.coarse = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS,
+                                options.klt_coarse_iterations, options.klt_coarse_step_px);
+    return o;
+  }
 
   // Adds one transition-flagged frame to the run statistics: `verified`
   // tracks (KLT survivors and descriptor re-links) of `before`, and the
@@ -188,14 +205,12 @@ struct FeatureTracker::Impl {
     std::vector<cv::Mat> key_pyramid;
     const int max_level = std::min(1, options.pyramid_levels - 1);
     cv::buildOpticalFlowPyramid(relinker.key_gray(), key_pyramid, Window(), max_level, true);
-    const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    PyramidLkOptions lk = LkOptions();
+    lk.max_level = max_level;
     std::vector<cv::Point2f> refined = r->points, back = r->key_points;
     std::vector<unsigned char> ok_f, ok_b;
-    std::vector<float> err;
-    cv::calcOpticalFlowPyrLK(key_pyramid, pyramid, r->key_points, refined, ok_f, err, Window(),
-                             max_level, criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
-    cv::calcOpticalFlowPyrLK(pyramid, key_pyramid, refined, back, ok_b, err, Window(), max_level,
-                             criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
+    PyramidLk(key_pyramid, pyramid, r->key_points, &refined, &ok_f, lk, true);
+    PyramidLk(pyramid, key_pyramid, refined, &back, &ok_b, lk, true);
     const double fb2 = options.fb_threshold_px * options.fb_threshold_px;
     size_t kept = 0;
     for (size_t i = 0; i < refined.size(); ++i) {
@@ -247,15 +262,11 @@ struct FeatureTracker::Impl {
     ids->clear();
     from->clear();
     if (prev_points.empty() || prev_pyramid.empty() || prev_size != size) return;
-    const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
-    const int max_level = options.pyramid_levels - 1;
+    const PyramidLkOptions lk = LkOptions();
     std::vector<cv::Point2f> forward, backward;
     std::vector<unsigned char> ok_f, ok_b;
-    std::vector<float> err;
-    cv::calcOpticalFlowPyrLK(prev_pyramid, pyramid, prev_points, forward, ok_f, err, Window(),
-                             max_level, criteria);
-    cv::calcOpticalFlowPyrLK(pyramid, prev_pyramid, forward, backward, ok_b, err, Window(),
-                             max_level, criteria);
+    PyramidLk(prev_pyramid, pyramid, prev_points, &forward, &ok_f, lk);
+    PyramidLk(pyramid, prev_pyramid, forward, &backward, &ok_b, lk);
     const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
     const float max_x = static_cast<float>(size.width - 1),
                 max_y = static_cast<float>(size.height - 1);

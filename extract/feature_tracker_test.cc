@@ -512,6 +512,14 @@ TEST(FeatureTrackerTest, RejectsBadInputAndOptions) {
   o = {};
   o.max_tracks = 0;
   EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o = {};
+  o.klt_coarse_iterations = 0;
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o = {};
+  o.klt_coarse_step_px = 0;
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o.klt_coarse_step_px = std::nan("");
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
 }
 
 }  // namespace
