@@ -24,8 +24,13 @@ namespace hapcine {
 namespace {
 namespace fs = std::filesystem;
 
+// One folder per test: ctest runs the tests of this file in parallel
+// processes, and a shared folder let one test read the fake firmware file
+// while another was rewriting it.
 fs::path TempDir() {
-  const fs::path d = fs::path(HAPCINE_BINARY_DIR) / "play_test_tmp";
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path d = fs::path(HAPCINE_BINARY_DIR) / "play_test_tmp" /
+                     (info ? std::string(info->test_suite_name()) + "." + info->name() : "none");
   fs::create_directories(d);
   return d;
 }
