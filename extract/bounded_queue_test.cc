@@ -48,6 +48,11 @@ TEST(BoundedQueue, FullQueueBlocksUntilCancelled) {
       ++pushed;
     }
   });
+  // Wait for the two pushes that fit (however slowly a loaded machine runs
+  // the producer), then give the third one time to get through if it could.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (pushed.load() < 2 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
   EXPECT_EQ(pushed.load(), 2);  // bounded: the third Push waits
   q.Cancel();                   // the consumer leaves: no deadlock
