@@ -1,10 +1,9 @@
 #include "lazy_imgcodecs/lazy_imgcodecs.h"
 
-#include <dlfcn.h>
-
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
+#include "core/shared_library.h"
 
 namespace hapcine {
 namespace {
@@ -37,28 +36,23 @@ struct Imgcodecs {
 
 template <typename Fn>
 void Bind(void* lib, const std::string& soname, const char* symbol, const char* name, Fn* fn) {
-  *fn = reinterpret_cast<Fn>(dlsym(lib, symbol));
+  *fn = reinterpret_cast<Fn>(FindSymbol(lib, symbol));
   if (!*fn) throw Error(soname, std::string("has no cv::") + name + " of the OpenCV " +
                                     CV_VERSION + " headers hapcine was built with");
 }
 
-// Opens `soname` (RTLD_LOCAL: its codecs' symbols stay out of the global
-// scope) and resolves the three functions; on failure closes it and throws.
+// Opens `soname` and resolves the three functions; on failure closes it and
+// throws.
 Imgcodecs Open(const std::string& soname) {
-  void* lib = dlopen(soname.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!lib) {
-    const char* why = dlerror();
-    throw Error(soname, std::string("cannot load OpenCV's image codecs (install Debian's "
-                                    "libopencv-imgcodecs406): ") +
-                            (why ? why : "unknown dlopen error"));
-  }
+  void* lib =
+      OpenSharedLibrary(soname, "OpenCV's image codecs (install Debian's libopencv-imgcodecs406)");
   Imgcodecs f;
   try {
     Bind(lib, soname, kImreadSymbol, "imread", &f.imread);
     Bind(lib, soname, kImwriteSymbol, "imwrite", &f.imwrite);
     Bind(lib, soname, kImencodeSymbol, "imencode", &f.imencode);
   } catch (...) {
-    dlclose(lib);
+    CloseSharedLibrary(lib);
     throw;
   }
   return f;  // the library stays open for the process's lifetime

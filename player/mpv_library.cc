@@ -1,8 +1,7 @@
 #include "player/mpv_library.h"
 
-#include <dlfcn.h>
-
 #include "core/error.h"
+#include "core/shared_library.h"
 
 namespace hapcine {
 namespace {
@@ -10,7 +9,7 @@ namespace {
 // Looks up `name` in `lib` into `fn`, with the function's own type.
 template <typename Fn>
 void Bind(void* lib, const std::string& soname, const char* name, Fn* fn) {
-  *fn = reinterpret_cast<Fn>(dlsym(lib, name));
+  *fn = reinterpret_cast<Fn>(FindSymbol(lib, name));
   if (!*fn) throw Error(soname, std::string("has no ") + name + " (not a libmpv of client API " +
                                     std::to_string(MPV_CLIENT_API_VERSION >> 16) + ".x)");
 }
@@ -20,14 +19,8 @@ void Bind(void* lib, const std::string& soname, const char* name, Fn* fn) {
 std::string MpvSoname() { return "libmpv.so." + std::to_string(MPV_CLIENT_API_VERSION >> 16); }
 
 MpvApi LoadMpvApi(const std::string& soname) {
-  // RTLD_LOCAL: mpv's symbols (and its FFmpeg) stay out of the global scope.
-  void* lib = dlopen(soname.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!lib) {
-    const char* why = dlerror();
-    throw Error(soname, std::string("cannot load the video player library (install Debian's "
-                                    "libmpv2, or play with --no-video): ") +
-                            (why ? why : "unknown dlopen error"));
-  }
+  void* lib = OpenSharedLibrary(
+      soname, "the video player library (install Debian's libmpv2, or play with --no-video)");
   MpvApi api;
   try {
     Bind(lib, soname, "mpv_create", &api.create);
@@ -41,7 +34,7 @@ MpvApi LoadMpvApi(const std::string& soname) {
     Bind(lib, soname, "mpv_wakeup", &api.wakeup);
     Bind(lib, soname, "mpv_error_string", &api.error_string);
   } catch (...) {
-    dlclose(lib);  // nothing of it was used
+    CloseSharedLibrary(lib);  // nothing of it was used
     throw;
   }
   return api;
