@@ -269,9 +269,18 @@ struct FeatureTracker::Impl {
   void DropChangedAppearance(const cv::Mat& gray, std::vector<cv::Point2f>* points,
                              std::vector<long>* ids) {
     appearance.Score(gray, *points, *ids, &ncc);
+    // Relative to this frame's median NCC (~0.99 on ordinary frames): motion
+    // blur or a lighting change lowers every track's NCC at once.
+    std::vector<float> sorted = ncc;
+    float median = 1;
+    if (!sorted.empty()) {
+      std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+      median = sorted[sorted.size() / 2];
+    }
+    const double threshold = options.appearance_min_ncc * std::max(0.0f, median);
     size_t kept = 0;
     for (size_t i = 0; i < points->size(); ++i) {
-      if (!(ncc[i] >= options.appearance_min_ncc)) continue;
+      if (!(ncc[i] >= threshold)) continue;
       (*points)[kept] = (*points)[i];
       (*ids)[kept] = (*ids)[i];
       ++kept;
@@ -423,7 +432,12 @@ struct FeatureTracker::Impl {
       AccumulateRun(before, survived + relinked, std::move(klt_disp), frame.gray.cols);
     }
 
-    if (options.appearance_min_ncc > 0) DropChangedAppearance(frame.gray, &points, &ids);
+    // Not after a collapse (blur changes every patch; the references stay
+    // those of the last ordinary frame). Transition-flagged frames are
+    // checked: the flag is also raised by camera moves that bring new colours
+    // into view (synth crane_shot), where the check is needed.
+    if (options.appearance_min_ncc > 0 && !collapsed && relinked == 0)
+      DropChangedAppearance(frame.gray, &points, &ids);
 
     // Top up when well below max_tracks and either the count fell since the
     // last top-up (tracks died) or a while has passed (new texture may have
