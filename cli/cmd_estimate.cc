@@ -135,6 +135,12 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--klt-coarse-step", opt.tracker.klt_coarse_step_px,
                  "KLT stop step on the coarser pyramid levels, pixels of that level")
       ->group("");
+  app.add_option("--appearance-min-ncc", opt.tracker.appearance_min_ncc,
+                 "end tracks whose patch NCC with their earlier patch falls below this (0: off)")
+      ->group("");
+  app.add_option("--appearance-lag", opt.tracker.appearance_lag_frames,
+                 "frames back to the reference patch of the appearance check (0: birth)")
+      ->group("");
   app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
       ->group("");
   app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,

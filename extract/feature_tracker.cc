@@ -18,6 +18,7 @@
 #include <unordered_set>
 
 #include "core/error.h"
+#include "extract/appearance_check.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
 #include "extract/pyramid_lk.h"
@@ -38,6 +39,10 @@ void TrackerOptions::Check() const {
     throw UsageError("klt_coarse_iterations must be 1..100");
   if (!(klt_coarse_step_px > 0 && klt_coarse_step_px <= 1))
     throw UsageError("klt_coarse_step_px must be in (0, 1]");
+  if (!(appearance_min_ncc >= 0 && appearance_min_ncc < 1))
+    throw UsageError("appearance_min_ncc must be in [0, 1)");
+  if (appearance_lag_frames < 0 || appearance_lag_frames > 100)
+    throw UsageError("appearance_lag_frames must be 0..100");
   if (!(cut_threshold > 0 && cut_threshold <= 1))
     throw UsageError("cut_threshold must be in (0, 1]");
   if (!(blank_luma >= 0 && blank_luma < 255)) throw UsageError("blank_luma must be in [0, 255)");
@@ -73,11 +78,15 @@ constexpr double kCutSurvival = 0.1;
 
 struct FeatureTracker::Impl {
   explicit Impl(const TrackerOptions& o)
-      : options(o), shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}) {}
+      : options(o),
+        shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}),
+        appearance(11, o.appearance_lag_frames) {}
 
   TrackerOptions options;
   ShotDetector shots;
   DescriptorRelinker relinker;
+  AppearanceCheck appearance;
+  std::vector<float> ncc;  // scratch for the appearance check
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -255,6 +264,31 @@ struct FeatureTracker::Impl {
     ids->resize(kept);
   }
 
+  // Ends the tracks whose patch no longer looks like their reference patch
+  // (appearance_check.h); the survivors keep their order.
+  void DropChangedAppearance(const cv::Mat& gray, std::vector<cv::Point2f>* points,
+                             std::vector<long>* ids) {
+    appearance.Score(gray, *points, *ids, &ncc);
+    // Relative to this frame's median NCC (~0.99 on ordinary frames): motion
+    // blur or a lighting change lowers every track's NCC at once.
+    std::vector<float> sorted = ncc;
+    float median = 1;
+    if (!sorted.empty()) {
+      std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+      median = sorted[sorted.size() / 2];
+    }
+    const double threshold = options.appearance_min_ncc * std::max(0.0f, median);
+    size_t kept = 0;
+    for (size_t i = 0; i < points->size(); ++i) {
+      if (!(ncc[i] >= threshold)) continue;
+      (*points)[kept] = (*points)[i];
+      (*ids)[kept] = (*ids)[i];
+      ++kept;
+    }
+    points->resize(kept);
+    ids->resize(kept);
+  }
+
   // KLT from the previous pyramid to `pyramid`, forward then backward.
   void Track(const std::vector<cv::Mat>& pyramid, cv::Size size, std::vector<cv::Point2f>* points,
              std::vector<long>* ids, std::vector<cv::Point2f>* from) {
@@ -398,6 +432,13 @@ struct FeatureTracker::Impl {
       AccumulateRun(before, survived + relinked, std::move(klt_disp), frame.gray.cols);
     }
 
+    // Not after a collapse (blur changes every patch; the references stay
+    // those of the last ordinary frame). Transition-flagged frames are
+    // checked: the flag is also raised by camera moves that bring new colours
+    // into view (synth crane_shot), where the check is needed.
+    if (options.appearance_min_ncc > 0 && !collapsed && relinked == 0)
+      DropChangedAppearance(frame.gray, &points, &ids);
+
     // Top up when well below max_tracks and either the count fell since the
     // last top-up (tracks died) or a while has passed (new texture may have
     // come into view). Low-texture pictures never reach max_tracks; without
@@ -406,7 +447,10 @@ struct FeatureTracker::Impl {
     ++frames_since_detect;
     if (points.size() < 0.9 * options.max_tracks &&
         (!had_tracks || points.size() < 0.9 * tracks_after_detect || frames_since_detect >= 8)) {
+      const size_t n0 = points.size();
       TopUp(frame.gray, pyramid, &points, &ids);
+      if (options.appearance_min_ncc > 0)
+        for (size_t i = n0; i < points.size(); ++i) appearance.Born(frame.gray, points[i], ids[i]);
       tracks_after_detect = points.size();
       frames_since_detect = 0;
     }
