@@ -208,9 +208,13 @@ int SubmitSlurmBatch(const BatchOptions& base_options, const SlurmOptions& slurm
   const BatchPlan plan = MakePlan(options);
   WriteJsonAtomic((state / "plan.json").string(), PlanToJson(plan));
 
-  // Forget what an earlier submission reported.
+  // Forget what an earlier submission reported, and the temporaries of a
+  // status its task was killed in the middle of writing (scancel between the
+  // job script's printf and mv).
   for (const auto& entry : fs::directory_iterator(slurm_dir, ec)) {
-    if (entry.path().extension() == ".status") fs::remove(entry.path(), ec);
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() == ".status" || name.find(".status.tmp-") != std::string::npos)
+      fs::remove(entry.path(), ec);
   }
   for (const auto& entry : fs::directory_iterator(state / "shards", ec)) {
     fs::remove(entry.path(), ec);
