@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "extract/grid_detector.h"
+#include "extract/keep_tracks.h"
 
 namespace hapcine {
 namespace {
@@ -95,20 +96,14 @@ void DescriptorRelinker::KeepConsistent(const cv::Mat& current_from_key, double 
   std::unordered_map<long, cv::Point2f> key_by_id;
   for (size_t i = 0; i < key_ids_.size(); ++i) key_by_id[key_ids_[i]] = key_points_[i];
   const cv::Matx33d h(current_from_key);
-  size_t kept = 0;
-  for (size_t i = 0; i < points->size(); ++i) {
+  KeepTracksIf(points, ids, [&](size_t i) {
     auto it = key_by_id.find((*ids)[i]);
-    if (it == key_by_id.end()) continue;
+    if (it == key_by_id.end()) return false;
     const cv::Vec3d q = h * cv::Vec3d(it->second.x, it->second.y, 1.0);
-    if (!(std::abs(q[2]) > 1e-12)) continue;
+    if (!(std::abs(q[2]) > 1e-12)) return false;
     const double dx = q[0] / q[2] - (*points)[i].x, dy = q[1] / q[2] - (*points)[i].y;
-    if (!(dx * dx + dy * dy <= tol_px * tol_px)) continue;
-    (*points)[kept] = (*points)[i];
-    (*ids)[kept] = (*ids)[i];
-    ++kept;
-  }
-  points->resize(kept);
-  ids->resize(kept);
+    return dx * dx + dy * dy <= tol_px * tol_px;
+  });
 }
 
 }  // namespace hapcine

@@ -21,6 +21,7 @@
 #include "extract/appearance_check.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
+#include "extract/keep_tracks.h"
 #include "extract/pyramid_lk.h"
 #include "extract/shot_detector.h"
 
@@ -253,15 +254,7 @@ struct FeatureTracker::Impl {
       ids->clear();
       return;
     }
-    size_t kept = 0;
-    for (size_t i = 0; i < points->size(); ++i) {
-      if (!inlier[i]) continue;
-      (*points)[kept] = (*points)[i];
-      (*ids)[kept] = (*ids)[i];
-      ++kept;
-    }
-    points->resize(kept);
-    ids->resize(kept);
+    KeepTracksIf(points, ids, [&](size_t i) { return inlier[i] != 0; });
   }
 
   // Ends the tracks whose patch no longer looks like their reference patch
@@ -278,15 +271,7 @@ struct FeatureTracker::Impl {
       median = sorted[sorted.size() / 2];
     }
     const double threshold = options.appearance_min_ncc * std::max(0.0f, median);
-    size_t kept = 0;
-    for (size_t i = 0; i < points->size(); ++i) {
-      if (!(ncc[i] >= threshold)) continue;
-      (*points)[kept] = (*points)[i];
-      (*ids)[kept] = (*ids)[i];
-      ++kept;
-    }
-    points->resize(kept);
-    ids->resize(kept);
+    KeepTracksIf(points, ids, [&](size_t i) { return ncc[i] >= threshold; });
   }
 
   // KLT from the previous pyramid to `pyramid`, forward then backward.
