@@ -115,9 +115,7 @@ struct Blocks {
 // Merges rotation and centre where the sharing allows: fewer, larger blocks
 // for the Schur eliminator (with one thread it still locks a mutex per cell).
 void MergePoses(Blocks* b) {
-  const int n = static_cast<int>(b->q.size());
-  b->merged.assign(n, 0);
-  b->pose.resize(n);
+  const int n = static_cast<int>(b->q.size());  // MakeBlocks sized merged and pose
   for (int j = 0; j < n; ++j) b->merged[j] = b->rot[j] == j && b->cen[j] == j;
   for (int i = 0; i < n; ++i)
     if (b->rot[i] != b->cen[i]) b->merged[b->rot[i]] = b->merged[b->cen[i]] = 0;

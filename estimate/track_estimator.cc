@@ -282,6 +282,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // subject decide the dolly/zoom branch (see drop_bad_tracks below).
   std::vector<BaCamera> initial(n);
   for (int i = 0; i < n; ++i) initial[i] = keyframes_[i].cam;
+  // The last held keyframe (the window's fixed lead-in): the motion before it
+  // is decided, so the axial tests below look only after it.
   int held = 0;
   while (held + 1 < n && keyframes_[held + 1].fixed) ++held;
   const bool spread_points = has_translation && !IsAxialMotion(initial, held);
@@ -496,8 +498,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     };
     const std::vector<BaCamera> zoom_cams = build_cameras(true);
     try_zoom(zoom_cams);
-    int pivot = 0;  // last held keyframe: the branch before it is decided
-    while (pivot + 1 < n && keyframes_[pivot + 1].fixed) ++pivot;
+    const int pivot = held;  // the branch before it is decided
     const bool axial = IsAxialMotion(cams, pivot);
     if (axial) {
       std::vector<BaCamera> solved = zoom_cams;  // sharing of the zoom variant, values of the solve
@@ -571,9 +572,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // the only cue between the two branches of the dolly/zoom ambiguity, and
   // the branch not taken leaves them with the largest residuals. Unless the
   // occlusion order chose the branch: then the residuals are not the cue.
-  int first_free = 0;
-  while (first_free + 1 < n && keyframes_[first_free + 1].fixed) ++first_free;
-  if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, first_free))))
+  if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, held))))
     drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
   if (summary.success) {
     for (int i = 0; i < n; ++i) {
