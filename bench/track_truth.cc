@@ -19,12 +19,17 @@
 //   ray      the same tracks at the projection of their ray-cast point
 //   cut      KLT, without observations off their rigid fit by > --cut px
 //   dropbad  KLT, without tracks whose rigid fit is off by > --cut px
+//   dropncc  KLT, without tracks whose lowest NCC with the patch 8 frames
+//            back is below --cut (needs --ncc 1)
+//   droplayers KLT, without tracks the depth-layer cue flags with GT depths
 // (--noise adds Gaussian pixel noise to fit/ray positions).
 // --ncc 1 prints how well the tracker's appearance check (extract/
 // appearance_check.h) separates the bad tracks (rigid fit off by > 2 px) from
 // the good ones (< 1 px): quantiles of each track's lowest NCC with its
 // reference patch (birth: lag 0, or 4, 8, 16 frames before), and the share of
 // each class a threshold would end.
+// --layers 1 prints how well the depth-layer cue (estimate/depth_layers.h)
+// separates them, with the ground-truth depth of each track's rigid fit.
 // --appearance NCC sets TrackerOptions::appearance_min_ncc (0: off),
 // --appearance-lag K its appearance_lag_frames.
 #include <Eigen/Geometry>
@@ -33,6 +38,7 @@
 #include <iostream>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +48,7 @@
 #include "datasets/render.h"
 #include "datasets/synth_clip.h"
 #include "datasets/synth_presets.h"
+#include "estimate/depth_layers.h"
 #include "estimate/track_estimator.h"
 #include "extract/appearance_check.h"
 #include "extract/feature_tracker.h"
@@ -80,7 +87,7 @@ int main(int argc, char** argv) {
   const std::string preset = argv[1], dir = argv[2];
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
-  int klt_window = 0, points = 0, per_frame = 0, ncc_stats = 0;
+  int klt_window = 0, points = 0, per_frame = 0, ncc_stats = 0, layers = 0;
   double appearance = -1;
   int appearance_lag = -1;
   for (int i = 3; i + 1 < argc; i += 2) {
@@ -94,6 +101,7 @@ int main(int argc, char** argv) {
     else if (a == "--est-out") est_out = argv[i + 1];
     else if (a == "--errors-out") errors_out = argv[i + 1];
     else if (a == "--ncc") ncc_stats = std::stoi(argv[i + 1]);
+    else if (a == "--layers") layers = std::stoi(argv[i + 1]);
     else if (a == "--appearance") appearance = std::stod(argv[i + 1]);
     else if (a == "--appearance-lag") appearance_lag = std::stoi(argv[i + 1]);
     else {
@@ -271,6 +279,52 @@ int main(int argc, char** argv) {
     row("good (< 1 px)", good);
     }
   }
+  // Depth-layer cue (estimate/depth_layers.h) with the ground-truth depths of
+  // each track's rigid fit, judged every 6th frame (about the keyframes).
+  std::set<long> between;
+  if (layers || mode == "droplayers") {
+    std::vector<std::vector<DepthSample>> samples;
+    for (const auto& ft : frames) {
+      if (ft.index >= n_gt || ft.index % 6 != 0) continue;
+      samples.emplace_back();
+      for (const auto& p : ft.points) {
+        if (obs_of.at(p.track_id).size() < 2) continue;
+        const double range = (fit_point.at(p.track_id) - views[ft.index].center).norm();
+        const Eigen::Vector2d u((p.px.x() - 0.5 * (W - 1)) / W, (p.px.y() - 0.5 * (H - 1)) / W);
+        samples.back().push_back({p.track_id, u, 1.0 / range});
+      }
+    }
+    between = TracksBetweenDepthLayers(samples);
+    if (std::getenv("HAPCINE_LAYERS_DEBUG")) {  // per bad/good sample: position in the neighbours' range
+      for (const auto& fr : samples) {
+        std::vector<double> all;
+        for (const auto& x : fr) all.push_back(x.w);
+        const double fs = Percentile(all, 0.98) - Percentile(all, 0.02);
+        for (const auto& x : fr) {
+          const double m = fit_max.at(x.track);
+          if (!(m > 2 || m < 1)) continue;
+          std::vector<double> nb;
+          for (const auto& y : fr)
+            if (y.track != x.track && (y.u - x.u).norm() <= 0.05) nb.push_back(y.w);
+          if (nb.size() < 4) continue;
+          const auto [lo, hi] = std::minmax_element(nb.begin(), nb.end());
+          int sup = 0;
+          for (double v : nb) sup += std::abs(v - x.w) <= 0.1 * (*hi - *lo);
+          std::printf("L %d %.3f %.3f %d %zu\n", m > 2, (*hi - *lo) / fs, (x.w - *lo) / (*hi - *lo), sup, nb.size());
+        }
+      }
+    }
+    int bad = 0, bad_hit = 0, good = 0, good_hit = 0, mid = 0, mid_hit = 0;
+    for (const auto& [id, m] : fit_max) {
+      const bool hit = between.count(id);
+      if (m > 2) { ++bad; bad_hit += hit; } else if (m < 1) { ++good; good_hit += hit; } else { ++mid; mid_hit += hit; }
+    }
+    std::printf("depth-layer cue (GT depths): flags %.1f %% of bad (> 2 px, %d), %.1f %% of 1-2 px (%d), "
+                "%.1f %% of good (< 1 px, %d); precision (bad among flagged) %.1f %%\n",
+                100.0 * bad_hit / std::max(bad, 1), bad, 100.0 * mid_hit / std::max(mid, 1), mid,
+                100.0 * good_hit / std::max(good, 1), good,
+                100.0 * bad_hit / std::max<size_t>(between.size(), 1));
+  }
   int n1 = 0, n2 = 0, n4 = 0;
   for (const auto& [id, m] : fit_max) {
     n1 += m > 1;
@@ -308,6 +362,11 @@ int main(int argc, char** argv) {
         if (e > cut) continue;
       } else if (mode == "dropbad") {  // whole tracks whose fit is off by more than --cut px dropped
         if (fit_max.at(p.track_id) > cut) continue;
+      } else if (mode == "dropncc") {  // tracks whose lowest NCC (lag 8, --ncc 1) is below --cut dropped
+        auto it = min_ncc.find(p.track_id);
+        if (it != min_ncc.end() && it->second[2] < cut) continue;
+      } else if (mode == "droplayers") {  // tracks the depth-layer cue flags (GT depths) dropped
+        if (between.count(p.track_id)) continue;
       } else if (mode == "fit") {  // every track moved onto its rigid fit
         q.px = fit_px + noise * Eigen::Vector2d(gauss(rng), gauss(rng));
       } else if (mode == "ray") {  // the ray-cast point (drops tracks that miss)

@@ -21,6 +21,8 @@ void TrackEstimatorOptions::Check() const {
   if (max_points < 20) throw UsageError("max points must be at least 20");
   if (point_grid_cells < 0) throw UsageError("point grid must be >= 0 cells");
   if (!(track_rms_cut_px > 0 && track_rms_cut_rotation_px > 0)) throw UsageError("track RMS cut must be > 0");
+  if (window_lead_in_frames < 0 || window_lead_in_frames >= window_frames)
+    throw UsageError("window lead-in must be in [0, window frames)");
   if (!(keyframe_motion > 0 && keyframe_motion < 0.5)) throw UsageError("keyframe motion must be in (0, 0.5)");
   if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) throw UsageError("keyframe min shared must be in (0, 1)");
   if (keyframe_max_gap < 1) throw UsageError("keyframe max gap must be >= 1");
@@ -198,7 +200,11 @@ void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
     k.cam.center = a.cam.center + R_wa * centre_b_in_a * scale;
   }
   keyframes_.push_back(k);
-  if (pos - keyframes_.front().pos >= options_.window_frames && keyframes_.size() >= 4) {
+  // The window's own frames start at its last held keyframe (the lead-in before it is decided).
+  size_t held = 0;
+  while (held + 1 < keyframes_.size() && keyframes_[held + 1].fixed) ++held;
+  if (pos - keyframes_[held > 0 ? held - 1 : 0].pos >= options_.window_frames &&
+      keyframes_.size() >= std::max<size_t>(4, held + 3)) {
     ProcessWindow(false);
   }
 }
@@ -417,6 +423,34 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     translating += HasTranslation(keyframes_[i].model);
   }
   const bool mostly_translating = has_translation && 2 * translating >= free_keyframes;
+  // Tracks between two depth layers (depth_layers.h) under the solution the
+  // RMS cut left: corners sliding along a silhouette that fit a rigid point
+  // at an in-between depth, which the RMS cannot see. The tracks the RMS cut
+  // dropped are no one's neighbours (they are often such corners too).
+  auto drop_between_layers = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                                 std::vector<BaObservation>* o, BaSummary* s) {
+    std::vector<char> kept_point(p->size(), 0);
+    for (const auto& ob : *o) kept_point[ob.point] = 1;
+    std::vector<long> track_of_point(p->size(), -1);
+    std::set<long> dropped;
+    for (const auto& [id, k] : point_of_track) {
+      track_of_point[k] = id;
+      if (!kept_point[k]) dropped.insert(id);
+    }
+    const std::set<long> between = TracksBetweenLayersOf(*c, dropped);
+    std::vector<BaObservation> kept;
+    for (const auto& ob : *o)
+      if (!between.count(track_of_point[ob.point])) kept.push_back(ob);
+    if (kept.size() == o->size() || kept.size() <= 10) return;
+    *o = kept;
+    BaOptions polish = ba;
+    polish.max_iterations = std::max(5, ba.max_iterations / 3);
+    const BaSummary s2 = SolveBundle(c, p, *o, polish);
+    if (s2.success) {
+      s->rms_after = s2.rms_after;
+      s->num_observations = s2.num_observations;
+    }
+  };
   // After the model choice (the comparison needs the same tracks in every
   // candidate, and the tracks in front of a dolly-zoom subject are the cue).
   auto drop_bad_tracks = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
@@ -471,6 +505,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
         s->num_observations = s2.num_observations;
       }
     }
+    if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
   };
 
   std::vector<BaPoint> pts = points;
@@ -702,15 +737,20 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   reports_.push_back(report);
   if (final) return;
 
-  // --- next window: overlap of two keyframes, held constant.
-  Keyframe k0 = keyframes_[n - 2], k1 = keyframes_[n - 1];
-  k0.fixed = k1.fixed = true;
-  k0.fixed_focal = k1.fixed_focal = true;
-  k0.chain_start = k1.chain_start = false;
-  keyframes_ = {k0, k1};
-  const int drop = k0.pos - buffer_start_;
+  // --- next window: overlap of two keyframes (or the last
+  // window_lead_in_frames, track_estimator.h), held constant.
+  int first_kept = n - 2;
+  while (first_kept > 0 && keyframes_[n - 1].pos - keyframes_[first_kept - 1].pos <= options_.window_lead_in_frames)
+    --first_kept;
+  std::vector<Keyframe> lead_in(keyframes_.begin() + first_kept, keyframes_.end());
+  for (Keyframe& k : lead_in) {
+    k.fixed = k.fixed_focal = true;
+    k.chain_start = false;
+  }
+  keyframes_ = std::move(lead_in);
+  const int drop = keyframes_.front().pos - buffer_start_;
   frames_.erase(frames_.begin(), frames_.begin() + drop);
-  buffer_start_ = k0.pos;
+  buffer_start_ = keyframes_.front().pos;
   outlier_tracks_.clear();
 }
 

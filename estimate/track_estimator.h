@@ -40,6 +40,10 @@ struct TrackEstimatorOptions {
   double prior_hfov_deg = 50;        // focal prior (horizontal FOV) where focal is not observable
   int window_frames = 120;           // frames per bundle-adjustment window (long shots)
   int max_points = 300;              // points per window
+  // Keyframes of the previous window's last this-many frames are held
+  // constant in the next one (at least two keyframes): its tracks are judged
+  // over a longer baseline, where an occlusion-edge corner's slide shows.
+  int window_lead_in_frames = 0;
   // Points spread over point_grid_cells^2 image cells (point_selection.h) in
   // translating windows (not along the optical axis); 0 or 1: longest first.
   int point_grid_cells = 6;
@@ -58,6 +62,10 @@ struct TrackEstimatorOptions {
   // keyframe intervals translate: without parallax an occlusion edge does not
   // slide and the RMS is tracking noise (blur of a whip pan, fades).
   double track_rms_cut_rotation_px = 0.4;
+  // After that cut, in the same windows, also drop the tracks whose depth
+  // lies between the two depth layers of their neighbourhood (occlusion-edge
+  // corners that fit a rigid point at an in-between depth; depth_layers.h).
+  bool depth_layer_cut = false;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   void Check() const;                // throws UsageError
@@ -113,6 +121,9 @@ class TrackCameraEstimator {
   // Occlusion-order votes of candidate reconstructions of the current window
   // (track_estimator_occlusion.cc).
   std::vector<OcclusionVotes> OcclusionVotesOf(const std::vector<const std::vector<BaCamera>*>& candidates) const;
+  // Tracks of the current window between two depth layers under `cams`
+  // (depth_layers.h), among all tracks but `excluded` (track_estimator_depth_layers.cc).
+  std::set<long> TracksBetweenLayersOf(const std::vector<BaCamera>& cams, const std::set<long>& excluded) const;
   const BufferedFrame& At(int pos) const { return frames_[pos - buffer_start_]; }
   Eigen::Vector2d Normalise(const Eigen::Vector2d& px) const;
 

@@ -332,6 +332,54 @@ TEST(TrackEstimator, ShotCutRestartsAtTheOrigin) {
   EXPECT_LT(AngleBetweenDeg(path.frames[30].world_from_cam, Eigen::Quaterniond::Identity()), 1e-9);
 }
 
+// Several windows of a traveling through a cloud of points at random depths
+// (every neighbourhood spans a wide depth range: the depth-layer cut's
+// hardest case for false positives): a lead-in of held keyframes makes the
+// next window start earlier (its tracks are judged over a longer baseline);
+// both options keep every frame, emitted once, and the path accurate.
+TEST(TrackEstimator, WindowLeadInAndDepthLayerCutOnALongTraveling) {
+  const auto pts = RandomPoints(2500, 3, 12, 2.5, 3);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.center = Eigen::Vector3d(4.0 * (i < 10 ? 0 : i >= 150 ? 1 : Ease(i - 10, 140)), 0, 0);
+    c.focal_px = 800;
+    return c;
+  };
+  TrackEstimatorOptions base;
+  base.window_frames = 50;
+  TrackEstimatorOptions lead = base;
+  lead.window_lead_in_frames = 24;
+  lead.depth_layer_cut = true;
+  auto windows = [&](const TrackEstimatorOptions& o, std::vector<int>* first_frames) {
+    TrackCameraEstimator est(kW, kH, o);
+    std::mt19937 rng(42);
+    for (int i = 0; i < 160; ++i) est.AddFrame(MakeFrameTracks(i, 25, cam_at(i), pts, kW, kH, 0.3, 0.0, &rng));
+    const CameraPath path = est.Finish();
+    for (const auto& r : est.reports()) first_frames->push_back(r.first_frame);
+    EXPECT_EQ(path.frames.size(), 160u);
+    for (size_t i = 0; i < path.frames.size(); ++i) EXPECT_EQ(path.frames[i].frame, static_cast<int>(i));
+    double sum = 0;
+    for (int i = 0; i < 160; ++i) sum += AngleBetweenDeg(path.frames[i].world_from_cam, cam_at(i).world_from_cam);
+    return sum / 160;
+  };
+  std::vector<int> first_base, first_lead, first_cut;
+  TrackEstimatorOptions cut = base;
+  cut.depth_layer_cut = true;
+  lead.depth_layer_cut = false;
+  const double err_base = windows(base, &first_base), err_lead = windows(lead, &first_lead),
+               err_cut = windows(cut, &first_cut);
+  std::cout << "rotation error: two held keyframes " << err_base << " deg, lead-in 24 "
+            << err_lead << " deg, depth-layer cut " << err_cut << " deg\n";
+  EXPECT_LT(err_base, 0.1);
+  EXPECT_LT(err_cut, 0.1);
+  // Measured 0.134 against 0.085 (docs/estimate.md): held keyframes also
+  // carry the previous window's error; the option stays off by default.
+  EXPECT_LT(err_lead, 0.2);
+  ASSERT_GE(first_base.size(), 3u);
+  ASSERT_GE(first_lead.size(), 3u);
+  EXPECT_LT(first_lead[1], first_base[1]);  // the second window reaches back further
+}
+
 TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   TrackEstimatorOptions o;
   o.prior_hfov_deg = 0;
@@ -344,6 +392,11 @@ TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.point_grid_cells = -1;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.window_lead_in_frames = -1;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.window_lead_in_frames = o.window_frames;
   EXPECT_THROW(o.Check(), UsageError);
   EXPECT_NO_THROW(TrackEstimatorOptions{}.Check());
 }
