@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "core/error.h"
@@ -504,6 +506,22 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
         s->rms_after = s2.rms_after;
         s->num_observations = s2.num_observations;
       }
+    }
+    // Diagnostic (docs/estimate.md, crane_shot): every point's RMS over all
+    // its observations after the cut, and whether the cut kept it.
+    if (std::getenv("HAPCINE_TRACK_RMS_DEBUG")) {
+      const auto errs = ObservationErrors(*c, *p, all, ba.use_depth);
+      std::vector<double> sq(p->size(), 0);
+      std::vector<int> cnt(p->size(), 0), kept_pt(p->size(), 0);
+      for (size_t i = 0; i < all.size(); ++i) {
+        sq[all[i].point] += errs[i] * errs[i];
+        ++cnt[all[i].point];
+      }
+      for (const auto& ob : *o) kept_pt[ob.point] = 1;
+      for (const auto& [id, k] : point_of_track)
+        if (cnt[k])
+          std::fprintf(stderr, "track_rms %d %ld %.4f %d\n", At(keyframes_.front().pos).tracks.index, id,
+                       std::sqrt(sq[k] / cnt[k]) * 960, kept_pt[k]);
     }
     if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
   };
