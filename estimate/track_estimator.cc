@@ -507,8 +507,9 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
         s->num_observations = s2.num_observations;
       }
     }
+    if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
     // Diagnostic (docs/estimate.md, crane_shot): every point's RMS over all
-    // its observations after the cut, and whether the cut kept it.
+    // its observations after the cut (and the options above), and whether it was kept.
     if (std::getenv("HAPCINE_TRACK_RMS_DEBUG")) {
       const auto errs = ObservationErrors(*c, *p, all, ba.use_depth);
       std::vector<double> sq(p->size(), 0);
@@ -523,7 +524,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
           std::fprintf(stderr, "track_rms %d %ld %.4f %d\n", At(keyframes_.front().pos).tracks.index, id,
                        std::sqrt(sq[k] / cnt[k]) * 960, kept_pt[k]);
     }
-    if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
   };
 
   std::vector<BaPoint> pts = points;
