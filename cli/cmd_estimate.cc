@@ -101,6 +101,10 @@ int RunEstimate(int argc, char** argv) {
                  "spread each window's points over N x N image cells, longest tracks first in "
                  "each cell (0: the longest tracks anywhere)")
       ->capture_default_str();
+  app.add_option("--spread-points-factor", opt.estimator.spread_points_factor,
+                 "translating windows (those the point grid spreads) take --points x this many "
+                 "points, since the whole-track cut drops about half of them near silhouettes")
+      ->capture_default_str();
   app.add_option("--track-rms-cut", opt.estimator.track_rms_cut_px,
                  "drop a window's track whole when its reprojection RMS exceeds this (pixels at "
                  "960 px width; occlusion-edge tracks)")

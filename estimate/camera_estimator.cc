@@ -28,6 +28,8 @@ void ApplyFastPreset(EstimatorOptions* options) {
   options->tracker.max_tracks = 300;
   options->tracker.klt_window = 15;
   options->estimator.max_points = 200;
+  // Not measured with more points in translating windows: as before that default.
+  options->estimator.spread_points_factor = 1;
 }
 
 std::string FastPresetSummary() {
@@ -35,7 +37,8 @@ std::string FastPresetSummary() {
   ApplyFastPreset(&o);
   std::ostringstream s;
   s << "--max-side " << o.frames.max_working_side << " --tracks " << o.tracker.max_tracks
-    << " --points " << o.estimator.max_points << " --klt-window " << o.tracker.klt_window
+    << " --points " << o.estimator.max_points << " --spread-points-factor " << o.estimator.spread_points_factor
+    << " --klt-window " << o.tracker.klt_window
     << (o.frames.skip_loop_filter ? ", no deblocking when decoding" : "");
   return s.str();
 }

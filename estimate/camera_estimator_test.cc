@@ -21,6 +21,7 @@ TEST(FastPreset, IsValidAndCheaperThanTheDefaults) {
   EXPECT_LT(fast.tracker.max_tracks, defaults.tracker.max_tracks);
   EXPECT_LE(fast.tracker.klt_window, defaults.tracker.klt_window);
   EXPECT_LE(fast.estimator.max_points, defaults.estimator.max_points);
+  EXPECT_LE(fast.estimator.spread_points_factor, defaults.estimator.spread_points_factor);
   // What it does not touch stays as given.
   fast.estimator.prior_hfov_deg = 30;
   ApplyFastPreset(&fast);

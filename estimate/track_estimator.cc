@@ -21,6 +21,8 @@ void TrackEstimatorOptions::Check() const {
   if (!(prior_hfov_deg > 1 && prior_hfov_deg < 179)) throw UsageError("prior FOV must be in (1, 179) degrees");
   if (window_frames < 10) throw UsageError("window must be at least 10 frames");
   if (max_points < 20) throw UsageError("max points must be at least 20");
+  if (!(spread_points_factor >= 1 && spread_points_factor <= 10))
+    throw UsageError("spread points factor must be in [1, 10]");
   if (point_grid_cells < 0) throw UsageError("point grid must be >= 0 cells");
   if (!(track_rms_cut_px > 0 && track_rms_cut_rotation_px > 0)) throw UsageError("track RMS cut must be > 0");
   if (window_lead_in_frames < 0 || window_lead_in_frames >= window_frames)
@@ -296,7 +298,13 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   while (held + 1 < n && keyframes_[held + 1].fixed) ++held;
   const bool spread_points = has_translation && !IsAxialMotion(initial, held);
   std::vector<std::pair<int, long>> order;
-  for (long id : SelectWindowTracks(std::move(candidates), options_.max_points,
+  // Where the grid spreads the points, the whole-track cut below also drops
+  // the occlusion-edge corners (a third or more of the tracks near
+  // silhouettes) and the good tracks the first, bent solve puts far: take
+  // more there, so that about `max_points` rigid ones remain.
+  const int window_points = spread_points ? static_cast<int>(std::lround(options_.max_points * options_.spread_points_factor))
+                                          : options_.max_points;
+  for (long id : SelectWindowTracks(std::move(candidates), window_points,
                                     spread_points ? options_.point_grid_cells : 0))
     order.push_back({-static_cast<int>(seen[id].size()), id});
 

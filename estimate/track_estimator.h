@@ -47,6 +47,12 @@ struct TrackEstimatorOptions {
   // Points spread over point_grid_cells^2 image cells (point_selection.h) in
   // translating windows (not along the optical axis); 0 or 1: longest first.
   int point_grid_cells = 6;
+  // Those windows take max_points x this: the whole-track cut drops about
+  // half of them on footage with silhouettes (occlusion-edge corners, and
+  // good tracks the first bent solve puts far), and a window left with too
+  // few rigid points bends along the rotation/translation ambiguity
+  // (crane_shot: 0.145 deg with x1, 0.020 with x2; docs/estimate.md).
+  double spread_points_factor = 2;
   double keyframe_motion = 0.02;     // median track motion for a new keyframe, fraction of width
   double keyframe_min_shared = 0.7;  // fraction of the last keyframe's tracks still alive
   int keyframe_max_gap = 6;          // frames; a keyframe at least this often

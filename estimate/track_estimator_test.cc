@@ -264,7 +264,8 @@ TEST(TrackEstimator, ErrorDegradesSmoothlyWithNoise) {
 // parallax in x and y. A quarter of the tracks are of that kind (as on the
 // synthetic clips, docs/estimate.md); they must be dropped whole, not bend
 // the window. Without them this move comes out at 0.003 deg.
-double OcclusionEdgeRotationError(double track_rms_cut_px) {
+double OcclusionEdgeRotationError(double track_rms_cut_px, double spread_points_factor = 1,
+                                  std::vector<WindowReport>* reports = nullptr) {
   const auto pts = RandomPoints(1500, 3, 12, 1.2, 21);
   auto cam_at = [](int i) {  // a diagonal truck (crane up while moving sideways)
     SceneCamera c;
@@ -278,6 +279,7 @@ double OcclusionEdgeRotationError(double track_rms_cut_px) {
   for (size_t i = 0; i < pts.size(); ++i) far_twin[i] = cam_at(0).center + 1.2 * (pts[i] - cam_at(0).center);
   TrackEstimatorOptions opt;
   opt.track_rms_cut_px = track_rms_cut_px;
+  opt.spread_points_factor = spread_points_factor;
   TrackCameraEstimator est(kW, kH, opt);
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0, 0.2);
@@ -304,8 +306,25 @@ double OcclusionEdgeRotationError(double track_rms_cut_px) {
     est.AddFrame(ft);
   }
   const CameraPath path = est.Finish();
+  if (reports) *reports = est.reports();
   for (int i = 0; i < frames; ++i) sum += AngleBetweenDeg(path.frames[i].world_from_cam, truth[i].world_from_cam);
   return sum / frames;
+}
+
+// Translating windows take spread_points_factor x max_points points (the
+// whole-track cut then leaves about max_points rigid ones); the path stays
+// as accurate with the occlusion-edge tracks among them.
+TEST(TrackEstimator, TranslatingWindowsTakeMorePointsWithTheFactor) {
+  std::vector<WindowReport> one, two;
+  const double cut = TrackEstimatorOptions{}.track_rms_cut_px;
+  const double err1 = OcclusionEdgeRotationError(cut, 1, &one), err2 = OcclusionEdgeRotationError(cut, 2, &two);
+  std::cout << "occlusion-edge scene, points x1: " << err1 << " deg, x2: " << err2 << " deg\n";
+  ASSERT_FALSE(one.empty());
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_EQ(one[0].points, TrackEstimatorOptions{}.max_points);  // x1: as many as asked
+  EXPECT_GT(two[0].points, one[0].points);  // all 444 candidates of the scene's first window
+  EXPECT_LE(two[0].points, 2 * TrackEstimatorOptions{}.max_points);
+  EXPECT_LT(err2, 0.02);
 }
 
 TEST(TrackEstimator, OcclusionEdgeTracksAreDroppedWhole) {
@@ -392,6 +411,9 @@ TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.point_grid_cells = -1;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.spread_points_factor = 0.5;
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.window_lead_in_frames = -1;
