@@ -20,14 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Tail(const std::string& log_path) {
-  std::ifstream in(log_path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
-
 std::string SignalName(int sig) {
   if (sig == SIGINT) return "SIGINT";
   if (sig == SIGTERM) return "SIGTERM";
@@ -66,7 +58,10 @@ CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_bin
   };
   auto run = [&](const std::string& step, std::vector<std::string> args) {
     args.insert(args.begin(), {colmap_binary, step});
-    const ChildResult r = RunChild(args, log);
+    ChildOptions options;
+    options.append_log = true;       // one colmap.log for all steps
+    options.stop_on_request = true;  // SIGINT/SIGTERM end the step (ScopedStopSignals above)
+    const ChildResult r = RunChild(args, log, options);
     if (r.stopped) throw interrupted("colmap " + step);
     if (!r.started)
       throw Error(info.path, r.start_errno == ENOENT
@@ -75,8 +70,8 @@ CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_bin
                                        "': " + std::strerror(r.start_errno));
     if (r.term_signal != 0)
       throw Error(info.path, "colmap " + step + " killed by signal " +
-                                 std::to_string(r.term_signal) + ": " + Tail(log));
-    if (r.exit_code != 0) throw Error(info.path, "colmap " + step + " failed: " + Tail(log));
+                                 std::to_string(r.term_signal) + ": " + LastNonEmptyLine(log));
+    if (r.exit_code != 0) throw Error(info.path, "colmap " + step + " failed: " + LastNonEmptyLine(log));
   };
 
   // Frames to disk (working resolution).
