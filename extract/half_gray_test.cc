@@ -42,7 +42,7 @@ std::vector<uint8_t> Swscale(const std::vector<uint8_t>& y, int w, int h, AVPixe
   const uint8_t* src[4] = {y.data(), u.data(), v.data(), nullptr};
   int stride[4] = {w, w, w, 0};
   if (format == AV_PIX_FMT_YUV420P || format == AV_PIX_FMT_YUV422P) stride[1] = stride[2] = w / 2;
-  if (format == AV_PIX_FMT_NV12) stride[1] = w;  // interleaved UV
+  if (format == AV_PIX_FMT_NV12 || format == AV_PIX_FMT_NV21) stride[1] = w;  // interleaved
   SwsContext* sws = sws_getContext(w, h, format, w / 2, h / 2, AV_PIX_FMT_GRAY8, SWS_BILINEAR,
                                    nullptr, nullptr, nullptr);
   EXPECT_NE(sws, nullptr);
@@ -76,7 +76,7 @@ TEST(HalfGrayTest, SameBytesAsSwscaleForEveryLimitedRangeFormat) {
   // scalar tail), 1080p.
   const int sizes[][2] = {{8, 8}, {18, 10}, {62, 46}, {322, 182}, {1920, 1080}};
   const AVPixelFormat formats[] = {AV_PIX_FMT_YUV420P, AV_PIX_FMT_YUV422P, AV_PIX_FMT_YUV444P,
-                                   AV_PIX_FMT_NV12};
+                                   AV_PIX_FMT_NV12, AV_PIX_FMT_NV21};
   for (const auto& size : sizes)
     for (AVPixelFormat format : formats)
       for (int kind = 0; kind < 3; ++kind) {
