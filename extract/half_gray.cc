@@ -58,13 +58,18 @@ void HorizontalRow(const uint8_t* s, int width, int16_t* out) {
 void VerticalMmx(const int16_t* const* rows, const int16_t* coef, int taps, int w, uint8_t* out) {
   int x = 0;
 #if defined(__SSE2__)
-  for (; x + 8 <= w; x += 8) {
-    __m128i acc = _mm_set1_epi16(5);
-    for (int k = 0; k < taps; ++k)
-      acc = _mm_add_epi16(acc, _mm_mulhi_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(rows[k] + x)),
-                                               _mm_set1_epi16(coef[k])));
-    acc = _mm_srai_epi16(acc, 3);
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + x), _mm_packus_epi16(acc, acc));
+  if (taps == 4) {  // every row but the first (3 taps there)
+    const __m128i c0 = _mm_set1_epi16(coef[0]), c1 = _mm_set1_epi16(coef[1]),
+                  c2 = _mm_set1_epi16(coef[2]), c3 = _mm_set1_epi16(coef[3]), five = _mm_set1_epi16(5);
+    auto tap = [&](int k, __m128i c) {
+      return _mm_mulhi_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(rows[k] + x)), c);
+    };
+    for (; x + 8 <= w; x += 8) {
+      const __m128i sum = _mm_add_epi16(_mm_add_epi16(tap(0, c0), tap(1, c1)),
+                                        _mm_add_epi16(_mm_add_epi16(tap(2, c2), tap(3, c3)), five));
+      const __m128i v = _mm_srai_epi16(sum, 3);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out + x), _mm_packus_epi16(v, v));
+    }
   }
 #endif
   for (; x < w; ++x) {
