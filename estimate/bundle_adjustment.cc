@@ -227,8 +227,12 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   const auto before = ObservationErrors(*cameras, *points, observations, options.use_depth);
   summary.rms_before = Rms(before);
 
+  // One loss for every residual (declared before the problem, which must
+  // not outlive it): no allocation per observation.
+  ceres::HuberLoss huber(1.0);
   ceres::Problem::Options po;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   ceres::EigenQuaternionManifold quat_manifold;
   ceres::SphereManifold<4> sphere4;
@@ -244,13 +248,13 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
     double* x = X[o.point].data();
     if (options.use_depth && b.merged[b.rot[o.camera]]) {
       problem.AddResidualBlock(new PoseDepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               new ceres::HuberLoss(1.0), b.pose[b.rot[o.camera]].data(), lf, x);
+                               &huber, b.pose[b.rot[o.camera]].data(), lf, x);
     } else if (options.use_depth) {
       double* c = b.c[b.cen[o.camera]].data();
       problem.AddResidualBlock(new DepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               new ceres::HuberLoss(1.0), q, c, lf, x);
+                               &huber, q, c, lf, x);
     } else {
-      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
+      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), &huber, q, lf, x);
     }
     point_used[o.point] = 1;
     ++summary.num_observations;
@@ -346,8 +350,10 @@ BaSummary SolvePose(BaCamera* camera, const PoseFreedoms& freedoms,
   std::vector<BaCamera> cams = {*camera};
   cams[0].rotation_source = cams[0].center_source = cams[0].focal_source = -1;
   Blocks b = MakeBlocks(cams);
+  ceres::HuberLoss huber(1.0);  // shared, as in SolveBundle
   ceres::Problem::Options po;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   ceres::EigenQuaternionManifold quat_manifold;
   const double inv_scale = 1.0 / options.huber_scale;
@@ -357,7 +363,7 @@ BaSummary SolvePose(BaCamera* camera, const PoseFreedoms& freedoms,
     if (!ObservationError(cams[0], points[o.point], o.u, options.use_depth, &e)) continue;
     before.push_back(e);
     problem.AddResidualBlock(PoseCost::Create(o.u, points[o.point], options.use_depth, inv_scale),
-                             new ceres::HuberLoss(1.0), b.q[0].data(), b.c[0].data(), &b.lf[0]);
+                             &huber, b.q[0].data(), b.c[0].data(), &b.lf[0]);
   }
   summary.num_observations = static_cast<int>(before.size());
   summary.rms_before = Rms(before);
