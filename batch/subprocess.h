@@ -1,14 +1,14 @@
 #pragma once
 // Runs one pipeline step as a child process, so that a crash, a hang killed
 // by the user or a corrupt film takes down that step only, never the batch.
-//
-// The child inherits the batch's process group (a Ctrl-C or a kill of the
-// group stops the steps too) and gets PR_SET_PDEATHSIG=SIGKILL, so a step
-// never outlives a batch killed with SIGKILL alone. stdin is /dev/null;
-// stdout and stderr both go to a log file.
+// The process handling (process group, PR_SET_PDEATHSIG, stdin /dev/null,
+// stdout + stderr to a log) is core/child_process.h's; this adds the batch's
+// failure record.
 
 #include <string>
 #include <vector>
+
+#include "core/child_process.h"  // LastNonEmptyLine
 
 namespace hapcine::batch {
 
@@ -23,13 +23,10 @@ struct ProcessResult {
   std::string Reason() const;
 };
 
-// Runs argv[0] (a path, not searched in PATH) with argv, logging to log_path
-// (created or truncated). Never throws for a failing child; throws
-// hapcine::Error only if the log cannot be created or fork fails.
+// Runs argv[0] (searched in PATH when it has no '/') with argv, logging to
+// log_path (created or truncated). Never throws for a failing child (one that
+// cannot be executed exits 127, the reason in its log); throws hapcine::Error
+// only for an empty argv, a log that cannot be created, or a failed fork.
 ProcessResult RunProcess(const std::vector<std::string>& argv, const std::string& log_path);
-
-// Last non-empty line of a text file ("" if none or unreadable), trimmed and
-// cut to max_bytes.
-std::string LastNonEmptyLine(const std::string& path, size_t max_bytes = 400);
 
 }  // namespace hapcine::batch

@@ -48,15 +48,5 @@ TEST(SubprocessTest, ArgumentsWithSpacesAndUnicodeArriveIntact) {
   EXPECT_EQ(r.last_line, "é clip.mp4|日本 x||");
 }
 
-TEST(SubprocessTest, LastNonEmptyLineIsCutOnCharacterBoundary) {
-  TempDir d;
-  std::string long_line;
-  for (int i = 0; i < 300; ++i) long_line += "é";
-  WriteFile(d.path() + "/f", "one\r\n" + long_line + "\r\n\n");
-  const std::string last = LastNonEmptyLine(d.path() + "/f", 101);
-  EXPECT_EQ(last.size(), 100u + 3u);  // 50 whole characters + "..."
-  EXPECT_EQ(LastNonEmptyLine(d.path() + "/missing"), "");
-}
-
 }  // namespace
 }  // namespace hapcine::batch

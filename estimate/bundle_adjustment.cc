@@ -7,6 +7,7 @@
 #include <ceres/product_manifold.h>
 #include <ceres/sphere_manifold.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -62,24 +63,31 @@ struct PoseCost {
 // (log f_c - 2 log f_b + log f_a) / sigma: the zoom *rate* is smooth between
 // neighbouring keyframes. A second difference does not pull a steady zoom
 // towards "no zoom" (a first difference would shrink every zoom ratio).
+// The log focals sit at `offset` of their blocks (7 in a merged rotation +
+// centre + focal block, 0 in a focal block).
 struct FocalStepCost {
-  explicit FocalStepCost(double inv_sigma) : inv_sigma_(inv_sigma) {}
+  FocalStepCost(double inv_sigma, std::array<int, 3> offset) : inv_sigma_(inv_sigma), offset_(offset) {}
   template <typename T>
-  bool operator()(const T* a, const T* b, const T* c, T* r) const {
-    r[0] = (c[0] - T(2) * b[0] + a[0]) * inv_sigma_;
+  bool operator()(T const* const* blocks, T* r) const {
+    const T& a = blocks[0][offset_[0]];
+    const T& b = blocks[1][offset_[1]];
+    const T& c = blocks[2][offset_[2]];
+    r[0] = (c - T(2) * b + a) * inv_sigma_;
     return true;
   }
   double inv_sigma_;
+  std::array<int, 3> offset_;
 };
 
 struct FocalPriorCost {
-  FocalPriorCost(double prior, double inv_sigma) : prior_(prior), inv_sigma_(inv_sigma) {}
+  FocalPriorCost(double prior, double inv_sigma, int offset) : prior_(prior), inv_sigma_(inv_sigma), offset_(offset) {}
   template <typename T>
-  bool operator()(const T* a, T* r) const {
-    r[0] = (a[0] - T(prior_)) * inv_sigma_;
+  bool operator()(T const* const* blocks, T* r) const {
+    r[0] = (blocks[0][offset_] - T(prior_)) * inv_sigma_;
     return true;
   }
   double prior_, inv_sigma_;
+  int offset_;
 };
 
 // The centres sit at `offset_a` / `offset_b` of their blocks (4 in a merged
@@ -107,9 +115,17 @@ struct Blocks {
   // Roots whose rotation and centre are one block (q then c): every camera
   // that uses either uses both.
   std::vector<char> merged;
-  std::vector<std::array<double, 7>> pose;
+  // Merged roots whose block also holds the log focal (at 7): every camera
+  // that uses the pose uses the focal and the other way round.
+  std::vector<char> merged_focal;
+  std::vector<std::array<double, 8>> pose;
   double* CenterBlock(int camera) { return merged[cen[camera]] ? pose[cen[camera]].data() : c[cen[camera]].data(); }
   double* RotationBlock(int camera) { return merged[rot[camera]] ? pose[rot[camera]].data() : q[rot[camera]].data(); }
+  double* FocalBlock(int camera) { return merged_focal[foc[camera]] ? pose[foc[camera]].data() : &lf[foc[camera]]; }
+  int FocalOffset(int camera) const { return merged_focal[foc[camera]] ? 7 : 0; }
+  int FocalBlockSize(int camera) const { return merged_focal[foc[camera]] ? 8 : 1; }
+  int CenterOffset(int camera) const { return merged[cen[camera]] ? 4 : 0; }
+  int CenterBlockSize(int camera) const { return merged[cen[camera]] ? (merged_focal[cen[camera]] ? 8 : 7) : 3; }
 };
 
 // Merges rotation and centre where the sharing allows: fewer, larger blocks
@@ -123,6 +139,25 @@ void MergePoses(Blocks* b) {
     if (!b->merged[j]) continue;
     std::copy(b->q[j].begin(), b->q[j].end(), b->pose[j].begin());
     std::copy(b->c[j].begin(), b->c[j].end(), b->pose[j].begin() + 4);
+    b->pose[j][7] = b->lf[j];
+  }
+}
+
+// Also the focal where the pose block is merged and the focal's sharing and
+// constancy are the pose's (the per-keyframe focal of general+zoom segments).
+void MergeFocals(Blocks* b, const std::vector<BaCamera>& cams, bool fix_first_focal) {
+  const int n = static_cast<int>(b->q.size());
+  std::vector<char> pose_const(n, 0), focal_const(n, 0);
+  for (int j = 0; j < n; ++j) b->merged_focal[j] = b->merged[j] && b->foc[j] == j;
+  for (int i = 0; i < n; ++i) {
+    if (b->foc[i] != b->rot[i]) b->merged_focal[b->foc[i]] = b->merged_focal[b->rot[i]] = 0;
+    if (cams[i].fixed) pose_const[b->rot[i]] = pose_const[b->cen[i]] = 1;
+    if (cams[i].fixed_focal) focal_const[b->foc[i]] = 1;
+  }
+  if (fix_first_focal && n > 0) focal_const[b->foc[0]] = 1;
+  for (int j = 0; j < n; ++j) {
+    if (pose_const[j] != focal_const[j]) b->merged_focal[j] = 0;
+    if (b->merged_focal[j]) b->pose[j][7] = b->lf[j];
   }
 }
 
@@ -130,7 +165,8 @@ void SplitPoses(Blocks* b) {
   for (size_t j = 0; j < b->merged.size(); ++j) {
     if (!b->merged[j]) continue;
     std::copy(b->pose[j].begin(), b->pose[j].begin() + 4, b->q[j].begin());
-    std::copy(b->pose[j].begin() + 4, b->pose[j].end(), b->c[j].begin());
+    std::copy(b->pose[j].begin() + 4, b->pose[j].begin() + 7, b->c[j].begin());
+    if (b->merged_focal[j]) b->lf[j] = b->pose[j][7];
   }
 }
 
@@ -146,6 +182,7 @@ Blocks MakeBlocks(const std::vector<BaCamera>& cams) {
   b.cen.resize(n);
   b.foc.resize(n);
   b.merged.assign(n, 0);
+  b.merged_focal.assign(n, 0);
   b.pose.resize(n);
   for (int i = 0; i < n; ++i) {
     const auto& cam = cams[i];
@@ -216,7 +253,10 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   BaSummary summary;
   if (cameras->empty()) return summary;
   Blocks b = MakeBlocks(*cameras);
-  if (options.use_depth) MergePoses(&b);
+  if (options.use_depth) {
+    MergePoses(&b);
+    MergeFocals(&b, *cameras, options.fix_first_focal);
+  }
   std::vector<std::array<double, 4>> X(points->size());
   for (size_t i = 0; i < points->size(); ++i) {
     Eigen::Vector4d h = (*points)[i].homogeneous;
@@ -227,13 +267,18 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   const auto before = ObservationErrors(*cameras, *points, observations, options.use_depth);
   summary.rms_before = Rms(before);
 
+  // One loss for every residual (declared before the problem, which must
+  // not outlive it): no allocation per observation.
+  ceres::HuberLoss huber(1.0);
   ceres::Problem::Options po;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   ceres::EigenQuaternionManifold quat_manifold;
   ceres::SphereManifold<4> sphere4;
   ceres::SphereManifold<3> sphere3;
   ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<4>> pose_focal_manifold;
   const double inv_scale = 1.0 / options.huber_scale;
   std::vector<char> point_used(points->size(), 0);
   for (size_t i = 0; i < observations.size(); ++i) {
@@ -242,15 +287,18 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
     double* q = b.q[b.rot[o.camera]].data();
     double* lf = &b.lf[b.foc[o.camera]];
     double* x = X[o.point].data();
-    if (options.use_depth && b.merged[b.rot[o.camera]]) {
+    if (options.use_depth && b.merged_focal[b.rot[o.camera]]) {
+      problem.AddResidualBlock(new PoseFocalDepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
+                               &huber, b.pose[b.rot[o.camera]].data(), x);
+    } else if (options.use_depth && b.merged[b.rot[o.camera]]) {
       problem.AddResidualBlock(new PoseDepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               new ceres::HuberLoss(1.0), b.pose[b.rot[o.camera]].data(), lf, x);
+                               &huber, b.pose[b.rot[o.camera]].data(), lf, x);
     } else if (options.use_depth) {
       double* c = b.c[b.cen[o.camera]].data();
       problem.AddResidualBlock(new DepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               new ceres::HuberLoss(1.0), q, c, lf, x);
+                               &huber, q, c, lf, x);
     } else {
-      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), new ceres::HuberLoss(1.0), q, lf, x);
+      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), &huber, q, lf, x);
     }
     point_used[o.point] = 1;
     ++summary.num_observations;
@@ -268,51 +316,57 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
     if (options.use_depth) problem.SetParameterLowerBound(X[i].data(), 3, 0.0);
   }
   const int n = static_cast<int>(cameras->size());
-  // Focal priors: between consecutive distinct focal blocks, and on the first.
+  // Focal priors: between consecutive distinct focal blocks, and on the first
+  // (cameras whose focal block they are; the value may sit in a merged block).
   int prev_focal = -1, prev2_focal = -1;
   for (int i = 0; i < n; ++i) {
     const int f = b.foc[i];
-    if (!problem.HasParameterBlock(&b.lf[f]) || f == prev_focal) continue;
+    if (!problem.HasParameterBlock(b.FocalBlock(i)) || (prev_focal >= 0 && f == b.foc[prev_focal])) continue;
     if (prev2_focal >= 0) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FocalStepCost, 1, 1, 1, 1>(
-                                   new FocalStepCost(1.0 / options.focal_step_sigma)),
-                               nullptr, &b.lf[prev2_focal], &b.lf[prev_focal], &b.lf[f]);
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<FocalStepCost>(new FocalStepCost(
+          1.0 / options.focal_step_sigma,
+          {b.FocalOffset(prev2_focal), b.FocalOffset(prev_focal), b.FocalOffset(i)}));
+      for (int k : {prev2_focal, prev_focal, i}) cost->AddParameterBlock(b.FocalBlockSize(k));
+      cost->SetNumResiduals(1);
+      problem.AddResidualBlock(cost, nullptr, b.FocalBlock(prev2_focal), b.FocalBlock(prev_focal), b.FocalBlock(i));
     }
     if (prev_focal < 0) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FocalPriorCost, 1, 1>(
-                                   new FocalPriorCost(options.focal_prior_log,
-                                                      1.0 / options.focal_prior_sigma)),
-                               nullptr, &b.lf[f]);
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<FocalPriorCost>(new FocalPriorCost(
+          options.focal_prior_log, 1.0 / options.focal_prior_sigma, b.FocalOffset(i)));
+      cost->AddParameterBlock(b.FocalBlockSize(i));
+      cost->SetNumResiduals(1);
+      problem.AddResidualBlock(cost, nullptr, b.FocalBlock(i));
     }
     prev2_focal = prev_focal;
-    prev_focal = f;
+    prev_focal = i;
   }
   for (int i = 0; i < n; ++i) {
     if (problem.HasParameterBlock(b.q[i].data())) problem.SetManifold(b.q[i].data(), &quat_manifold);
     if (b.merged[i] && problem.HasParameterBlock(b.pose[i].data()))
-      problem.SetManifold(b.pose[i].data(), &pose_manifold);
+      problem.SetManifold(b.pose[i].data(), b.merged_focal[i] ? static_cast<ceres::Manifold*>(&pose_focal_manifold)
+                                                              : static_cast<ceres::Manifold*>(&pose_manifold));
   }
   // Gauge: fixed cameras' own blocks constant.
   for (int i = 0; i < n; ++i) {
-    if ((*cameras)[i].fixed_focal && problem.HasParameterBlock(&b.lf[b.foc[i]]))
-      problem.SetParameterBlockConstant(&b.lf[b.foc[i]]);
+    if ((*cameras)[i].fixed_focal && problem.HasParameterBlock(b.FocalBlock(i)))
+      problem.SetParameterBlockConstant(b.FocalBlock(i));
     if (!(*cameras)[i].fixed) continue;
     if (problem.HasParameterBlock(b.RotationBlock(i))) problem.SetParameterBlockConstant(b.RotationBlock(i));
     if (options.use_depth && problem.HasParameterBlock(b.CenterBlock(i)))
       problem.SetParameterBlockConstant(b.CenterBlock(i));
   }
-  if (options.fix_first_focal && problem.HasParameterBlock(&b.lf[b.foc[0]]))
-    problem.SetParameterBlockConstant(&b.lf[b.foc[0]]);
+  if (options.fix_first_focal && problem.HasParameterBlock(b.FocalBlock(0)))
+    problem.SetParameterBlockConstant(b.FocalBlock(0));
   if (options.use_depth && options.scale_a >= 0 && options.scale_b >= 0) {
     double* ca = b.CenterBlock(options.scale_a);
     double* cb = b.CenterBlock(options.scale_b);
     if (ca != cb && problem.HasParameterBlock(ca) && problem.HasParameterBlock(cb) &&
         !(problem.IsParameterBlockConstant(ca) && problem.IsParameterBlockConstant(cb))) {
-      const bool ma = b.merged[b.cen[options.scale_a]], mb = b.merged[b.cen[options.scale_b]];
       auto* cost = new ceres::DynamicAutoDiffCostFunction<ScaleCost>(
-          new ScaleCost(options.scale_distance, 1e3 / options.scale_distance, ma ? 4 : 0, mb ? 4 : 0));
-      cost->AddParameterBlock(ma ? 7 : 3);
-      cost->AddParameterBlock(mb ? 7 : 3);
+          new ScaleCost(options.scale_distance, 1e3 / options.scale_distance, b.CenterOffset(options.scale_a),
+                        b.CenterOffset(options.scale_b)));
+      cost->AddParameterBlock(b.CenterBlockSize(options.scale_a));
+      cost->AddParameterBlock(b.CenterBlockSize(options.scale_b));
       cost->SetNumResiduals(1);
       problem.AddResidualBlock(cost, nullptr, ca, cb);
     }
@@ -346,8 +400,10 @@ BaSummary SolvePose(BaCamera* camera, const PoseFreedoms& freedoms,
   std::vector<BaCamera> cams = {*camera};
   cams[0].rotation_source = cams[0].center_source = cams[0].focal_source = -1;
   Blocks b = MakeBlocks(cams);
+  ceres::HuberLoss huber(1.0);  // shared, as in SolveBundle
   ceres::Problem::Options po;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   ceres::EigenQuaternionManifold quat_manifold;
   const double inv_scale = 1.0 / options.huber_scale;
@@ -357,7 +413,7 @@ BaSummary SolvePose(BaCamera* camera, const PoseFreedoms& freedoms,
     if (!ObservationError(cams[0], points[o.point], o.u, options.use_depth, &e)) continue;
     before.push_back(e);
     problem.AddResidualBlock(PoseCost::Create(o.u, points[o.point], options.use_depth, inv_scale),
-                             new ceres::HuberLoss(1.0), b.q[0].data(), b.c[0].data(), &b.lf[0]);
+                             &huber, b.q[0].data(), b.c[0].data(), &b.lf[0]);
   }
   summary.num_observations = static_cast<int>(before.size());
   summary.rms_before = Rms(before);

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "estimate/stage_timing.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
 #include "extract/threaded_frame_source.h"
@@ -88,11 +89,13 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   FeatureTracker tracker(options.tracker);
   TrackCameraEstimator estimator(info.width, info.height, options.estimator);
   BoundedQueue<FrameTracks> queue(kTrackQueueFrames);
+  LogStage("tracking and estimation start");
   std::thread tracking([&] {
     try {
       Frame frame;
       while (source.Next(&frame))
         if (!queue.Push(tracker.Process(frame))) return;  // the estimator gave up
+      LogStage("tracking done");
       queue.Finish();
     } catch (...) {
       queue.Finish(std::current_exception());
@@ -112,7 +115,10 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     throw;
   }
   tracking.join();
-  return estimator.Finish();
+  LogStage("all frames estimated, last window next");
+  CameraPath path = estimator.Finish();
+  LogStage("estimation done");
+  return path;
 }
 
 }  // namespace

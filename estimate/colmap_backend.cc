@@ -1,14 +1,18 @@
 #include "estimate/colmap_backend.h"
 
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
-#include <sys/wait.h>
+#include <vector>
 
+#include "core/child_process.h"
 #include "core/error.h"
+#include "core/stop_signal.h"
 #include "estimate/colmap_model.h"
 
 namespace hapcine {
@@ -16,21 +20,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+std::string SignalName(int sig) {
+  if (sig == SIGINT) return "SIGINT";
+  if (sig == SIGTERM) return "SIGTERM";
+  return "a stop request";
 }
 
-std::string Tail(const std::string& log_path) {
-  std::ifstream in(log_path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
-
-// Removes the temporary folder on every exit path.
+// Removes the temporary folder on every exit path, including SIGINT/SIGTERM
+// (ScopedStopSignals turns them into an Error that unwinds to here).
 struct TempDir {
   fs::path path;
   TempDir() {
@@ -49,20 +46,32 @@ struct TempDir {
 CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_binary,
                               const ProgressFn& progress) {
   const VideoInfo& info = source.info();
+  ScopedStopSignals stop_signals;  // restored on every exit path
   TempDir tmp;
   const fs::path images = tmp.path / "images", sparse = tmp.path / "sparse";
   fs::create_directories(images);
   fs::create_directories(sparse);
   const std::string log = (tmp.path / "colmap.log").string();
 
-  auto run = [&](const std::string& step, const std::string& args) {
-    const std::string cmd = Quote(colmap_binary) + " " + step + " " + args + " >>" + Quote(log) + " 2>&1";
-    const int rc = std::system(cmd.c_str());
-    if (rc != 0) {
-      const bool missing = WIFEXITED(rc) && WEXITSTATUS(rc) == 127;
-      throw Error(info.path, missing ? "colmap binary '" + colmap_binary + "' not found"
-                                     : "colmap " + step + " failed: " + Tail(log));
-    }
+  auto interrupted = [&](const std::string& during) {
+    return Error(info.path, "interrupted by " + SignalName(StopSignal()) + " during " + during);
+  };
+  auto run = [&](const std::string& step, std::vector<std::string> args) {
+    args.insert(args.begin(), {colmap_binary, step});
+    ChildOptions options;
+    options.append_log = true;       // one colmap.log for all steps
+    options.stop_on_request = true;  // SIGINT/SIGTERM end the step (ScopedStopSignals above)
+    const ChildResult r = RunChild(args, log, options);
+    if (r.stopped) throw interrupted("colmap " + step);
+    if (!r.started)
+      throw Error(info.path, r.start_errno == ENOENT
+                                 ? "colmap binary '" + colmap_binary + "' not found"
+                                 : "cannot start colmap binary '" + colmap_binary +
+                                       "': " + std::strerror(r.start_errno));
+    if (r.term_signal != 0)
+      throw Error(info.path, "colmap " + step + " killed by signal " +
+                                 std::to_string(r.term_signal) + ": " + LastNonEmptyLine(log));
+    if (r.exit_code != 0) throw Error(info.path, "colmap " + step + " failed: " + LastNonEmptyLine(log));
   };
 
   // Frames to disk (working resolution).
@@ -70,6 +79,7 @@ CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_bin
   Frame frame;
   long done = 0;
   while (source.Next(&frame)) {
+    if (StopRequested()) throw interrupted("frame export");
     const cv::Mat& img = frame.bgr.empty() ? frame.gray : frame.bgr;
     char name[64];
     std::snprintf(name, sizeof(name), "frame_%06d.jpg", frame.index);
@@ -85,13 +95,13 @@ CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_bin
   for (size_t i = 1; i < times.size(); ++i)
     if (!(times[i] > times[i - 1])) times[i] = times[i - 1] + 1e-6;
 
-  const std::string db = Quote((tmp.path / "database.db").string());
-  run("feature_extractor", "--database_path " + db + " --image_path " + Quote(images.string()) +
-                               " --ImageReader.single_camera 0 --ImageReader.camera_model SIMPLE_PINHOLE"
-                               " --SiftExtraction.use_gpu 0");
-  run("sequential_matcher", "--database_path " + db + " --SiftMatching.use_gpu 0");
-  run("mapper", "--database_path " + db + " --image_path " + Quote(images.string()) +
-                    " --output_path " + Quote(sparse.string()));
+  const std::string db = (tmp.path / "database.db").string();
+  run("feature_extractor", {"--database_path", db, "--image_path", images.string(),
+                            "--ImageReader.single_camera", "0", "--ImageReader.camera_model",
+                            "SIMPLE_PINHOLE", "--SiftExtraction.use_gpu", "0"});
+  run("sequential_matcher", {"--database_path", db, "--SiftMatching.use_gpu", "0"});
+  run("mapper", {"--database_path", db, "--image_path", images.string(), "--output_path",
+                 sparse.string()});
 
   // The model with the most registered images.
   fs::path best;
@@ -100,8 +110,8 @@ CameraPath EstimateWithColmap(FrameSource& source, const std::string& colmap_bin
     if (!entry.is_directory()) continue;
     const fs::path txt = tmp.path / ("txt_" + entry.path().filename().string());
     fs::create_directories(txt);
-    run("model_converter", "--input_path " + Quote(entry.path().string()) + " --output_path " +
-                               Quote(txt.string()) + " --output_type TXT");
+    run("model_converter", {"--input_path", entry.path().string(), "--output_path", txt.string(),
+                            "--output_type", "TXT"});
     std::ifstream in(txt / "images.txt");
     std::string line;
     size_t count = 0;

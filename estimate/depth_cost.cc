@@ -114,6 +114,25 @@ bool PoseDepthCostFunction::Evaluate(double const* const* parameters, double* re
   return true;
 }
 
+bool PoseFocalDepthCostFunction::Evaluate(double const* const* parameters, double* residuals,
+                                          double** jacobians) const {
+  const double* pose = parameters[0];
+  double j_q[8], j_c[6], j_f[2];
+  double* j_pose = jacobians != nullptr ? jacobians[0] : nullptr;
+  if (!DepthResidual(pose, pose + 4, pose[7], parameters[1], anchor_, u_, inv_scale_, residuals,
+                     j_pose ? j_q : nullptr, j_pose ? j_c : nullptr, j_pose ? j_f : nullptr,
+                     jacobians != nullptr ? jacobians[1] : nullptr))
+    return false;
+  if (j_pose != nullptr) {
+    for (int r = 0; r < 2; ++r) {  // row-major 2x8: the 2x4, the 2x3, the 2x1
+      for (int k = 0; k < 4; ++k) j_pose[8 * r + k] = j_q[4 * r + k];
+      for (int k = 0; k < 3; ++k) j_pose[8 * r + 4 + k] = j_c[3 * r + k];
+      j_pose[8 * r + 7] = j_f[r];
+    }
+  }
+  return true;
+}
+
 bool BearingCostFunction::Evaluate(double const* const* parameters, double* residuals,
                                    double** jacobians) const {
   const double f = std::exp(parameters[1][0]);

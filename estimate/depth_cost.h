@@ -44,6 +44,22 @@ class PoseDepthCostFunction : public ceres::SizedCostFunction<2, 7, 1, 4> {
   double inv_scale_;
 };
 
+// The same residual with rotation, centre and log focal in one block (q x,
+// y, z, w, c, log f; ProductManifold of EigenQuaternionManifold and R^4):
+// where a keyframe owns all three (general+zoom segments), one 7-dof block
+// instead of a 6-dof and a 1-dof one, again ~4x fewer Schur cells.
+class PoseFocalDepthCostFunction : public ceres::SizedCostFunction<2, 8, 4> {
+ public:
+  PoseFocalDepthCostFunction(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
+      : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  Eigen::Vector2d u_;
+  Eigen::Vector3d anchor_;
+  double inv_scale_;
+};
+
 // Rotation-only window: the bearing d alone (a point at infinity relative to a
 // fixed centre). Parameters q (4), log f (1), d (3, SphereManifold<3>).
 class BearingCostFunction : public ceres::SizedCostFunction<2, 4, 1, 3> {

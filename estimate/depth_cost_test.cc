@@ -118,6 +118,40 @@ TEST(PoseDepthCostFunction, AgreesWithTheSplitBlocks) {
                    .Evaluate(blocks, r, nullptr));
 }
 
+TEST(PoseFocalDepthCostFunction, AgreesWithTheSplitBlocks) {
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 20; ++trial) {
+    Params p = Random(&rng, trial % 4 == 0 ? 0.0 : 0.1 + 0.2 * (trial % 3));
+    const Eigen::Vector2d u(-0.03, 0.02);
+    const Eigen::Vector3d anchor(0.1, -0.2, 0.4);
+    const DepthCostFunction split(u, anchor, 960);
+    const PoseFocalDepthCostFunction merged(u, anchor, 960);
+    std::array<double, 8> pose = {p.q[0], p.q[1], p.q[2], p.q[3], p.c[0], p.c[1], p.c[2], p.lf};
+    ExpectJacobiansMatch(merged, {pose.data(), p.X.data()}, {8, 4}, &p.X[3],
+                         "trial " + std::to_string(trial));
+    double rs[2], rm[2], jq[8], jc[6], jf[2], jx_s[8], jp[16], jx_m[8];
+    double* jac_s[4] = {jq, jc, jf, jx_s};
+    double* jac_m[2] = {jp, jx_m};
+    const double* merged_blocks[2] = {pose.data(), p.X.data()};
+    ASSERT_TRUE(split.Evaluate(p.ptrs, rs, jac_s));
+    ASSERT_TRUE(merged.Evaluate(merged_blocks, rm, jac_m));
+    for (int r = 0; r < 2; ++r) {
+      EXPECT_EQ(rs[r], rm[r]);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(jq[4 * r + k], jp[8 * r + k]);
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(jc[3 * r + k], jp[8 * r + 4 + k]);
+      EXPECT_EQ(jf[r], jp[8 * r + 7]);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(jx_s[4 * r + k], jx_m[4 * r + k]);
+    }
+  }
+  Params behind = Random(&rng, 0.1);
+  behind.X[3] = -0.1;  // beyond infinity
+  std::array<double, 8> pose = {behind.q[0], behind.q[1], behind.q[2], behind.q[3], 0, 0, 0, behind.lf};
+  const double* blocks[2] = {pose.data(), behind.X.data()};
+  double r[2];
+  EXPECT_FALSE(PoseFocalDepthCostFunction(Eigen::Vector2d::Zero(), Eigen::Vector3d::Zero(), 960)
+                   .Evaluate(blocks, r, nullptr));
+}
+
 TEST(BearingCostFunction, JacobiansMatchCentralDifferences) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 30; ++trial) {

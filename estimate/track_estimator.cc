@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 #include <limits>
 
 #include "core/error.h"
@@ -13,6 +14,7 @@
 #include "estimate/axial_ambiguity.h"
 #include "estimate/point_selection.h"
 #include "estimate/smoothing.h"
+#include "estimate/stage_timing.h"
 #include "estimate/two_view_geometry.h"
 
 namespace hapcine {
@@ -216,6 +218,7 @@ void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
 void TrackCameraEstimator::ProcessWindow(bool final) {
   if (keyframes_.empty()) return;
   const int n = static_cast<int>(keyframes_.size());
+  LogStage("window: keyframes", n);
   WindowReport report;
   report.shot = shot_;
   report.keyframes = n;
@@ -308,18 +311,20 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
                                     spread_points ? options_.point_grid_cells : 0))
     order.push_back({-static_cast<int>(seen[id].size()), id});
 
+  // Point k is the track order[k] in every candidate reconstruction.
+  std::map<long, int> point_of_track;
+  for (size_t k = 0; k < order.size(); ++k) point_of_track[order[k].second] = static_cast<int>(k);
   // Points from the cameras' initial poses: anchored at the first keyframe
   // that sees them, depth by midpoint triangulation with the most distant one.
-  std::map<long, int> point_of_track;
+  // Reads only (it runs on two threads at once in general windows, below).
   auto init_points = [&](const std::vector<BaCamera>& cams, std::vector<BaPoint>* points_out,
                          std::vector<BaObservation>* obs_out) {
     std::vector<BaPoint>& points = *points_out;
     std::vector<BaObservation>& obs = *obs_out;
     points.clear();
     obs.clear();
-    point_of_track.clear();
     for (const auto& [neg, id] : order) {
-      const auto& kfs = seen[id];
+      const auto& kfs = seen.at(id);
       const BaCamera& ca = cams[kfs[0]];
       const Eigen::Vector2d ua = At(keyframes_[kfs[0]].pos).u.at(id);
       const double fa = std::exp(ca.log_focal);
@@ -354,7 +359,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       BaPoint p;
       p.anchor = ca.center;
       p.homogeneous = Eigen::Vector4d(ray_a.x(), ray_a.y(), ray_a.z(), rho).normalized();
-      point_of_track[id] = static_cast<int>(points.size());
       for (int j : kfs) obs.push_back({j, static_cast<int>(points.size()), At(keyframes_[j].pos).u.at(id)});
       points.push_back(p);
     }
@@ -534,33 +538,44 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
   };
 
+  struct Candidate {
+    std::vector<BaCamera> cams;
+    std::vector<BaPoint> pts;
+    std::vector<BaObservation> ob;
+    BaSummary summary;
+  };
+  auto solve_from = [&](std::vector<BaCamera> init) {
+    Candidate c;
+    c.cams = std::move(init);
+    init_points(c.cams, &c.pts, &c.ob);
+    c.summary = solve(&c.cams, &c.pts, &c.ob);
+    return c;
+  };
+  // General windows: the per-keyframe-focal solve started from the two-view
+  // chain does not depend on the constant-focal one, so it runs beside it on
+  // a second thread (the same result as one after the other). After tracking
+  // has ended the last window is the whole critical path, one core idle.
+  const std::vector<BaCamera> zoom_cams = has_general ? build_cameras(true) : std::vector<BaCamera>{};
+  std::future<Candidate> zoom_from_chain;
+  if (has_general) zoom_from_chain = std::async(std::launch::async, solve_from, zoom_cams);
   std::vector<BaPoint> pts = points;
   std::vector<BaObservation> ob = obs;
   BaSummary summary = solve(&cams, &pts, &ob);
+  LogStage("window: constant-focal solve");
   bool branch_by_occlusion = false;
+  if (zoom_from_chain.valid() && !summary.success) zoom_from_chain.get();  // wait, discard
   if (summary.success && has_general) {
     // BIC: does a per-keyframe focal in the general segments pay for itself?
     // Per-keyframe focal candidates: from the two-view initialisation and,
     // when the move is along the optical axis, from the other branch of the
     // axial dolly/zoom ambiguity (axial_ambiguity.h), whichever fits better.
-    struct Candidate {
-      std::vector<BaCamera> cams;
-      std::vector<BaPoint> pts;
-      std::vector<BaObservation> ob;
-      BaSummary summary;
-    };
     std::vector<Candidate> zoomed;
-    auto try_zoom = [&](std::vector<BaCamera> init) {
-      Candidate c;
-      c.cams = std::move(init);
-      init_points(c.cams, &c.pts, &c.ob);
-      c.summary = solve(&c.cams, &c.pts, &c.ob);
+    auto try_zoom = [&](Candidate c) {
       if (c.summary.success) zoomed.push_back(std::move(c));
     };
-    const std::vector<BaCamera> zoom_cams = build_cameras(true);
-    try_zoom(zoom_cams);
     const int pivot = held;  // the branch before it is decided
     const bool axial = IsAxialMotion(cams, pivot);
+    Candidate mirrored;  // solved here while the chain's candidate may still be solving
     if (axial) {
       std::vector<BaCamera> solved = zoom_cams;  // sharing of the zoom variant, values of the solve
       for (int i = 0; i < n; ++i) {
@@ -574,8 +589,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
           auto it = At(keyframes_[k - 1].pos).u.find(id);
           if (it != At(keyframes_[k - 1].pos).u.end()) matches[k].push_back({it->second, u});
         }
-      try_zoom(MirroredAxialBranch(solved, pivot, matches));
+      mirrored = solve_from(MirroredAxialBranch(solved, pivot, matches));
     }
+    try_zoom(zoom_from_chain.get());
+    if (axial) try_zoom(std::move(mirrored));
+    LogStage("window: per-keyframe-focal solves");
     // Every candidate is scored on all observations (capped), with one sigma.
     const auto e0 = ObservationErrors(cams, pts, obs, true);
     std::vector<std::vector<double>> ez;
@@ -633,8 +651,10 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // the only cue between the two branches of the dolly/zoom ambiguity, and
   // the branch not taken leaves them with the largest residuals. Unless the
   // occlusion order chose the branch: then the residuals are not the cue.
+  LogStage("window: model choice");
   if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, held))))
     drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
+  LogStage("window: track rejection");
   if (summary.success) {
     for (int i = 0; i < n; ++i) {
       keyframes_[i].cam.world_from_cam = cams[i].world_from_cam;
@@ -761,6 +781,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   }
   report.last_frame = raw_.empty() ? report.first_frame : raw_.back().meta.index;
   reports_.push_back(report);
+  LogStage("window: in-between frames");
   if (final) return;
 
   // --- next window: overlap of two keyframes (or the last

@@ -9,7 +9,11 @@ namespace {
 
 constexpr double kHuge = 1e30;  // residual of a point that cannot be projected
 
-bool AllFinite(const Eigen::MatrixXd& m) { return m.allFinite(); }
+// A template: a fixed-size argument is not copied into a heap matrix.
+template <typename Matrix>
+bool AllFinite(const Matrix& m) {
+  return m.allFinite();
+}
 
 Eigen::Vector3d Bearing(const Eigen::Vector2d& c) { return Eigen::Vector3d(c.x(), c.y(), 1).normalized(); }
 
@@ -45,6 +49,43 @@ bool HartleyNormalise(const std::vector<Eigen::Vector2d>& x, Eigen::Matrix3d* T)
 
 Eigen::Vector2d Apply(const Eigen::Matrix3d& T, const Eigen::Vector2d& p) {
   return (T * p.homogeneous()).hnormalized();
+}
+
+// Rows of the DLT systems below: 9 columns; 8 rows for the minimal samples
+// of RANSAC (a fixed size, no heap in the SVD), any number for the re-fits.
+using DltRows = Eigen::Matrix<double, Eigen::Dynamic, 9>;
+using DltMinimal = Eigen::Matrix<double, 8, 9>;
+
+// The right singular vector of the smallest singular value of A; false when
+// the 8th singular value is also ~0 (degenerate sample: a 2-d null space).
+template <typename Matrix>
+bool NullVector(const Matrix& A, Eigen::Matrix<double, 9, 1>* v) {
+  if (!A.allFinite()) return false;
+  Eigen::JacobiSVD<Matrix> svd(A, Eigen::ComputeFullV);
+  const auto& s = svd.singularValues();
+  if (s.size() >= 8 && s(7) < 1e-10 * s(0)) return false;
+  *v = svd.matrixV().col(8);
+  return true;
+}
+
+template <typename Matrix>
+void FillHomographyRows(const std::vector<Eigen::Vector2d>& x1, const std::vector<Eigen::Vector2d>& x2,
+                        const Eigen::Matrix3d& T1, const Eigen::Matrix3d& T2, Matrix* A) {
+  for (size_t i = 0; i < x1.size(); ++i) {
+    const Eigen::Vector2d p = Apply(T1, x1[i]), q = Apply(T2, x2[i]);
+    A->row(2 * i) << -p.x(), -p.y(), -1, 0, 0, 0, q.x() * p.x(), q.x() * p.y(), q.x();
+    A->row(2 * i + 1) << 0, 0, 0, -p.x(), -p.y(), -1, q.y() * p.x(), q.y() * p.y(), q.y();
+  }
+}
+
+template <typename Matrix>
+void FillEssentialRows(const std::vector<Eigen::Vector2d>& x1, const std::vector<Eigen::Vector2d>& x2,
+                       const Eigen::Matrix3d& T1, const Eigen::Matrix3d& T2, Matrix* A) {
+  for (size_t i = 0; i < x1.size(); ++i) {
+    const Eigen::Vector2d p = Apply(T1, x1[i]), q = Apply(T2, x2[i]);
+    A->row(i) << q.x() * p.x(), q.x() * p.y(), q.x(), q.y() * p.x(), q.y() * p.y(), q.y(), p.x(),
+        p.y(), 1;
+  }
 }
 
 }  // namespace
@@ -163,18 +204,17 @@ std::vector<Eigen::Matrix3d> HomographyEstimator::Estimate(const std::vector<X_t
   if (n < 4) return {};
   Eigen::Matrix3d T1, T2;
   if (!HartleyNormalise(x1, &T1) || !HartleyNormalise(x2, &T2)) return {};
-  Eigen::MatrixXd A(2 * n, 9);
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d p = Apply(T1, x1[i]), q = Apply(T2, x2[i]);
-    A.row(2 * i) << -p.x(), -p.y(), -1, 0, 0, 0, q.x() * p.x(), q.x() * p.y(), q.x();
-    A.row(2 * i + 1) << 0, 0, 0, -p.x(), -p.y(), -1, q.y() * p.x(), q.y() * p.y(), q.y();
-  }
-  if (!AllFinite(A)) return {};
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const auto& s = svd.singularValues();
   // Three collinear points (or repeated points) leave a 2-d null space.
-  if (s.size() >= 8 && s(7) < 1e-10 * s(0)) return {};
-  const Eigen::VectorXd h = svd.matrixV().col(8);
+  Eigen::Matrix<double, 9, 1> h;
+  if (n == 4) {
+    DltMinimal A;
+    FillHomographyRows(x1, x2, T1, T2, &A);
+    if (!NullVector(A, &h)) return {};
+  } else {
+    DltRows A(2 * n, 9);
+    FillHomographyRows(x1, x2, T1, T2, &A);
+    if (!NullVector(A, &h)) return {};
+  }
   Eigen::Matrix3d Hn;
   Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
   // A singular homography maps the plane to a line: reject (scale-free test
@@ -203,17 +243,16 @@ std::vector<Eigen::Matrix3d> EssentialEstimator::Estimate(const std::vector<X_t>
   if (n < 8) return {};
   Eigen::Matrix3d T1, T2;
   if (!HartleyNormalise(x1, &T1) || !HartleyNormalise(x2, &T2)) return {};
-  Eigen::MatrixXd A(n, 9);
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d p = Apply(T1, x1[i]), q = Apply(T2, x2[i]);
-    A.row(i) << q.x() * p.x(), q.x() * p.y(), q.x(), q.y() * p.x(), q.y() * p.y(), q.y(), p.x(),
-        p.y(), 1;
+  Eigen::Matrix<double, 9, 1> e;  // false: degenerate configuration
+  if (n == 8) {
+    DltMinimal A;
+    FillEssentialRows(x1, x2, T1, T2, &A);
+    if (!NullVector(A, &e)) return {};
+  } else {
+    DltRows A(n, 9);
+    FillEssentialRows(x1, x2, T1, T2, &A);
+    if (!NullVector(A, &e)) return {};
   }
-  if (!AllFinite(A)) return {};
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const auto& s = svd.singularValues();
-  if (s.size() >= 8 && s(7) < 1e-10 * s(0)) return {};  // degenerate configuration
-  const Eigen::VectorXd e = svd.matrixV().col(8);
   Eigen::Matrix3d En;
   En << e(0), e(1), e(2), e(3), e(4), e(5), e(6), e(7), e(8);
   Eigen::Matrix3d E = T2.transpose() * En * T1;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "extract/half_gray.h"
 #include "extract/video_sources.h"
 
 extern "C" {
@@ -307,6 +308,19 @@ class FfmpegSource : public FrameSource {
     if (target.data != dst->data) target.copyTo(*dst);
   }
 
+  // A decoded frame at exactly twice the working size in 8-bit limited-range
+  // YUV: the gray image straight from its luma plane, the same bytes as
+  // swscale's (half_gray.h) at a fraction of the cost.
+  bool HalfGrayApplies(cv::Size work) const {
+    const int fw = frame_->width, fh = frame_->height;
+    const auto format = static_cast<AVPixelFormat>(frame_->format);
+    const bool limited_8bit = format == AV_PIX_FMT_YUV420P || format == AV_PIX_FMT_YUV422P ||
+                              format == AV_PIX_FMT_YUV444P || format == AV_PIX_FMT_NV12 ||
+                              format == AV_PIX_FMT_NV21;
+    return limited_8bit && fw >= 8 && fh >= 8 && work.width * 2 == fw && work.height * 2 == fh &&
+           frame_->linesize[0] > 0 && HalfGrayMatchesSwscale();
+  }
+
   // The caller's previous image buffer if nobody else holds it (saves a
   // fresh allocation, i.e. page faults, per frame), else a new one.
   static cv::Mat Reuse(cv::Mat* previous, cv::Size size, int type) {
@@ -330,7 +344,11 @@ class FfmpegSource : public FrameSource {
     // shrinking). BGR only feeds shot statistics and previews: the fast
     // path, which roughly halves its cost; a thumbnail (color_max_side) is
     // area-averaged, as fast bilinear would skip most of the picture.
-    Scale(&gray_sws_, AV_PIX_FMT_GRAY8, SWS_BILINEAR, &gray);
+    if (HalfGrayApplies(work))
+      HalfGrayFromLimitedLuma(frame_->data[0], frame_->linesize[0], fw, fh, gray.data,
+                              static_cast<int>(gray.step));
+    else
+      Scale(&gray_sws_, AV_PIX_FMT_GRAY8, SWS_BILINEAR, &gray);
     cv::Mat bgr;
     if (options_.want_color) {
       const int side = options_.color_max_side;

@@ -21,6 +21,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "core/stop_signal.h"  // SIGINT/SIGTERM -> StopRequested(), polled by the loop
 #include "haptics/device.h"
 
 namespace hapcine {
@@ -108,15 +109,5 @@ class ZeroForceGuard {
   HapSeat& seat_;
 };
 
-// SIGINT/SIGTERM -> StopRequested() becomes true (async-signal-safe: the
-// handler only stores to a lock-free atomic). The previous handlers are
-// restored by RestoreStopSignals(). A second Ctrl-C falls through to the
-// default action (immediate exit) in case the loop itself is stuck.
-void InstallStopSignals();
-void RestoreStopSignals();
-bool StopRequested();
-int StopSignal();    // the signal that requested the stop (SIGINT, SIGTERM), else 0
-void RequestStop();  // the same flag, e.g. from a button or a test
-void ClearStopRequest();
 
 }  // namespace hapcine

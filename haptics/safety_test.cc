@@ -141,25 +141,6 @@ TEST(Safety, RandomAdversarialForcesNeverExceedTheLimit) {
   }
 }
 
-TEST(Safety, StopFlagIsSetBySigintAndSigterm) {
-  ClearStopRequest();
-  InstallStopSignals();
-  EXPECT_FALSE(StopRequested());
-  std::raise(SIGINT);
-  EXPECT_TRUE(StopRequested());
-  EXPECT_EQ(StopSignal(), SIGINT);
-  ClearStopRequest();
-  std::raise(SIGTERM);
-  EXPECT_TRUE(StopRequested());
-  EXPECT_EQ(StopSignal(), SIGTERM);
-  ClearStopRequest();
-  RequestStop();  // the program's own request names no signal
-  EXPECT_TRUE(StopRequested());
-  EXPECT_EQ(StopSignal(), 0);
-  ClearStopRequest();
-  RestoreStopSignals();
-}
-
 class RecordingDevice : public Device {
  public:
   void Open() override { open = true; }
