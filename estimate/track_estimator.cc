@@ -305,8 +305,9 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // the occlusion-edge corners (a third or more of the tracks near
   // silhouettes) and the good tracks the first, bent solve puts far: take
   // more there, so that about `max_points` rigid ones remain.
-  const int window_points = spread_points ? static_cast<int>(std::lround(options_.max_points * options_.spread_points_factor))
-                                          : options_.max_points;
+  const int window_points =
+      spread_points ? static_cast<int>(std::lround(options_.max_points * options_.spread_points_factor))
+                    : options_.max_points;
   for (long id : SelectWindowTracks(std::move(candidates), window_points,
                                     spread_points ? options_.point_grid_cells : 0))
     order.push_back({-static_cast<int>(seen[id].size()), id});
