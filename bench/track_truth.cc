@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
         for (int a = 0; a < 3; ++a) {
           Eigen::Vector3d Xa = X;
           Xa[a] += 1e-6;
-          Eigen::Vector2d pa;
+          Eigen::Vector2d pa = p0;  // (project fills it; initialised for the compiler)
           project(o.frame, Xa, &pa);
           J.col(a) = (pa - p0) / 1e-6;
         }
