@@ -111,11 +111,13 @@ int RunEstimate(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--window-lead-in", opt.estimator.window_lead_in_frames,
                  "hold the previous window's last N frames' keyframes constant in the next window "
-                 "(0: two keyframes), so tracks are judged over a longer baseline")
+                 "(0: two keyframes), so tracks are judged over a longer baseline; experimental, no "
+                 "gain measured on the synthetic clips (docs/estimate.md)")
       ->capture_default_str();
   app.add_option("--depth-layer-cut", opt.estimator.depth_layer_cut,
                  "after the RMS cut, also drop a translating window's tracks whose depth lies "
-                 "between the two depth layers of their neighbourhood (occlusion-edge corners)")
+                 "between the two depth layers of their neighbourhood (occlusion-edge corners); "
+                 "experimental, no gain measured on the synthetic clips (docs/estimate.md)")
       ->capture_default_str();
   app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
                  "horizontal field of view, degrees, assumed where the focal length cannot be "
