@@ -46,6 +46,11 @@ for tool in ffmpeg /usr/bin/time; do
   command -v $tool >/dev/null || { echo "speed.sh: '$tool' not found" >&2; exit 1; }
 done
 mkdir -p "$OUT"
+# The build's own source tree (a --build of another checkout or worktree), for the
+# commit line: its HEAD when this runs, and when the binary was linked.
+SRC=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$BUILD/CMakeCache.txt" 2>/dev/null)
+[ -d "$SRC" ] || SRC=$ROOT
+COMMIT="$(git -C "$SRC" rev-parse --short HEAD 2>/dev/null) of $SRC, binary built $(date -u -r "$HC" '+%F %H:%M UTC')"
 
 # Runs a command under /usr/bin/time; prints "wall cpu rss_mb".
 timed() {
@@ -63,7 +68,7 @@ ratio() {
   echo "clip: $CLIP ($(ffprobe -v error -select_streams v:0 -show_entries stream=width,height,nb_frames -of csv=p=0 "$CLIP"))"
   echo "decode:   ffmpeg -nostdin -threads $THREADS -i CLIP -f null -"
   echo "estimate: hapcine estimate CLIP -o OUT --quiet --decode-threads $THREADS ${EXTRA[*]}"
-  echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null), load: $(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "commit: $COMMIT, load: $(cut -d' ' -f1-3 /proc/loadavg)"
   printf "%-9s %4s %8s %8s %8s\n" what run wall_s cpu_s rss_mb
   local dec=() est=()
   for ((i = 1; i <= RUNS; i++)); do
@@ -98,7 +103,7 @@ sweep() {
   local clips=()
   for f in "$CLIPS"/*.camera.csv; do clips+=("$(basename "$f" .camera.csv)"); done
   [ ${#clips[@]} -gt 0 ] || { echo "speed.sh: no <clip>.camera.csv in $CLIPS" >&2; exit 1; }
-  echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null), clips: $CLIPS (${#clips[@]}), load: $(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "commit: $COMMIT, clips: $CLIPS (${#clips[@]}), load: $(cut -d' ' -f1-3 /proc/loadavg)"
   local summary=()
   for s in "${settings[@]}"; do
     local label=${s%%|*} opts=${s#*|} tag
