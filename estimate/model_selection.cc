@@ -18,6 +18,8 @@ void TwoViewOptions::Check() const {
   if (!(inlier_threshold > 0)) throw UsageError("two-view inlier_threshold must be > 0");
   if (min_correspondences < 8) throw UsageError("two-view min_correspondences must be >= 8");
   if (!(focal_search_range > 1)) throw UsageError("two-view focal_search_range must be > 1");
+  if (noise_neighbours < 1) throw UsageError("two-view noise_neighbours must be >= 1");
+  if (!(max_noise_sigma > 0)) throw UsageError("two-view max_noise_sigma must be > 0");
   ransac.Check();
 }
 

@@ -42,7 +42,8 @@ struct TwoViewOptions {
   // Off by default: it removes the blur's spurious translation of a whip pan,
   // but parallax of a scene whose depth changes from point to point (a pull
   // back, a cluttered scene) is irregular too and, when small, is then read
-  // as noise (five track_estimator tests lose their translation).
+  // as noise (five track_estimator tests fail with it on: the pull-back
+  // loses its translation, the others their accuracy).
   bool anisotropic_noise = false;
   int noise_neighbours = 8;               // neighbours whose mean residual is the smooth part
   // Largest tracking noise believed (normalised units, 2 px at 960): beyond

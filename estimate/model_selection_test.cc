@@ -1,5 +1,7 @@
 #include "estimate/model_selection.h"
 
+#include "core/error.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -183,6 +185,16 @@ TEST(ModelSelection, TrackNoiseCovarianceIgnoresASmoothField) {
   const Eigen::Matrix2d capped = TrackNoiseCovariance(at, res, 8, 0.1 * kPx, 0.5 * kPx);
   EXPECT_NEAR(std::sqrt(capped(0, 0)) / kPx, 0.5, 0.01);
   EXPECT_NEAR(std::sqrt(capped(1, 1)) / kPx, 0.3, 0.06);
+}
+
+TEST(ModelSelection, CheckRejectsBadNoiseOptions) {
+  TwoViewOptions o;
+  o.noise_neighbours = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = TwoViewOptions{};
+  o.max_noise_sigma = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+  EXPECT_NO_THROW(Anisotropic().Check());
 }
 
 TEST(ModelSelection, GricPenalisesParameters) {
