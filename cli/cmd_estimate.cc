@@ -119,6 +119,11 @@ int RunEstimate(int argc, char** argv) {
                  "between the two depth layers of their neighbourhood (occlusion-edge corners); "
                  "experimental, no gain measured on the synthetic clips (docs/estimate.md)")
       ->capture_default_str();
+  app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
+               "score the two-view models with a track-noise covariance measured from the rough "
+               "part of the rotation fit's residuals (blur along a whip pan is then not read as "
+               "translation); experimental: small irregular parallax is read as noise too "
+               "(docs/estimate.md)");
   app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
                  "horizontal field of view, degrees, assumed where the focal length cannot be "
                  "observed (no rotation)")
