@@ -183,7 +183,7 @@ SimRun SimulateOccludedDollyZoom(double sign) {
     run.truth.push_back(cam);
     FrameTracks ft = MakeFrameTracks(i, 25, cam, pts, kW, kH, 0.3, 0.0, &rng);
     // The board's outline in this frame (it faces the camera, no rotation).
-    Eigen::Vector2d lo, hi;
+    Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();  // ProjectPx fills both
     testing::ProjectPx(cam, Eigen::Vector3d(-0.7, 0.42, -7), kW, kH, &lo);
     testing::ProjectPx(cam, Eigen::Vector3d(0.7, -0.42, -7), kW, kH, &hi);
     std::vector<TrackPoint> visible;
