@@ -393,6 +393,19 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
   }
 
+  // Re-solves on a reduced set of observations, from the current (already
+  // close) estimate with a third of the iterations; a success updates the
+  // summary's RMS and observation count. Every cut below ends with it.
+  auto polish_on = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                       const std::vector<BaObservation>& o, BaSummary* s) {
+    BaOptions polish = ba;
+    polish.max_iterations = std::max(5, ba.max_iterations / 3);
+    const BaSummary s2 = SolveBundle(c, p, o, polish);
+    if (s2.success) {
+      s->rms_after = s2.rms_after;
+      s->num_observations = s2.num_observations;
+    }
+  };
   auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
     // The first solve stops at a 1e-4 relative decrease of the cost: with the
     // outliers still in, its last iterations creep (~1e-5 a step, the Huber
@@ -418,13 +431,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
     if (polish_follows) {
       *o = kept;
-      BaOptions polish = ba;
-      polish.max_iterations = std::max(5, ba.max_iterations / 3);
-      const BaSummary s2 = SolveBundle(c, p, *o, polish);
-      if (s2.success) {
-        s.rms_after = s2.rms_after;
-        s.num_observations = s2.num_observations;
-      }
+      polish_on(c, p, *o, &s);
     }
     return s;
   };
@@ -458,13 +465,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       if (!between.count(track_of_point[ob.point])) kept.push_back(ob);
     if (kept.size() == o->size() || kept.size() <= 10) return;
     *o = kept;
-    BaOptions polish = ba;
-    polish.max_iterations = std::max(5, ba.max_iterations / 3);
-    const BaSummary s2 = SolveBundle(c, p, *o, polish);
-    if (s2.success) {
-      s->rms_after = s2.rms_after;
-      s->num_observations = s2.num_observations;
-    }
+    polish_on(c, p, *o, s);
   };
   // After the model choice (the comparison needs the same tracks in every
   // candidate, and the tracks in front of a dolly-zoom subject are the cue).
@@ -512,13 +513,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
         if (rms[ob.point] < cut) kept.push_back(ob);
       if (kept.size() <= 10) break;
       *o = kept;
-      BaOptions polish = ba;
-      polish.max_iterations = std::max(5, ba.max_iterations / 3);
-      const BaSummary s2 = SolveBundle(c, p, *o, polish);
-      if (s2.success) {
-        s->rms_after = s2.rms_after;
-        s->num_observations = s2.num_observations;
-      }
+      polish_on(c, p, *o, s);
     }
     if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
     // Diagnostic (docs/estimate.md, crane_shot): every point's RMS over all
