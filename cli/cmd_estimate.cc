@@ -119,6 +119,11 @@ int RunEstimate(int argc, char** argv) {
                  "between the two depth layers of their neighbourhood (occlusion-edge corners); "
                  "experimental, no gain measured on the synthetic clips (docs/estimate.md)")
       ->capture_default_str();
+  bool no_freedom_test = false;
+  app.add_flag("--no-freedom-test", no_freedom_test,
+               "keep the translation (and zoom) of windows where few keyframe intervals read as "
+               "translating even when it does not pay for itself by BIC over the window "
+               "(docs/estimate.md)");
   app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
                "score the two-view models with a track-noise covariance measured from the rough "
                "part of the rotation fit's residuals (blur along a whip pan is then not read as "
@@ -171,6 +176,7 @@ int RunEstimate(int argc, char** argv) {
 
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;
+    if (no_freedom_test) opt.estimator.freedom_test = false;
     opt.Check();
     const std::filesystem::path out_path(output);
     const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");

@@ -38,6 +38,10 @@ inline MotionModel CombineModels(bool rotation, bool translation, bool zoom) {
   if (rotation) return zoom ? MotionModel::kRotationZoom : MotionModel::kRotation;
   return zoom ? MotionModel::kZoom : MotionModel::kStatic;
 }
+// `m` without its translation and/or zoom (general+zoom -> rotation+zoom ...).
+inline MotionModel ReducedModel(MotionModel m, bool drop_translation, bool drop_zoom) {
+  return CombineModels(HasRotation(m), HasTranslation(m) && !drop_translation, HasZoom(m) && !drop_zoom);
+}
 // Least general model that has the freedoms of both.
 inline MotionModel UnionModel(MotionModel a, MotionModel b) {
   return CombineModels(HasRotation(a) || HasRotation(b), HasTranslation(a) || HasTranslation(b),

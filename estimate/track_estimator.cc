@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <future>
 #include <limits>
+#include <utility>
 
 #include "core/error.h"
 #include "core/rotation.h"
@@ -16,6 +17,7 @@
 #include "estimate/smoothing.h"
 #include "estimate/stage_timing.h"
 #include "estimate/two_view_geometry.h"
+#include "estimate/window_freedoms.h"
 
 namespace hapcine {
 
@@ -223,6 +225,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   report.shot = shot_;
   report.keyframes = n;
   report.first_frame = At(keyframes_.front().pos).tracks.index;
+  report.freedoms_dropped = std::exchange(freedoms_dropped_, false);
 
   // --- labels: promote short runs between two more general equal neighbours.
   for (int i = 1; i < n; ++i) {
@@ -396,44 +399,50 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // Re-solves on a reduced set of observations, from the current (already
   // close) estimate with a third of the iterations; a success updates the
   // summary's RMS and observation count. Every cut below ends with it.
-  auto polish_on = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
-                       const std::vector<BaObservation>& o, BaSummary* s) {
-    BaOptions polish = ba;
-    polish.max_iterations = std::max(5, ba.max_iterations / 3);
+  auto polish_with = [](const BaOptions& opts, std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                        const std::vector<BaObservation>& o, BaSummary* s) {
+    BaOptions polish = opts;
+    polish.max_iterations = std::max(5, opts.max_iterations / 3);
     const BaSummary s2 = SolveBundle(c, p, o, polish);
     if (s2.success) {
       s->rms_after = s2.rms_after;
       s->num_observations = s2.num_observations;
     }
   };
-  auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
+  auto polish_on = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, const std::vector<BaObservation>& o,
+                       BaSummary* s) { polish_with(ba, c, p, o, s); };
+  auto solve_with = [&](const BaOptions& opts, std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                        std::vector<BaObservation>* o) {
     // The first solve stops at a 1e-4 relative decrease of the cost: with the
     // outliers still in, its last iterations creep (~1e-5 a step, the Huber
     // loss's linear convergence; 40 iterations without converging on the
     // first window of the 1080p traveling) towards a fit the polish below
     // redoes without them. Without a polish it continues to the usual tolerance.
-    BaOptions first = ba;
+    BaOptions first = opts;
     first.function_tolerance = 1e-4;
     BaSummary s = SolveBundle(c, p, *o, first);
     if (!s.success) return s;
     // Drop outliers (beyond 1.5 Huber scales, ~1.5 px at 960 px) and
     // polish (the whole-track test below comes after the model choice).
-    const auto errs = ObservationErrors(*c, *p, *o, ba.use_depth);
+    const auto errs = ObservationErrors(*c, *p, *o, opts.use_depth);
     std::vector<BaObservation> kept;
     for (size_t i = 0; i < o->size(); ++i)
-      if (std::isfinite(errs[i]) && errs[i] < 1.5 * ba.huber_scale) kept.push_back((*o)[i]);
+      if (std::isfinite(errs[i]) && errs[i] < 1.5 * opts.huber_scale) kept.push_back((*o)[i]);
     const bool polish_follows = kept.size() < o->size() && kept.size() > 10;
-    if (!polish_follows && first.function_tolerance != ba.function_tolerance) {
-      BaOptions rest = ba;
-      rest.max_iterations = std::max(1, ba.max_iterations - s.iterations + 1);
+    if (!polish_follows && first.function_tolerance != opts.function_tolerance) {
+      BaOptions rest = opts;
+      rest.max_iterations = std::max(1, opts.max_iterations - s.iterations + 1);
       const BaSummary s3 = SolveBundle(c, p, *o, rest);
       if (s3.success) s.rms_after = s3.rms_after;
     }
     if (polish_follows) {
       *o = kept;
-      polish_on(c, p, *o, &s);
+      polish_with(opts, c, p, *o, &s);
     }
     return s;
+  };
+  auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
+    return solve_with(ba, c, p, o);
   };
   // The tight cut is for windows with parallax throughout: where a few
   // intervals among rotation read as general (the blur of a whip pan), the
@@ -547,6 +556,50 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     c.summary = solve(&c.cams, &c.pts, &c.ob);
     return c;
   };
+  // Few translating intervals among rotation: the window is also solved
+  // without their translation (and without the zoom of zooming intervals, if
+  // those are few too), on a second thread beside the solve below, and the
+  // freedoms are kept only if they pay for themselves over the whole window
+  // (window_freedoms.h). A pair of frames reads motion blur or a fade as
+  // translation; one depth per point across the window does not fit it.
+  // "Few" by frames, not keyframes: a fast whip makes a keyframe of every
+  // frame, a still part one every keyframe_max_gap frames.
+  int translating_frames = 0, free_frames = 0;
+  for (int i = 1; i < n; ++i) {
+    if (keyframes_[i].fixed) continue;
+    const int span = keyframes_[i].pos - keyframes_[i - 1].pos;
+    free_frames += span;
+    if (HasTranslation(keyframes_[i].model)) translating_frames += span;
+  }
+  std::future<Candidate> without_freedoms;
+  std::vector<char> drop_translation(n, 0), drop_zoom(n, 0);
+  if (options_.freedom_test && has_translation && 2 * translating_frames < free_frames) {
+    int zooming_frames = 0;
+    for (int i = 1; i < n; ++i)
+      if (!keyframes_[i].fixed && HasZoom(keyframes_[i].model)) zooming_frames += keyframes_[i].pos - keyframes_[i - 1].pos;
+    const bool few_zooming = 2 * zooming_frames < free_frames;
+    std::vector<MotionModel> labels(n);
+    for (int i = 0; i < n; ++i) {
+      labels[i] = keyframes_[i].model;
+      if (keyframes_[i].fixed) continue;
+      drop_translation[i] = HasTranslation(labels[i]);
+      drop_zoom[i] = few_zooming && HasZoom(labels[i]);
+      keyframes_[i].model = ReducedModel(labels[i], drop_translation[i], drop_zoom[i]);
+    }
+    std::vector<BaCamera> reduced = build_cameras(false);
+    for (int i = 0; i < n; ++i) keyframes_[i].model = labels[i];
+    without_freedoms = std::async(std::launch::async, [&, c = std::move(reduced)]() mutable {
+      Candidate r;
+      r.cams = std::move(c);
+      r.pts = points;  // bearings: the solve ignores their inverse depth
+      r.ob = obs;
+      BaOptions bearings = ba;
+      bearings.use_depth = false;
+      bearings.scale_a = bearings.scale_b = -1;
+      r.summary = solve_with(bearings, &r.cams, &r.pts, &r.ob);
+      return r;
+    });
+  }
   // General windows: the per-keyframe-focal solve started from the two-view
   // chain does not depend on the constant-focal one, so it runs beside it on
   // a second thread (the same result as one after the other). After tracking
@@ -558,6 +611,28 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   std::vector<BaObservation> ob = obs;
   BaSummary summary = solve(&cams, &pts, &ob);
   LogStage("window: constant-focal solve");
+  if (without_freedoms.valid()) {
+    const Candidate r = without_freedoms.get();
+    if (summary.success && r.summary.success) {
+      const FreedomEvidence ev = CompareFreedoms(cams, pts, r.cams, r.pts, obs, drop_translation, drop_zoom,
+                                                 options_.two_view.noise_floor);
+      if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
+        std::fprintf(stderr,
+                     "freedom_test frame %d: keyframes %d, dropping translation %d zoom %d, points %d: chi2 "
+                     "with %.1f without %.1f, penalty %.1f, sigma %.3f px -> %s\n",
+                     report.first_frame, n, ev.translation_dropped, ev.zoom_dropped, ev.informed_points,
+                     ev.chi2_with, ev.chi2_without, ev.penalty, ev.sigma * 960, ev.PaysOff() ? "kept" : "dropped");
+      LogStage("window: freedom test");
+      if (!ev.PaysOff()) {
+        if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
+        for (int i = 0; i < n; ++i)
+          keyframes_[i].model = ReducedModel(keyframes_[i].model, drop_translation[i], drop_zoom[i]);
+        freedoms_dropped_ = true;
+        ProcessWindow(final);  // the window again, with the reduced models
+        return;
+      }
+    }
+  }
   bool branch_by_occlusion = false;
   if (zoom_from_chain.valid() && !summary.success) zoom_from_chain.get();  // wait, discard
   if (summary.success && has_general) {

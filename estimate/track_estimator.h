@@ -76,6 +76,12 @@ struct TrackEstimatorOptions {
   // Off: it flags about a tenth of them and left crane_shot as it was
   // (docs/estimate.md, "crane_shot").
   bool depth_layer_cut = false;
+  // In windows where fewer than half the keyframe intervals translate, solve
+  // also without their translation (and zoom, if few zoom) and keep them only
+  // if they pay for themselves by BIC over the whole window
+  // (window_freedoms.h): motion blur or a fade reads as translation in a pair
+  // of frames, not in a window.
+  bool freedom_test = true;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   void Check() const;                // throws UsageError
@@ -89,6 +95,7 @@ struct WindowReport {
   double rms_px = 0;                 // after BA, pixels of the decoded frame
   bool focal_observable = false;
   bool zoom_by_bic = false;          // general segments were upgraded to general+zoom
+  bool freedoms_dropped = false;     // its few translating intervals did not pay off (window_freedoms.h)
 };
 
 class TrackCameraEstimator {
@@ -155,6 +162,9 @@ class TrackCameraEstimator {
   bool focal_observed_ = false;
   bool scale_set_ = false;
   double scene_depth_ = 1;
+  // Set when ProcessWindow re-runs a window without the freedoms that did
+  // not pay off (window_freedoms.h); read into the re-run's report.
+  bool freedoms_dropped_ = false;
 };
 
 }  // namespace hapcine

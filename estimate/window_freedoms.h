@@ -1,0 +1,53 @@
+#pragma once
+// Do a window's few translating (and zooming) keyframe intervals pay for
+// their freedoms? A test over all the window's keyframes at once, for windows
+// where only a few intervals among rotation read as translating: the blur of
+// a whip pan, a fading picture.
+//
+// The two-view test (model_selection.h) sees one pair of frames: where the
+// tracking noise is larger along one direction (motion blur), an essential
+// matrix whose epipolar lines run along it lets every match slide along the
+// line and reads the noise as translation. Over several keyframes real
+// parallax is explained by one depth per point for every interval, while
+// noise changes from frame to frame: a bundle adjustment with translation
+// then fits little more than one without it.
+//
+// The criterion is BIC on the window's reprojection errors, with one noise
+// sigma measured from the solve with the freedoms:
+//   chi2 = sum_i min(e_i^2 / sigma^2, 9)
+//   the freedoms pay off  <=>  chi2_without - chi2_with > k ln(2 m)
+// with m observations and k the parameters they add: a centre (3) per
+// keyframe that loses its translation, a focal (1) per keyframe that loses
+// its zoom, and an inverse depth (1) per point whose observations span an
+// interval that loses its translation (the other points' depths are not
+// observed by it).
+
+#include <vector>
+
+#include "estimate/bundle_adjustment.h"
+
+namespace hapcine {
+
+struct FreedomEvidence {
+  double chi2_with = 0, chi2_without = 0;  // capped, in units of sigma^2
+  double penalty = 0;                      // k ln(2 m)
+  double sigma = 0;                        // normalised units
+  int translation_dropped = 0, zoom_dropped = 0, informed_points = 0;
+  bool PaysOff() const { return chi2_without - chi2_with > penalty; }
+};
+
+// `with_*`: the window solved with every freedom (points with inverse depth);
+// `without_*`: solved with the dropped freedoms shared with the previous
+// keyframe, without translation anywhere (points as bearings).
+// `observations` index both (all of the window's, outliers included: the cap
+// bounds them). `drop_translation[i]` / `drop_zoom[i]`: the interval ending
+// at camera i has that freedom in the `with` solve and not in the other.
+// `noise_floor`: the smallest sigma, normalised units.
+FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const std::vector<BaPoint>& with_points,
+                                const std::vector<BaCamera>& without_cams,
+                                const std::vector<BaPoint>& without_points,
+                                const std::vector<BaObservation>& observations,
+                                const std::vector<char>& drop_translation, const std::vector<char>& drop_zoom,
+                                double noise_floor);
+
+}  // namespace hapcine

@@ -1,0 +1,99 @@
+#include "estimate/window_freedoms.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace hapcine {
+namespace {
+
+// Three cameras at the origin looking along +z (OpenCV axes), points as
+// bearings, observed by every camera (or by the cameras in [first, last]).
+struct Scene {
+  std::vector<BaCamera> cams = std::vector<BaCamera>(3);
+  std::vector<BaPoint> points;
+  std::vector<BaObservation> obs;
+};
+
+Scene MakeScene(int n_points, double noise, unsigned seed, int first = 0, int last = 2) {
+  Scene s;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  std::normal_distribution<double> e(0, noise);
+  for (int k = 0; k < n_points; ++k) {
+    BaPoint p;
+    p.homogeneous = Eigen::Vector4d(u(rng), u(rng), 1, 0).normalized();
+    for (int c = first; c <= last; ++c) {
+      const Eigen::Vector2d x = p.homogeneous.head<2>() / p.homogeneous(2);
+      s.obs.push_back({c, k, x + Eigen::Vector2d(e(rng), e(rng))});
+    }
+    s.points.push_back(p);
+  }
+  return s;
+}
+
+TEST(CompareFreedoms, EqualFitsDoNotPayForTheFreedoms) {
+  const Scene s = MakeScene(100, 0.5 / 960, 1);
+  const FreedomEvidence ev =
+      CompareFreedoms(s.cams, s.points, s.cams, s.points, s.obs, {0, 0, 1}, {0, 0, 0}, 0.25 / 960);
+  EXPECT_DOUBLE_EQ(ev.chi2_with, ev.chi2_without);
+  EXPECT_FALSE(ev.PaysOff());
+  EXPECT_EQ(ev.translation_dropped, 1);
+  EXPECT_EQ(ev.informed_points, 100);  // every point is seen across interval 1 -> 2
+  // k = 3 (one centre) + 100 (depths), m = 2 * 300 observations.
+  EXPECT_NEAR(ev.penalty, 103 * std::log(600.0), 1e-9);
+  EXPECT_NEAR(ev.sigma * 960, 0.5, 0.1);  // measured from the residuals, above the floor
+}
+
+TEST(CompareFreedoms, AClearlyBetterFitPaysForThem) {
+  const Scene s = MakeScene(100, 0.3 / 960, 2);
+  std::vector<BaCamera> worse = s.cams;
+  // One camera turned by ~0.1 degree: ~2 px at 960 px of systematic error.
+  worse[2].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(0.002, Eigen::Vector3d::UnitY()));
+  const FreedomEvidence ev =
+      CompareFreedoms(s.cams, s.points, worse, s.points, s.obs, {0, 0, 1}, {0, 0, 1}, 0.25 / 960);
+  EXPECT_GT(ev.chi2_without, ev.chi2_with + ev.penalty);
+  EXPECT_TRUE(ev.PaysOff());
+  EXPECT_EQ(ev.zoom_dropped, 1);
+}
+
+TEST(CompareFreedoms, OnlyPointsSeenAcrossADroppedIntervalCountDepths) {
+  Scene s = MakeScene(10, 0, 3, 0, 1);       // seen by cameras 0-1 only
+  const Scene t = MakeScene(20, 0, 4, 1, 2);  // seen by cameras 1-2
+  for (BaObservation o : t.obs) {
+    o.point += 10;
+    s.obs.push_back(o);
+  }
+  s.points.insert(s.points.end(), t.points.begin(), t.points.end());
+  const FreedomEvidence ev =
+      CompareFreedoms(s.cams, s.points, s.cams, s.points, s.obs, {0, 1, 0}, {0, 0, 0}, 0.25 / 960);
+  EXPECT_EQ(ev.informed_points, 10);  // interval 0 -> 1 is the dropped one
+  // Noise-free: every error is zero, sigma is the floor, nothing to gain.
+  EXPECT_DOUBLE_EQ(ev.sigma, 0.25 / 960);
+  EXPECT_DOUBLE_EQ(ev.chi2_with, 0.0);
+  EXPECT_FALSE(ev.PaysOff());
+}
+
+TEST(CompareFreedoms, PointsBehindTheCameraCountAsCappedOutliersWithoutNaN) {
+  Scene s = MakeScene(50, 0.3 / 960, 5);
+  std::vector<BaCamera> turned = s.cams;
+  turned[1].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(3.1, Eigen::Vector3d::UnitY()));
+  const FreedomEvidence ev =
+      CompareFreedoms(s.cams, s.points, turned, s.points, s.obs, {0, 1, 0}, {0, 0, 0}, 0.25 / 960);
+  EXPECT_TRUE(std::isfinite(ev.chi2_without));
+  EXPECT_NEAR(ev.chi2_without - ev.chi2_with, 9.0 * 50 - [&] {
+    double c = 0;  // camera 1's share of chi2_with
+    for (size_t i = 0; i < s.obs.size(); ++i)
+      if (s.obs[i].camera == 1) {
+        const double e = (s.obs[i].u - s.points[s.obs[i].point].homogeneous.head<2>() /
+                                           s.points[s.obs[i].point].homogeneous(2)).norm();
+        c += std::min(e * e / (ev.sigma * ev.sigma), 9.0);
+      }
+    return c;
+  }(), 1e-6);
+  EXPECT_TRUE(ev.PaysOff());
+}
+
+}  // namespace
+}  // namespace hapcine
