@@ -46,6 +46,11 @@ double AngleBetweenDeg(const Eigen::Quaterniond& a,
   return RadToDeg(2.0 * std::atan2(s, std::abs(d.w())));
 }
 
+double OpticalAxisAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  const Eigen::Vector3d za = a * Eigen::Vector3d::UnitZ(), zb = b * Eigen::Vector3d::UnitZ();
+  return RadToDeg(std::acos(std::clamp(za.dot(zb), -1.0, 1.0)));
+}
+
 double FovDegFromFocalPx(double focal_px, double width_px) {
   return RadToDeg(2.0 * std::atan(width_px / (2.0 * focal_px)));
 }

@@ -31,6 +31,10 @@ Eigen::Quaterniond CanonicalQuaternion(const Eigen::Quaterniond& q);
 // Angle of the relative rotation a^-1 b, in degrees, in [0, 180].
 double AngleBetweenDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
 
+// Angle between the optical axes (+Z of each camera) of a and b, in degrees:
+// roll about the axis does not count (it does not tell a focal length).
+double OpticalAxisAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
+
 // Horizontal field of view <-> focal length in pixels for an image `width_px` wide.
 double FovDegFromFocalPx(double focal_px, double width_px);
 double FocalPxFromFovDeg(double fov_deg, double width_px);

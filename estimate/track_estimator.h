@@ -131,10 +131,30 @@ class TrackCameraEstimator {
     double confidence = 0;
   };
 
+  // What a window's bundle adjustment leaves for its in-between frames.
+  struct WindowSolution {
+    std::vector<BaPoint> points;
+    std::map<long, int> point_of_track;  // track id -> index in points
+    std::vector<char> point_kept;        // the BA kept the point's track
+    BaOptions pose_options;              // the window's solve options
+    bool success = false;                // the BA succeeded
+    double rms_px = 0;                   // its reprojection RMS, pixels of the decoded frame
+    bool focal_observable = false;
+  };
+
   void StartShot(int shot);
   void FinishShot();
-  void ProcessWindow(bool final);
   void AddKeyframe(int pos, bool force_static);
+  // Bundle adjustment of the current window, then its frames
+  // (track_estimator_window.cc). `final`: the shot ends with it.
+  void ProcessWindow(bool final);
+  // Labels of short runs between two equal, more general neighbours take
+  // theirs (a keyframe interval or two misread).
+  void PromoteShortRuns();
+  // After the window's solve (track_estimator_frames.cc).
+  void SetUnits(std::vector<BaPoint>* points);
+  void EmitWindowFrames(const WindowSolution& solution, bool final);
+  void StartNextWindow();
   // Occlusion-order votes of candidate reconstructions of the current window
   // (track_estimator_occlusion.cc).
   std::vector<OcclusionVotes> OcclusionVotesOf(const std::vector<const std::vector<BaCamera>*>& candidates) const;

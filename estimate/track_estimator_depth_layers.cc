@@ -1,6 +1,6 @@
 // TrackCameraEstimator's depth-layer cue (depth_layers.h): the window's
 // keyframe observations, depths from a candidate reconstruction. Kept apart
-// from track_estimator.cc: one hook in ProcessWindow's whole-track rejection.
+// from track_estimator_window.cc: one hook in ProcessWindow's whole-track rejection.
 
 #include "estimate/depth_layers.h"
 #include "estimate/track_estimator.h"

@@ -1,6 +1,6 @@
 // TrackCameraEstimator's occlusion-order votes (occlusion_order.h): the
 // window's buffered frames give the events, each candidate's cameras the
-// depths. Kept apart from track_estimator.cc: one hook in ProcessWindow.
+// depths. Kept apart from track_estimator_window.cc: one hook in ProcessWindow.
 
 #include <cstdlib>
 #include <iostream>

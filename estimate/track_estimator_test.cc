@@ -26,6 +26,20 @@ struct SimRun {
   std::map<std::string, int> models;
 };
 
+// The estimator's path against run->truth (one camera per frame).
+void Score(TrackCameraEstimator* est, SimRun* run) {
+  run->path = est->Finish();
+  const int frames = static_cast<int>(run->truth.size());
+  double sum = 0;
+  for (int i = 0; i < frames; ++i) {
+    const CameraFrame& f = run->path.frames[i];
+    sum += AngleBetweenDeg(f.world_from_cam, run->truth[i].world_from_cam);
+    run->max_abs_translation = std::max(run->max_abs_translation, f.center.cwiseAbs().maxCoeff());
+    ++run->models[*f.model];
+  }
+  run->mean_rot_err_deg = sum / frames;
+}
+
 SimRun Simulate(int frames, const std::function<SceneCamera(int)>& camera_at,
              const std::vector<Eigen::Vector3d>& pts, double noise_px,
              const std::function<bool(int)>& blank = {}, TrackEstimatorOptions opt = {}) {
@@ -42,15 +56,7 @@ SimRun Simulate(int frames, const std::function<SceneCamera(int)>& camera_at,
     }
     est.AddFrame(ft);
   }
-  run.path = est.Finish();
-  double sum = 0;
-  for (int i = 0; i < frames; ++i) {
-    const CameraFrame& f = run.path.frames[i];
-    sum += AngleBetweenDeg(f.world_from_cam, run.truth[i].world_from_cam);
-    run.max_abs_translation = std::max(run.max_abs_translation, f.center.cwiseAbs().maxCoeff());
-    ++run.models[*f.model];
-  }
-  run.mean_rot_err_deg = sum / frames;
+  Score(&est, &run);
   return run;
 }
 
@@ -428,15 +434,7 @@ SimRun BlurredWhip(const TrackEstimatorOptions& opt, double bias_px_per_px) {
     for (auto& p : ft.points) p.px.x() += (bias[p.track_id] + gauss(rng)) * bias_px_per_px * speed_px;
     est.AddFrame(ft);
   }
-  run.path = est.Finish();
-  double sum = 0;
-  for (int i = 0; i < frames; ++i) {
-    const CameraFrame& f = run.path.frames[i];
-    sum += AngleBetweenDeg(f.world_from_cam, run.truth[i].world_from_cam);
-    run.max_abs_translation = std::max(run.max_abs_translation, f.center.cwiseAbs().maxCoeff());
-    ++run.models[*f.model];
-  }
-  run.mean_rot_err_deg = sum / frames;
+  Score(&est, &run);
   return run;
 }
 

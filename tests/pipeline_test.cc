@@ -195,8 +195,9 @@ TEST_F(PipelineTest, EstimateRejectsBadVideosWithOneLineAndNoOutput) {
     EXPECT_NE(LastLine(r.err).find(bad.filename().string()), std::string::npos)
         << "the error must name the file: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
-    if (reasons.count(bad))
+    if (reasons.count(bad)) {
       EXPECT_NE(r.err.find(reasons.at(bad)), std::string::npos) << r.err;
+    }
     EXPECT_EQ(CountFilesStartingWith(dir_, out.filename().string()), 0)
         << "output left behind for " << bad;
   }

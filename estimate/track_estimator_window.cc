@@ -1,0 +1,577 @@
+// TrackCameraEstimator::ProcessWindow: one window's bundle adjustment, from
+// the keyframes' two-view labels to the solved keyframes and points (model
+// choice, track rejection); its frames and units follow in
+// track_estimator_frames.cc. docs/estimate.md, "Algorithm", step 4.
+
+#include "estimate/track_estimator.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <future>
+#include <limits>
+#include <utility>
+
+#include "core/rotation.h"
+#include "core/statistics.h"
+#include "estimate/axial_ambiguity.h"
+#include "estimate/point_selection.h"
+#include "estimate/stage_timing.h"
+#include "estimate/two_view_geometry.h"
+#include "estimate/window_freedoms.h"
+
+namespace hapcine {
+
+void TrackCameraEstimator::PromoteShortRuns() {
+  const int n = static_cast<int>(keyframes_.size());
+  for (int i = 1; i < n; ++i) {
+    if (keyframes_[i].fixed) continue;
+    for (int len = 1; len <= 2 && i + len < n; ++len) {
+      const MotionModel left = keyframes_[i - 1].model, right = keyframes_[i + len].model;
+      if (keyframes_[i - 1].chain_start) break;  // it has no interval of its own
+      bool run_same = true;
+      for (int j = i; j < i + len; ++j) run_same &= keyframes_[j].model == keyframes_[i].model;
+      if (run_same && left == right && left != keyframes_[i].model &&
+          IsAtLeastAsGeneral(left, keyframes_[i].model)) {
+        for (int j = i; j < i + len; ++j) keyframes_[j].model = left;
+        break;
+      }
+    }
+  }
+}
+
+void TrackCameraEstimator::ProcessWindow(bool final) {
+  if (keyframes_.empty()) return;
+  const int n = static_cast<int>(keyframes_.size());
+  LogStage("window: keyframes", n);
+  WindowReport report;
+  report.shot = shot_;
+  report.keyframes = n;
+  report.first_frame = At(keyframes_.front().pos).tracks.index;
+  report.freedoms_dropped = std::exchange(freedoms_dropped_, false);
+
+  PromoteShortRuns();
+
+  // --- cameras with the models' sharing.
+  auto build_cameras = [&](bool zoom_in_general) {
+    std::vector<BaCamera> cams(n);
+    for (int i = 0; i < n; ++i) {
+      cams[i] = keyframes_[i].cam;
+      cams[i].fixed = keyframes_[i].fixed;
+      cams[i].fixed_focal = keyframes_[i].fixed_focal;
+      cams[i].rotation_source = cams[i].center_source = cams[i].focal_source = -1;
+      if (i == 0 || keyframes_[i].fixed) continue;
+      MotionModel m = keyframes_[i].model;
+      if (zoom_in_general && m == MotionModel::kGeneral) m = MotionModel::kGeneralZoom;
+      if (!HasRotation(m)) cams[i].rotation_source = i - 1;
+      if (!HasTranslation(m)) cams[i].center_source = i - 1;
+      if (!HasZoom(m)) cams[i].focal_source = i - 1;
+    }
+    // Shared blocks start from the source's value.
+    for (int i = 1; i < n; ++i) {
+      if (cams[i].rotation_source >= 0) cams[i].world_from_cam = cams[i - 1].world_from_cam;
+      if (cams[i].center_source >= 0) cams[i].center = cams[i - 1].center;
+      if (cams[i].focal_source >= 0) cams[i].log_focal = cams[i - 1].log_focal;
+    }
+    return cams;
+  };
+  bool has_translation = false, has_general = false;
+  for (int i = 1; i < n; ++i) {
+    has_translation |= HasTranslation(keyframes_[i].model);
+    has_general |= keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
+  }
+  // Focal initialisation from rotation pairs that turned enough (first window only).
+  if (!focal_observed_ && !focal_samples_.empty() && keyframes_[0].pos == 0 && !keyframes_[1 < n ? 1 : 0].fixed) {
+    const double shift = Median(focal_samples_) - keyframes_[0].cam.log_focal;
+    for (auto& k : keyframes_) k.cam.log_focal += shift;
+  }
+  double max_turn = 0;
+  for (const auto& k : keyframes_)
+    max_turn = std::max(max_turn, OpticalAxisAngleDeg(k.cam.world_from_cam, keyframes_[0].cam.world_from_cam));
+  const bool focal_observable = focal_observed_ || max_turn >= options_.min_rotation_for_focal_deg;
+  report.focal_observable = focal_observable;
+
+  // --- points: tracks seen by >= 2 keyframes, spread over the image
+  // (point_selection.h), longest first within an image cell.
+  std::map<long, std::vector<int>> seen;  // track -> keyframes
+  for (int i = 0; i < n; ++i)
+    for (const auto& [id, u] : At(keyframes_[i].pos).u)
+      if (!outlier_tracks_.count(id)) seen[id].push_back(i);
+  std::vector<TrackCandidate> candidates;
+  for (const auto& [id, kfs] : seen)
+    if (kfs.size() >= 2)
+      candidates.push_back({id, static_cast<int>(kfs.size()), At(keyframes_[kfs[kfs.size() / 2]].pos).u.at(id)});
+  // Only where the camera translates, and not along the optical axis:
+  // without parallax an occlusion edge does not slide (every track is rigid,
+  // the longest are best), and along the axis the tracks in front of the
+  // subject decide the dolly/zoom branch (see drop_bad_tracks below).
+  std::vector<BaCamera> initial(n);
+  for (int i = 0; i < n; ++i) initial[i] = keyframes_[i].cam;
+  // The last held keyframe (the window's fixed lead-in): the motion before it
+  // is decided, so the axial tests below look only after it.
+  int held = 0;
+  while (held + 1 < n && keyframes_[held + 1].fixed) ++held;
+  const bool spread_points = has_translation && !IsAxialMotion(initial, held);
+  std::vector<std::pair<int, long>> order;
+  // Where the grid spreads the points, the whole-track cut below also drops
+  // the occlusion-edge corners (a third or more of the tracks near
+  // silhouettes) and the good tracks the first, bent solve puts far: take
+  // more there, so that about `max_points` rigid ones remain.
+  const int window_points =
+      spread_points ? static_cast<int>(std::lround(options_.max_points * options_.spread_points_factor))
+                    : options_.max_points;
+  for (long id : SelectWindowTracks(std::move(candidates), window_points,
+                                    spread_points ? options_.point_grid_cells : 0))
+    order.push_back({-static_cast<int>(seen[id].size()), id});
+
+  // Point k is the track order[k] in every candidate reconstruction.
+  std::map<long, int> point_of_track;
+  for (size_t k = 0; k < order.size(); ++k) point_of_track[order[k].second] = static_cast<int>(k);
+  // Points from the cameras' initial poses: anchored at the first keyframe
+  // that sees them, depth by midpoint triangulation with the most distant one.
+  // Reads only (it runs on two threads at once in general windows, below).
+  auto init_points = [&](const std::vector<BaCamera>& cams, std::vector<BaPoint>* points_out,
+                         std::vector<BaObservation>* obs_out) {
+    std::vector<BaPoint>& points = *points_out;
+    std::vector<BaObservation>& obs = *obs_out;
+    points.clear();
+    obs.clear();
+    for (const auto& [neg, id] : order) {
+      const auto& kfs = seen.at(id);
+      const BaCamera& ca = cams[kfs[0]];
+      const Eigen::Vector2d ua = At(keyframes_[kfs[0]].pos).u.at(id);
+      const double fa = std::exp(ca.log_focal);
+      const Eigen::Vector3d ray_a = (ca.world_from_cam * Eigen::Vector3d(ua.x() / fa, ua.y() / fa, 1)).normalized();
+      double rho = 0;
+      if (has_translation) {
+        // Midpoint triangulation with the most distant observing keyframe.
+        int best = -1;
+        double best_base = 0;
+        for (int j : kfs) {
+          const double base = (cams[j].center - ca.center).norm();
+          if (base > best_base) {
+            best_base = base;
+            best = j;
+          }
+        }
+        if (best >= 0) {
+          const BaCamera& cb = cams[best];
+          const Eigen::Vector2d ub = At(keyframes_[best].pos).u.at(id);
+          const double fb = std::exp(cb.log_focal);
+          const Eigen::Vector3d ray_b = (cb.world_from_cam * Eigen::Vector3d(ub.x() / fb, ub.y() / fb, 1)).normalized();
+          const Eigen::Vector3d w = cb.center - ca.center;
+          const double bb = ray_a.dot(ray_b), d1 = ray_a.dot(w), d2 = ray_b.dot(w);
+          const double den = 1 - bb * bb;
+          if (den > 1e-8) {
+            const double lambda = (d1 - bb * d2) / den;
+            if (lambda > 0 && std::isfinite(lambda)) rho = 1 / lambda;
+          }
+        }
+        if (!(rho > 0)) rho = 0.2 / scene_depth_;
+      }
+      BaPoint p;
+      p.anchor = ca.center;
+      p.homogeneous = Eigen::Vector4d(ray_a.x(), ray_a.y(), ray_a.z(), rho).normalized();
+      for (int j : kfs) obs.push_back({j, static_cast<int>(points.size()), At(keyframes_[j].pos).u.at(id)});
+      points.push_back(p);
+    }
+  };
+  std::vector<BaCamera> cams = build_cameras(false);
+  std::vector<BaPoint> points;
+  std::vector<BaObservation> obs;
+  init_points(cams, &points, &obs);
+
+  BaOptions ba;
+  ba.huber_scale = 1.0 / 960;
+  ba.focal_prior_log = prior_log_focal_;
+  ba.fix_first_focal = !focal_observable;
+  ba.use_depth = has_translation;
+  ba.max_iterations = options_.ba_iterations;
+  ba.num_threads = options_.num_threads;
+  // Scale gauge: unless two fixed keyframes with distinct centres pin it.
+  const bool scale_pinned = n >= 2 && keyframes_[0].fixed && keyframes_[1].fixed &&
+                            (cams[1].center - cams[0].center).norm() > 1e-9;
+  if (has_translation && !scale_pinned) {
+    for (int i = 1; i < n; ++i) {
+      if (HasTranslation(keyframes_[i].model)) {
+        const double d = (cams[i].center - cams[i - 1].center).norm();
+        if (d > 1e-9) {
+          ba.scale_a = i - 1;
+          ba.scale_b = i;
+          ba.scale_distance = d;
+        }
+        break;
+      }
+    }
+  }
+
+  // Re-solves on a reduced set of observations, from the current (already
+  // close) estimate with a third of the iterations; a success updates the
+  // summary's RMS and observation count. Every cut below ends with it.
+  auto polish_with = [](const BaOptions& opts, std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                        const std::vector<BaObservation>& o, BaSummary* s) {
+    BaOptions polish = opts;
+    polish.max_iterations = std::max(5, opts.max_iterations / 3);
+    const BaSummary s2 = SolveBundle(c, p, o, polish);
+    if (s2.success) {
+      s->rms_after = s2.rms_after;
+      s->num_observations = s2.num_observations;
+    }
+  };
+  auto polish_on = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, const std::vector<BaObservation>& o,
+                       BaSummary* s) { polish_with(ba, c, p, o, s); };
+  auto solve_with = [&](const BaOptions& opts, std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                        std::vector<BaObservation>* o) {
+    // The first solve stops at a 1e-4 relative decrease of the cost: with the
+    // outliers still in, its last iterations creep (~1e-5 a step, the Huber
+    // loss's linear convergence; 40 iterations without converging on the
+    // first window of the 1080p traveling) towards a fit the polish below
+    // redoes without them. Without a polish it continues to the usual tolerance.
+    BaOptions first = opts;
+    first.function_tolerance = 1e-4;
+    BaSummary s = SolveBundle(c, p, *o, first);
+    if (!s.success) return s;
+    // Drop outliers (beyond 1.5 Huber scales, ~1.5 px at 960 px) and
+    // polish (the whole-track test below comes after the model choice).
+    const auto errs = ObservationErrors(*c, *p, *o, opts.use_depth);
+    std::vector<BaObservation> kept;
+    for (size_t i = 0; i < o->size(); ++i)
+      if (std::isfinite(errs[i]) && errs[i] < 1.5 * opts.huber_scale) kept.push_back((*o)[i]);
+    const bool polish_follows = kept.size() < o->size() && kept.size() > 10;
+    if (!polish_follows && first.function_tolerance != opts.function_tolerance) {
+      BaOptions rest = opts;
+      rest.max_iterations = std::max(1, opts.max_iterations - s.iterations + 1);
+      const BaSummary s3 = SolveBundle(c, p, *o, rest);
+      if (s3.success) s.rms_after = s3.rms_after;
+    }
+    if (polish_follows) {
+      *o = kept;
+      polish_with(opts, c, p, *o, &s);
+    }
+    return s;
+  };
+  auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
+    return solve_with(ba, c, p, o);
+  };
+  // The tight cut is for windows with parallax throughout: where a few
+  // intervals among rotation read as general (the blur of a whip pan), the
+  // tracks' RMS is mostly tracking noise, as without translation.
+  int translating = 0, free_keyframes = 0;
+  for (int i = 1; i < n; ++i) {
+    if (keyframes_[i].fixed) continue;
+    ++free_keyframes;
+    translating += HasTranslation(keyframes_[i].model);
+  }
+  const bool mostly_translating = has_translation && 2 * translating >= free_keyframes;
+  // Tracks between two depth layers (depth_layers.h) under the solution the
+  // RMS cut left: corners sliding along a silhouette that fit a rigid point
+  // at an in-between depth, which the RMS cannot see. The tracks the RMS cut
+  // dropped are no one's neighbours (they are often such corners too).
+  auto drop_between_layers = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                                 std::vector<BaObservation>* o, BaSummary* s) {
+    std::vector<char> kept_point(p->size(), 0);
+    for (const auto& ob : *o) kept_point[ob.point] = 1;
+    std::vector<long> track_of_point(p->size(), -1);
+    std::set<long> dropped;
+    for (const auto& [id, k] : point_of_track) {
+      track_of_point[k] = id;
+      if (!kept_point[k]) dropped.insert(id);
+    }
+    const std::set<long> between = TracksBetweenLayersOf(*c, dropped);
+    std::vector<BaObservation> kept;
+    for (const auto& ob : *o)
+      if (!between.count(track_of_point[ob.point])) kept.push_back(ob);
+    if (kept.size() == o->size() || kept.size() <= 10) return;
+    *o = kept;
+    polish_on(c, p, *o, s);
+  };
+  // After the model choice (the comparison needs the same tracks in every
+  // candidate, and the tracks in front of a dolly-zoom subject are the cue).
+  auto drop_bad_tracks = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
+                             const std::vector<BaObservation>& all, std::vector<BaObservation>* o,
+                             BaSummary* s) {
+    // Drop whole tracks that no rigid point explains, and polish. About a
+    // quarter of the KLT tracks on the synthetic clips are corners formed by
+    // a silhouette against the background (occlusion edges): they move
+    // smoothly, pass every frame-to-frame check and stay within a pixel or two
+    // of *some* rigid point, and they are the longest tracks (the subject's
+    // outline stays in view), so they make up half of the points a window
+    // picks. Their shared bias bends the window along the rotation/translation
+    // ambiguity (docs/estimate.md, "Where the rotation error comes from").
+    // Residuals of a track are systematic, so a track's RMS is the test, not
+    // single observations (all of the track's, also those cut above). The
+    // threshold follows the noise: at least twice the lower quartile of the
+    // tracks' RMS (about the noise of a good track). The cut tightens in four
+    // rounds, 2.5x, 2x, 1.5x, then 1x, each after a polish: the first solution
+    // is still bent by the bad tracks, and cutting tight at once also drops
+    // good tracks the bend put far (crane_shot: 0.15 deg instead of 0.08).
+    *o = all;
+    for (double factor : {2.5, 2.0, 1.5, 1.0}) {
+      const auto errs = ObservationErrors(*c, *p, *o, ba.use_depth);
+      std::vector<double> sum_sq(p->size(), 0);
+      std::vector<int> count(p->size(), 0);
+      for (size_t i = 0; i < o->size(); ++i) {
+        const int k = (*o)[i].point;
+        sum_sq[k] += std::isfinite(errs[i]) ? errs[i] * errs[i] : std::numeric_limits<double>::infinity();
+        ++count[k];
+      }
+      std::vector<double> rms(p->size(), 0), finite;
+      for (size_t k = 0; k < p->size(); ++k) {
+        if (!count[k]) continue;
+        rms[k] = std::sqrt(sum_sq[k] / count[k]);
+        if (std::isfinite(rms[k])) finite.push_back(rms[k]);
+      }
+      if (finite.empty()) break;
+      std::nth_element(finite.begin(), finite.begin() + finite.size() / 4, finite.end());
+      const double cut_px = mostly_translating ? options_.track_rms_cut_px : options_.track_rms_cut_rotation_px;
+      const double cut = factor * std::max(cut_px / 960.0,  // normalised units
+                                           2.0 * finite[finite.size() / 4]);
+      std::vector<BaObservation> kept;
+      for (const auto& ob : *o)
+        if (rms[ob.point] < cut) kept.push_back(ob);
+      if (kept.size() <= 10) break;
+      *o = kept;
+      polish_on(c, p, *o, s);
+    }
+    if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
+    // Diagnostic (docs/estimate.md, crane_shot): every point's RMS over all
+    // its observations after the cut (and the options above), and whether it was kept.
+    if (std::getenv("HAPCINE_TRACK_RMS_DEBUG")) {
+      const auto errs = ObservationErrors(*c, *p, all, ba.use_depth);
+      std::vector<double> sq(p->size(), 0);
+      std::vector<int> cnt(p->size(), 0), kept_pt(p->size(), 0);
+      for (size_t i = 0; i < all.size(); ++i) {
+        sq[all[i].point] += errs[i] * errs[i];
+        ++cnt[all[i].point];
+      }
+      for (const auto& ob : *o) kept_pt[ob.point] = 1;
+      for (const auto& [id, k] : point_of_track)
+        if (cnt[k])
+          std::fprintf(stderr, "track_rms %d %ld %.4f %d\n", At(keyframes_.front().pos).tracks.index, id,
+                       std::sqrt(sq[k] / cnt[k]) * 960, kept_pt[k]);
+    }
+  };
+
+  struct Candidate {
+    std::vector<BaCamera> cams;
+    std::vector<BaPoint> pts;
+    std::vector<BaObservation> ob;
+    BaSummary summary;
+  };
+  auto solve_from = [&](std::vector<BaCamera> init) {
+    Candidate c;
+    c.cams = std::move(init);
+    init_points(c.cams, &c.pts, &c.ob);
+    c.summary = solve(&c.cams, &c.pts, &c.ob);
+    return c;
+  };
+  // Few translating intervals among rotation: the window is also solved
+  // without their translation (and without the zoom of zooming intervals, if
+  // those are few too), on a second thread beside the solve below, and the
+  // freedoms are kept only if they pay for themselves over the whole window
+  // (window_freedoms.h). A pair of frames reads motion blur or a fade as
+  // translation; one depth per point across the window does not fit it.
+  // "Few" by frames, not keyframes: a fast whip makes a keyframe of every
+  // frame, a still part one every keyframe_max_gap frames.
+  int translating_frames = 0, free_frames = 0;
+  for (int i = 1; i < n; ++i) {
+    if (keyframes_[i].fixed) continue;
+    const int span = keyframes_[i].pos - keyframes_[i - 1].pos;
+    free_frames += span;
+    if (HasTranslation(keyframes_[i].model)) translating_frames += span;
+  }
+  std::future<Candidate> without_freedoms;
+  std::vector<char> drop_translation(n, 0), drop_zoom(n, 0);
+  if (options_.freedom_test && has_translation && 2 * translating_frames < free_frames) {
+    int zooming_frames = 0;
+    for (int i = 1; i < n; ++i)
+      if (!keyframes_[i].fixed && HasZoom(keyframes_[i].model)) zooming_frames += keyframes_[i].pos - keyframes_[i - 1].pos;
+    const bool few_zooming = 2 * zooming_frames < free_frames;
+    std::vector<MotionModel> labels(n);
+    for (int i = 0; i < n; ++i) {
+      labels[i] = keyframes_[i].model;
+      if (keyframes_[i].fixed) continue;
+      drop_translation[i] = HasTranslation(labels[i]);
+      drop_zoom[i] = few_zooming && HasZoom(labels[i]);
+      keyframes_[i].model = ReducedModel(labels[i], drop_translation[i], drop_zoom[i]);
+    }
+    std::vector<BaCamera> reduced = build_cameras(false);
+    for (int i = 0; i < n; ++i) keyframes_[i].model = labels[i];
+    without_freedoms = std::async(std::launch::async, [&, c = std::move(reduced)]() mutable {
+      Candidate r;
+      r.cams = std::move(c);
+      r.pts = points;  // bearings: the solve ignores their inverse depth
+      r.ob = obs;
+      BaOptions bearings = ba;
+      bearings.use_depth = false;
+      bearings.scale_a = bearings.scale_b = -1;
+      r.summary = solve_with(bearings, &r.cams, &r.pts, &r.ob);
+      return r;
+    });
+  }
+  // General windows: the per-keyframe-focal solve started from the two-view
+  // chain does not depend on the constant-focal one, so it runs beside it on
+  // a second thread (the same result as one after the other). After tracking
+  // has ended the last window is the whole critical path, one core idle.
+  const std::vector<BaCamera> zoom_cams = has_general ? build_cameras(true) : std::vector<BaCamera>{};
+  std::future<Candidate> zoom_from_chain;
+  if (has_general) zoom_from_chain = std::async(std::launch::async, solve_from, zoom_cams);
+  std::vector<BaPoint> pts = points;
+  std::vector<BaObservation> ob = obs;
+  BaSummary summary = solve(&cams, &pts, &ob);
+  LogStage("window: constant-focal solve");
+  if (without_freedoms.valid()) {
+    const Candidate r = without_freedoms.get();
+    if (summary.success && r.summary.success) {
+      const FreedomEvidence ev = CompareFreedoms(cams, pts, r.cams, r.pts, obs, drop_translation, drop_zoom,
+                                                 options_.two_view.noise_floor);
+      if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
+        std::fprintf(stderr,
+                     "freedom_test frame %d: keyframes %d, dropping translation %d zoom %d, points %d: chi2 "
+                     "with %.1f without %.1f, penalty %.1f, sigma %.3f px -> %s\n",
+                     report.first_frame, n, ev.translation_dropped, ev.zoom_dropped, ev.informed_points,
+                     ev.chi2_with, ev.chi2_without, ev.penalty, ev.sigma * 960, ev.PaysOff() ? "kept" : "dropped");
+      LogStage("window: freedom test");
+      if (!ev.PaysOff()) {
+        if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
+        for (int i = 0; i < n; ++i)
+          keyframes_[i].model = ReducedModel(keyframes_[i].model, drop_translation[i], drop_zoom[i]);
+        freedoms_dropped_ = true;
+        ProcessWindow(final);  // the window again, with the reduced models
+        return;
+      }
+    }
+  }
+  bool branch_by_occlusion = false;
+  if (zoom_from_chain.valid() && !summary.success) zoom_from_chain.get();  // wait, discard
+  if (summary.success && has_general) {
+    // BIC: does a per-keyframe focal in the general segments pay for itself?
+    // Per-keyframe focal candidates: from the two-view initialisation and,
+    // when the move is along the optical axis, from the other branch of the
+    // axial dolly/zoom ambiguity (axial_ambiguity.h), whichever fits better.
+    std::vector<Candidate> zoomed;
+    auto try_zoom = [&](Candidate c) {
+      if (c.summary.success) zoomed.push_back(std::move(c));
+    };
+    const int pivot = held;  // the branch before it is decided
+    const bool axial = IsAxialMotion(cams, pivot);
+    Candidate mirrored;  // solved here while the chain's candidate may still be solving
+    if (axial) {
+      std::vector<BaCamera> solved = zoom_cams;  // sharing of the zoom variant, values of the solve
+      for (int i = 0; i < n; ++i) {
+        solved[i].world_from_cam = cams[i].world_from_cam;
+        solved[i].center = cams[i].center;
+        solved[i].log_focal = cams[i].log_focal;
+      }
+      std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> matches(n);
+      for (int k = pivot + 1; k < n; ++k)
+        for (const auto& [id, u] : At(keyframes_[k].pos).u) {
+          auto it = At(keyframes_[k - 1].pos).u.find(id);
+          if (it != At(keyframes_[k - 1].pos).u.end()) matches[k].push_back({it->second, u});
+        }
+      mirrored = solve_from(MirroredAxialBranch(solved, pivot, matches));
+    }
+    try_zoom(zoom_from_chain.get());
+    if (axial) try_zoom(std::move(mirrored));
+    LogStage("window: per-keyframe-focal solves");
+    // Every candidate is scored on all observations (capped), with one sigma.
+    const auto e0 = ObservationErrors(cams, pts, obs, true);
+    std::vector<std::vector<double>> ez;
+    std::vector<double> finite;
+    for (const Candidate& c : zoomed) {
+      ez.push_back(ObservationErrors(c.cams, c.pts, obs, true));
+      for (double e : ez.back())
+        if (std::isfinite(e)) finite.push_back(e);
+    }
+    const double sigma = std::max(Median(finite, 0.0) / 1.1774, options_.two_view.noise_floor);
+    auto chi2 = [&](const std::vector<double>& e) {
+      double sum = 0;
+      for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
+      return sum;
+    };
+    // Along the optical axis the fit cannot tell the branches apart: the
+    // occlusion order can (occlusion_order.h). A candidate it contradicts,
+    // when another agrees with it, is out of the choice; [0]: constant focal.
+    std::vector<char> ruled_out(zoomed.size() + 1, 0);
+    if (axial) {
+      std::vector<const std::vector<BaCamera>*> candidate_cams{&cams};
+      for (const Candidate& c : zoomed) candidate_cams.push_back(&c.cams);
+      ruled_out = ContradictedByOcclusion(OcclusionVotesOf(candidate_cams));
+      for (char r : ruled_out) branch_by_occlusion |= r;
+    }
+    int best = -1;
+    double best_chi2 = 0;
+    for (size_t c = 0; c < zoomed.size(); ++c) {
+      if (ruled_out[c + 1]) continue;
+      const double x = chi2(ez[c]);
+      if (best < 0 || x < best_chi2) {
+        best = static_cast<int>(c);
+        best_chi2 = x;
+      }
+    }
+    if (best >= 0) {
+      int extra = 0;
+      for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
+      const double m = 2.0 * obs.size();
+      const double bic0 = chi2(e0), bic1 = best_chi2 + extra * std::log(std::max(m, 2.0));
+      if (bic1 < bic0 || ruled_out[0]) {
+        Candidate& c = zoomed[best];
+        cams = c.cams;
+        pts = c.pts;
+        ob = c.ob;
+        summary = c.summary;
+        report.zoom_by_bic = true;
+        for (int i = 1; i < n; ++i)
+          if (keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed)
+            keyframes_[i].model = MotionModel::kGeneralZoom;
+      }
+    }
+  }
+  // Not along the optical axis: there the tracks in front of the subject are
+  // the only cue between the two branches of the dolly/zoom ambiguity, and
+  // the branch not taken leaves them with the largest residuals. Unless the
+  // occlusion order chose the branch: then the residuals are not the cue.
+  LogStage("window: model choice");
+  if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, held))))
+    drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
+  LogStage("window: track rejection");
+  if (summary.success) {
+    for (int i = 0; i < n; ++i) {
+      keyframes_[i].cam.world_from_cam = cams[i].world_from_cam;
+      keyframes_[i].cam.center = cams[i].center;
+      keyframes_[i].cam.log_focal = cams[i].log_focal;
+    }
+    points = pts;
+    if (focal_observable) focal_observed_ = true;
+  }
+  // Points whose track the BA kept (outlier tracks are dropped whole): the
+  // only ones the in-between frames may use.
+  std::vector<char> point_kept(points.size(), summary.success ? 0 : 1);
+  if (summary.success)
+    for (const auto& o : ob) point_kept[o.point] = 1;
+  report.points = static_cast<int>(points.size());
+  report.observations = summary.num_observations;
+  report.rms_px = summary.rms_after * width_;
+
+  if (has_translation && summary.success) SetUnits(&points);
+
+  WindowSolution solution;
+  solution.points = std::move(points);
+  solution.point_of_track = std::move(point_of_track);
+  solution.point_kept = std::move(point_kept);
+  solution.pose_options = ba;
+  solution.success = summary.success;
+  solution.rms_px = report.rms_px;
+  solution.focal_observable = focal_observable;
+  EmitWindowFrames(solution, final);
+  report.last_frame = raw_.empty() ? report.first_frame : raw_.back().meta.index;
+  reports_.push_back(report);
+  LogStage("window: in-between frames");
+  if (final) return;
+
+  StartNextWindow();
+}
+
+}  // namespace hapcine
