@@ -48,4 +48,21 @@ TEST(RotationTest, FovFocalRoundTrip) {
 }
 
 }  // namespace
+TEST(RotationTest, OpticalAxisAngleIgnoresRollAndCountsPanAndTilt) {
+  PanTiltRoll roll_only, pan_tilt;
+  roll_only.roll_deg = 40;
+  pan_tilt.pan_deg = 3;
+  pan_tilt.tilt_deg = 4;
+  const Eigen::Quaterniond id = Eigen::Quaterniond::Identity();
+  EXPECT_NEAR(OpticalAxisAngleDeg(id, QuaternionFromPanTiltRoll(roll_only)), 0.0, 1e-6);
+  // cos(angle) = cos(3 deg) cos(4 deg) for pan then tilt.
+  const double expected = RadToDeg(std::acos(std::cos(DegToRad(3)) * std::cos(DegToRad(4))));
+  EXPECT_NEAR(OpticalAxisAngleDeg(id, QuaternionFromPanTiltRoll(pan_tilt)), expected, 1e-9);
+  EXPECT_NEAR(OpticalAxisAngleDeg(QuaternionFromPanTiltRoll(pan_tilt), id), expected, 1e-9);
+  // Opposite axes: 180, no NaN from acos at the clamp.
+  PanTiltRoll back;
+  back.pan_deg = 180;
+  EXPECT_NEAR(OpticalAxisAngleDeg(id, QuaternionFromPanTiltRoll(back)), 180.0, 1e-6);
+}
+
 }  // namespace hapcine

@@ -50,4 +50,12 @@ TEST(MedianTest, MatchesASortedReference) {
 }
 
 }  // namespace
+TEST(Clamp01Test, ClampsAndMapsNonFiniteToZero) {
+  EXPECT_EQ(Clamp01(0.25), 0.25);
+  EXPECT_EQ(Clamp01(-1.0), 0.0);
+  EXPECT_EQ(Clamp01(7.0), 1.0);
+  EXPECT_EQ(Clamp01(std::numeric_limits<double>::quiet_NaN()), 0.0);
+  EXPECT_EQ(Clamp01(std::numeric_limits<double>::infinity()), 0.0);
+}
+
 }  // namespace hapcine
