@@ -18,6 +18,7 @@
 #include "core/statistics.h"
 #include "estimate/axial_ambiguity.h"
 #include "estimate/point_selection.h"
+#include "estimate/robust_bundle.h"
 #include "estimate/stage_timing.h"
 #include "estimate/two_view_geometry.h"
 #include "estimate/window_freedoms.h"
@@ -207,53 +208,12 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
   }
 
-  // Re-solves on a reduced set of observations, from the current (already
-  // close) estimate with a third of the iterations; a success updates the
-  // summary's RMS and observation count. Every cut below ends with it.
-  auto polish_with = [](const BaOptions& opts, std::vector<BaCamera>* c, std::vector<BaPoint>* p,
-                        const std::vector<BaObservation>& o, BaSummary* s) {
-    BaOptions polish = opts;
-    polish.max_iterations = std::max(5, opts.max_iterations / 3);
-    const BaSummary s2 = SolveBundle(c, p, o, polish);
-    if (s2.success) {
-      s->rms_after = s2.rms_after;
-      s->num_observations = s2.num_observations;
-    }
-  };
+  // Every solve drops what the fit cannot explain and polishes
+  // (robust_bundle.h); the whole-track test comes after the model choice.
   auto polish_on = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, const std::vector<BaObservation>& o,
-                       BaSummary* s) { polish_with(ba, c, p, o, s); };
-  auto solve_with = [&](const BaOptions& opts, std::vector<BaCamera>* c, std::vector<BaPoint>* p,
-                        std::vector<BaObservation>* o) {
-    // The first solve stops at a 1e-4 relative decrease of the cost: with the
-    // outliers still in, its last iterations creep (~1e-5 a step, the Huber
-    // loss's linear convergence; 40 iterations without converging on the
-    // first window of the 1080p traveling) towards a fit the polish below
-    // redoes without them. Without a polish it continues to the usual tolerance.
-    BaOptions first = opts;
-    first.function_tolerance = 1e-4;
-    BaSummary s = SolveBundle(c, p, *o, first);
-    if (!s.success) return s;
-    // Drop outliers (beyond 1.5 Huber scales, ~1.5 px at 960 px) and
-    // polish (the whole-track test below comes after the model choice).
-    const auto errs = ObservationErrors(*c, *p, *o, opts.use_depth);
-    std::vector<BaObservation> kept;
-    for (size_t i = 0; i < o->size(); ++i)
-      if (std::isfinite(errs[i]) && errs[i] < 1.5 * opts.huber_scale) kept.push_back((*o)[i]);
-    const bool polish_follows = kept.size() < o->size() && kept.size() > 10;
-    if (!polish_follows && first.function_tolerance != opts.function_tolerance) {
-      BaOptions rest = opts;
-      rest.max_iterations = std::max(1, opts.max_iterations - s.iterations + 1);
-      const BaSummary s3 = SolveBundle(c, p, *o, rest);
-      if (s3.success) s.rms_after = s3.rms_after;
-    }
-    if (polish_follows) {
-      *o = kept;
-      polish_with(opts, c, p, *o, &s);
-    }
-    return s;
-  };
+                       BaSummary* s) { PolishBundle(ba, c, p, o, s); };
   auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
-    return solve_with(ba, c, p, o);
+    return SolveDroppingOutliers(ba, c, p, o);
   };
   // The tight cut is for windows with parallax throughout: where a few
   // intervals among rotation read as general (the blur of a whip pan), the
@@ -301,40 +261,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     // picks. Their shared bias bends the window along the rotation/translation
     // ambiguity (docs/estimate.md, "Where the rotation error comes from").
     // Residuals of a track are systematic, so a track's RMS is the test, not
-    // single observations (all of the track's, also those cut above). The
-    // threshold follows the noise: at least twice the lower quartile of the
-    // tracks' RMS (about the noise of a good track). The cut tightens in four
-    // rounds, 2.5x, 2x, 1.5x, then 1x, each after a polish: the first solution
-    // is still bent by the bad tracks, and cutting tight at once also drops
-    // good tracks the bend put far (crane_shot: 0.15 deg instead of 0.08).
-    *o = all;
-    for (double factor : {2.5, 2.0, 1.5, 1.0}) {
-      const auto errs = ObservationErrors(*c, *p, *o, ba.use_depth);
-      std::vector<double> sum_sq(p->size(), 0);
-      std::vector<int> count(p->size(), 0);
-      for (size_t i = 0; i < o->size(); ++i) {
-        const int k = (*o)[i].point;
-        sum_sq[k] += std::isfinite(errs[i]) ? errs[i] * errs[i] : std::numeric_limits<double>::infinity();
-        ++count[k];
-      }
-      std::vector<double> rms(p->size(), 0), finite;
-      for (size_t k = 0; k < p->size(); ++k) {
-        if (!count[k]) continue;
-        rms[k] = std::sqrt(sum_sq[k] / count[k]);
-        if (std::isfinite(rms[k])) finite.push_back(rms[k]);
-      }
-      if (finite.empty()) break;
-      std::nth_element(finite.begin(), finite.begin() + finite.size() / 4, finite.end());
-      const double cut_px = mostly_translating ? options_.track_rms_cut_px : options_.track_rms_cut_rotation_px;
-      const double cut = factor * std::max(cut_px / 960.0,  // normalised units
-                                           2.0 * finite[finite.size() / 4]);
-      std::vector<BaObservation> kept;
-      for (const auto& ob : *o)
-        if (rms[ob.point] < cut) kept.push_back(ob);
-      if (kept.size() <= 10) break;
-      *o = kept;
-      polish_on(c, p, *o, s);
-    }
+    // single observations (all of the track's, also those cut above); the
+    // cut tightens in rounds (crane_shot: 0.15 deg instead of 0.08 when
+    // cutting tight at once).
+    const double cut_px = mostly_translating ? options_.track_rms_cut_px : options_.track_rms_cut_rotation_px;
+    DropInconsistentTracks(ba, cut_px / 960.0, c, p, all, o, s);  // normalised units
     if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
     // Diagnostic (docs/estimate.md, crane_shot): every point's RMS over all
     // its observations after the cut (and the options above), and whether it was kept.
@@ -407,7 +338,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       BaOptions bearings = ba;
       bearings.use_depth = false;
       bearings.scale_a = bearings.scale_b = -1;
-      r.summary = solve_with(bearings, &r.cams, &r.pts, &r.ob);
+      r.summary = SolveDroppingOutliers(bearings, &r.cams, &r.pts, &r.ob);
       return r;
     });
   }
