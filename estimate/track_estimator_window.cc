@@ -51,7 +51,10 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   report.shot = shot_;
   report.keyframes = n;
   report.first_frame = At(keyframes_.front().pos).tracks.index;
-  report.freedoms_dropped = std::exchange(freedoms_dropped_, false);
+  // A re-run without the freedoms that did not pay off is not tested again
+  // (the lead-in's labels, held, may still have them).
+  const bool rerun = std::exchange(freedoms_dropped_, false);
+  report.freedoms_dropped = rerun;
 
   PromoteShortRuns();
 
@@ -304,28 +307,35 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // freedoms are kept only if they pay for themselves over the whole window
   // (window_freedoms.h). A pair of frames reads motion blur or a fade as
   // translation; one depth per point across the window does not fit it.
+  // The same for a few zooming intervals in a window without translation (a
+  // tilt read as a zoom in a pair of frames).
   // "Few" by frames, not keyframes: a fast whip makes a keyframe of every
   // frame, a still part one every keyframe_max_gap frames.
-  int translating_frames = 0, free_frames = 0;
+  int translating_frames = 0, zooming_frames = 0, free_frames = 0;
   for (int i = 1; i < n; ++i) {
     if (keyframes_[i].fixed) continue;
     const int span = keyframes_[i].pos - keyframes_[i - 1].pos;
     free_frames += span;
     if (HasTranslation(keyframes_[i].model)) translating_frames += span;
+    if (HasZoom(keyframes_[i].model)) zooming_frames += span;
   }
+  const bool few_translating = has_translation && 2 * translating_frames < free_frames;
+  const bool few_zooming = zooming_frames > 0 && 2 * zooming_frames < free_frames;
   std::future<Candidate> without_freedoms;
   std::vector<char> drop_translation(n, 0), drop_zoom(n, 0);
-  if (options_.freedom_test && has_translation && 2 * translating_frames < free_frames) {
-    int zooming_frames = 0;
-    for (int i = 1; i < n; ++i)
-      if (!keyframes_[i].fixed && HasZoom(keyframes_[i].model)) zooming_frames += keyframes_[i].pos - keyframes_[i - 1].pos;
-    const bool few_zooming = 2 * zooming_frames < free_frames;
+  bool anything_to_drop = false;
+  if (options_.freedom_test && !rerun && (few_translating || (!has_translation && few_zooming))) {
+    for (int i = 0; i < n; ++i) {
+      if (keyframes_[i].fixed) continue;
+      drop_translation[i] = HasTranslation(keyframes_[i].model);
+      drop_zoom[i] = few_zooming && HasZoom(keyframes_[i].model);
+      anything_to_drop |= drop_translation[i] || drop_zoom[i];
+    }
+  }
+  if (anything_to_drop) {
     std::vector<MotionModel> labels(n);
     for (int i = 0; i < n; ++i) {
       labels[i] = keyframes_[i].model;
-      if (keyframes_[i].fixed) continue;
-      drop_translation[i] = HasTranslation(labels[i]);
-      drop_zoom[i] = few_zooming && HasZoom(labels[i]);
       keyframes_[i].model = ReducedModel(labels[i], drop_translation[i], drop_zoom[i]);
     }
     std::vector<BaCamera> reduced = build_cameras(false);
@@ -360,10 +370,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
                                                  options_.two_view.noise_floor);
       if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
         std::fprintf(stderr,
-                     "freedom_test frame %d: keyframes %d, dropping translation %d zoom %d, points %d: chi2 "
-                     "with %.1f without %.1f, penalty %.1f, sigma %.3f px -> %s\n",
-                     report.first_frame, n, ev.translation_dropped, ev.zoom_dropped, ev.informed_points,
-                     ev.chi2_with, ev.chi2_without, ev.penalty, ev.sigma * 960, ev.PaysOff() ? "kept" : "dropped");
+                     "freedom_test frame %d: keyframes %d, dropping translation %d zoom %d (|d ln f| %.2g), "
+                     "points %d: chi2 with %.1f without %.1f, penalty %.1f, sigma %.3f px -> %s\n",
+                     report.first_frame, n, ev.translation_dropped, ev.zoom_dropped, ev.zoom_change,
+                     ev.informed_points, ev.chi2_with, ev.chi2_without, ev.penalty, ev.sigma * 960,
+                     ev.PaysOff() ? "kept" : "dropped");
       LogStage("window: freedom test");
       if (!ev.PaysOff()) {
         if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard

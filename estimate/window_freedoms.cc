@@ -33,6 +33,7 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
   for (int i = 0; i < n; ++i) {
     ev.translation_dropped += at(drop_translation, i);
     ev.zoom_dropped += at(drop_zoom, i);
+    if (at(drop_zoom, i) && i > 0) ev.zoom_change += std::abs(with_cams[i].log_focal - with_cams[i - 1].log_focal);
     dropped_before[i + 1] = dropped_before[i] + at(drop_translation, i);
   }
   // Which points' depths the dropped translation observes: those seen on

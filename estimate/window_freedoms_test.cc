@@ -95,5 +95,27 @@ TEST(CompareFreedoms, PointsBehindTheCameraCountAsCappedOutliersWithoutNaN) {
   EXPECT_TRUE(ev.PaysOff());
 }
 
+TEST(CompareFreedoms, ANegligibleZoomIsDroppedEvenWhenItFitsBetter) {
+  const Scene s = MakeScene(100, 0.3 / 960, 6);
+  std::vector<BaCamera> with = s.cams;
+  with[2].log_focal = 0.0005;  // a 0.05 % zoom
+  std::vector<BaCamera> worse = s.cams;
+  worse[2].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(0.002, Eigen::Vector3d::UnitY()));
+  // The zoom-only test: the fit is much better with the zoom, yet it is no zoom.
+  FreedomEvidence ev = CompareFreedoms(with, s.points, worse, s.points, s.obs, {0, 0, 0}, {0, 0, 1}, 0.25 / 960);
+  EXPECT_NEAR(ev.zoom_change, 0.0005, 1e-12);
+  EXPECT_GT(ev.chi2_without - ev.chi2_with, ev.penalty);
+  EXPECT_FALSE(ev.PaysOff());
+  // A 1 % zoom that fits better stays.
+  with[2].log_focal = 0.01;
+  ev = CompareFreedoms(with, s.points, worse, s.points, s.obs, {0, 0, 0}, {0, 0, 1}, 0.25 / 960);
+  EXPECT_NEAR(ev.zoom_change, 0.01, 1e-12);
+  EXPECT_EQ(ev.PaysOff(), ev.chi2_without - ev.chi2_with > ev.penalty);
+  // With translation in the test the zoom's size does not matter.
+  with[2].log_focal = 0;
+  ev = CompareFreedoms(s.cams, s.points, worse, s.points, s.obs, {0, 0, 1}, {0, 0, 1}, 0.25 / 960);
+  EXPECT_TRUE(ev.PaysOff());
+}
+
 }  // namespace
 }  // namespace hapcine
