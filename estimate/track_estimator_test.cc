@@ -484,6 +484,30 @@ TEST(TrackEstimator, ShortSidewaysStepAmongPanKeepsItsTranslation) {
   EXPECT_LT(run.mean_rot_err_deg, 0.1);
 }
 
+// A window whose held lead-in translates and whose own keyframes only turn:
+// nothing of its own to test (no infinite re-run), and the pan keeps one
+// centre.
+TEST(TrackEstimator, TravelingThenPanInTheNextWindow) {
+  const auto pts = RandomPoints(2000, 3, 12, 2.5, 10);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.center = Eigen::Vector3d(0.8 * (i < 100 ? Ease(i, 100) : 1.0), 0, 0);
+    PanTiltRoll ptr;
+    ptr.pan_deg = i < 110 ? 0 : 15 * Ease(i - 110, 90);
+    c.world_from_cam = QuaternionFromPanTiltRoll(ptr);
+    c.focal_px = 800;
+    return c;
+  };
+  SimRun run = Simulate(200, cam_at, pts, 0.3);
+  ASSERT_EQ(run.path.frames.size(), 200u);
+  EXPECT_GT(run.models["general"], 40);
+  EXPECT_GT(run.models["rotation"], 40);
+  // The pan after the move: one centre (up to round-off in the smoothing).
+  for (int i = 130; i < 200; ++i)
+    EXPECT_LT((run.path.frames[i].center - run.path.frames[129].center).norm(), 1e-12) << i;
+  EXPECT_LT(run.mean_rot_err_deg, 0.1);
+}
+
 TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   TrackEstimatorOptions o;
   o.prior_hfov_deg = 0;

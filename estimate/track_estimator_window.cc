@@ -58,13 +58,38 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
 
   PromoteShortRuns();
 
+  bool has_translation = false, has_general = false;
+  for (int i = 1; i < n; ++i) {
+    has_translation |= HasTranslation(keyframes_[i].model);
+    has_general |= keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
+  }
+  double max_turn = 0;
+  for (const auto& k : keyframes_)
+    max_turn = std::max(max_turn, OpticalAxisAngleDeg(k.cam.world_from_cam, keyframes_[0].cam.world_from_cam));
+  const bool focal_observable = focal_observed_ || max_turn >= options_.min_rotation_for_focal_deg;
+  report.focal_observable = focal_observable;
+  // The shot's focal observable for the first time after windows that could
+  // not observe it (a dolly, then a pan): the held lead-in's focal is still
+  // the prior, so it is freed here and calibrated with the window, and the
+  // frames already estimated take the same change (below). Held, a pan at
+  // the prior's focal was off by ~3 deg in 15 (TravelingThenPanInTheNextWindow).
+  const bool calibrate_now = focal_observable && !focal_observed_;
+  const bool recalibrate_lead_in = calibrate_now && keyframes_[0].fixed_focal;
+  const double lead_in_log_focal = keyframes_[0].cam.log_focal;
+  // Focal initialisation from rotation pairs that turned enough.
+  if (!focal_observed_ && !focal_samples_.empty() &&
+      ((keyframes_[0].pos == 0 && !keyframes_[1 < n ? 1 : 0].fixed) || recalibrate_lead_in)) {
+    const double shift = Median(focal_samples_) - keyframes_[0].cam.log_focal;
+    for (auto& k : keyframes_) k.cam.log_focal += shift;
+  }
+
   // --- cameras with the models' sharing.
   auto build_cameras = [&](bool zoom_in_general) {
     std::vector<BaCamera> cams(n);
     for (int i = 0; i < n; ++i) {
       cams[i] = keyframes_[i].cam;
       cams[i].fixed = keyframes_[i].fixed;
-      cams[i].fixed_focal = keyframes_[i].fixed_focal;
+      cams[i].fixed_focal = keyframes_[i].fixed_focal && !recalibrate_lead_in;
       cams[i].rotation_source = cams[i].center_source = cams[i].focal_source = -1;
       if (i == 0 || keyframes_[i].fixed) continue;
       MotionModel m = keyframes_[i].model;
@@ -81,21 +106,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
     return cams;
   };
-  bool has_translation = false, has_general = false;
-  for (int i = 1; i < n; ++i) {
-    has_translation |= HasTranslation(keyframes_[i].model);
-    has_general |= keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
-  }
-  // Focal initialisation from rotation pairs that turned enough (first window only).
-  if (!focal_observed_ && !focal_samples_.empty() && keyframes_[0].pos == 0 && !keyframes_[1 < n ? 1 : 0].fixed) {
-    const double shift = Median(focal_samples_) - keyframes_[0].cam.log_focal;
-    for (auto& k : keyframes_) k.cam.log_focal += shift;
-  }
-  double max_turn = 0;
-  for (const auto& k : keyframes_)
-    max_turn = std::max(max_turn, OpticalAxisAngleDeg(k.cam.world_from_cam, keyframes_[0].cam.world_from_cam));
-  const bool focal_observable = focal_observed_ || max_turn >= options_.min_rotation_for_focal_deg;
-  report.focal_observable = focal_observable;
 
   // --- points: tracks seen by >= 2 keyframes, spread over the image
   // (point_selection.h), longest first within an image cell.
@@ -480,6 +490,10 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
   LogStage("window: track rejection");
   if (summary.success) {
+    if (recalibrate_lead_in) {
+      const double shift = cams[0].log_focal - lead_in_log_focal;
+      for (RawPose& r : raw_) r.cam.log_focal += shift;
+    }
     for (int i = 0; i < n; ++i) {
       keyframes_[i].cam.world_from_cam = cams[i].world_from_cam;
       keyframes_[i].cam.center = cams[i].center;
