@@ -506,6 +506,10 @@ TEST(TrackEstimator, TravelingThenPanInTheNextWindow) {
   for (int i = 130; i < 200; ++i)
     EXPECT_LT((run.path.frames[i].center - run.path.frames[129].center).norm(), 1e-12) << i;
   EXPECT_LT(run.mean_rot_err_deg, 0.1);
+  // The pan calibrates the focal (prior: 50 deg, 1029 px), and the frames
+  // of the move, solved before, follow it: no zoom anywhere.
+  EXPECT_NEAR(*run.path.frames[199].focal_px / 800, 1.0, 0.01);
+  EXPECT_NEAR(*run.path.frames[20].focal_px / *run.path.frames[199].focal_px, 1.0, 0.002);
 }
 
 TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
