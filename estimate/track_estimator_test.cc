@@ -512,6 +512,32 @@ TEST(TrackEstimator, TravelingThenPanInTheNextWindow) {
   EXPECT_NEAR(*run.path.frames[20].focal_px / *run.path.frames[199].focal_px, 1.0, 0.002);
 }
 
+// The same with tracking lost between the move and the pan (every track
+// new from frame 100: the chain restarts there, holding the last pose).
+TEST(TrackEstimator, TravelingThenLostTrackingThenPan) {
+  const auto pts = RandomPoints(2000, 3, 12, 2.5, 11);
+  TrackCameraEstimator est(kW, kH, {});
+  std::mt19937 rng(12);
+  SimRun run;
+  for (int i = 0; i < 200; ++i) {
+    SceneCamera c;
+    c.center = Eigen::Vector3d(0.8 * (i < 100 ? Ease(i, 100) : 1.0), 0, 0);
+    PanTiltRoll ptr;
+    ptr.pan_deg = i < 110 ? 0 : 15 * Ease(i - 110, 90);
+    c.world_from_cam = QuaternionFromPanTiltRoll(ptr);
+    c.focal_px = 800;
+    run.truth.push_back(c);
+    FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, &rng);
+    if (i >= 100)
+      for (auto& p : ft.points) p.track_id += 100000;  // lost and found again: new ids
+    est.AddFrame(ft);
+  }
+  Score(&est, &run);
+  EXPECT_LT(run.mean_rot_err_deg, 0.1);
+  EXPECT_NEAR(*run.path.frames[199].focal_px / 800, 1.0, 0.01);
+  EXPECT_NEAR(*run.path.frames[20].focal_px / *run.path.frames[199].focal_px, 1.0, 0.002);
+}
+
 TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   TrackEstimatorOptions o;
   o.prior_hfov_deg = 0;

@@ -68,13 +68,13 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     max_turn = std::max(max_turn, OpticalAxisAngleDeg(k.cam.world_from_cam, keyframes_[0].cam.world_from_cam));
   const bool focal_observable = focal_observed_ || max_turn >= options_.min_rotation_for_focal_deg;
   report.focal_observable = focal_observable;
-  // The shot's focal observable for the first time after windows that could
-  // not observe it (a dolly, then a pan): the held lead-in's focal is still
-  // the prior, so it is freed here and calibrated with the window, and the
+  // The shot's focal observable for the first time after frames that could
+  // not observe it (a dolly, then a pan; or a chain restarted after lost
+  // tracking): the focal the window starts from is still the prior, so the
+  // held lead-in's is freed here and calibrated with the window, and the
   // frames already estimated take the same change (below). Held, a pan at
   // the prior's focal was off by ~3 deg in 15 (TravelingThenPanInTheNextWindow).
-  const bool calibrate_now = focal_observable && !focal_observed_;
-  const bool recalibrate_lead_in = calibrate_now && keyframes_[0].fixed_focal;
+  const bool recalibrate_lead_in = focal_observable && !focal_observed_ && !raw_.empty();
   const double lead_in_log_focal = keyframes_[0].cam.log_focal;
   // Focal initialisation from rotation pairs that turned enough.
   if (!focal_observed_ && !focal_samples_.empty() &&
