@@ -84,7 +84,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   }
 
   // --- cameras with the models' sharing.
-  auto build_cameras = [&](bool zoom_in_general) {
+  // `labels`: the keyframes' models to use instead of theirs (candidates).
+  auto build_cameras = [&](bool zoom_in_general, const std::vector<MotionModel>* labels = nullptr) {
     std::vector<BaCamera> cams(n);
     for (int i = 0; i < n; ++i) {
       cams[i] = keyframes_[i].cam;
@@ -92,7 +93,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       cams[i].fixed_focal = keyframes_[i].fixed_focal && !recalibrate_lead_in;
       cams[i].rotation_source = cams[i].center_source = cams[i].focal_source = -1;
       if (i == 0 || keyframes_[i].fixed) continue;
-      MotionModel m = keyframes_[i].model;
+      MotionModel m = labels ? (*labels)[i] : keyframes_[i].model;
       if (zoom_in_general && m == MotionModel::kGeneral) m = MotionModel::kGeneralZoom;
       if (!HasRotation(m)) cams[i].rotation_source = i - 1;
       if (!HasTranslation(m)) cams[i].center_source = i - 1;
@@ -344,12 +345,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   }
   if (anything_to_drop) {
     std::vector<MotionModel> labels(n);
-    for (int i = 0; i < n; ++i) {
-      labels[i] = keyframes_[i].model;
-      keyframes_[i].model = ReducedModel(labels[i], drop_translation[i], drop_zoom[i]);
-    }
-    std::vector<BaCamera> reduced = build_cameras(false);
-    for (int i = 0; i < n; ++i) keyframes_[i].model = labels[i];
+    for (int i = 0; i < n; ++i) labels[i] = ReducedModel(keyframes_[i].model, drop_translation[i], drop_zoom[i]);
+    std::vector<BaCamera> reduced = build_cameras(false, &labels);
     without_freedoms = std::async(std::launch::async, [&, c = std::move(reduced)]() mutable {
       Candidate r;
       r.cams = std::move(c);
@@ -393,6 +390,46 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
         freedoms_dropped_ = true;
         ProcessWindow(final);  // the window again, with the reduced models
         return;
+      }
+    }
+  }
+  // The other way (window_freedoms.h): intervals labelled without
+  // translation in a window with translation (the slow start of a forward
+  // dolly read as a zoom by a pair of frames, of a sideways one as a pan)
+  // become general if that pays for itself over the window. Static
+  // intervals stay: nothing moved there.
+  if (options_.freedom_test && !rerun && has_translation && summary.success) {
+    std::vector<char> promote(n, 0), zoom_removed(n, 0);
+    bool any = false;
+    for (int i = 1; i < n; ++i) {
+      const MotionModel m = keyframes_[i].model;
+      if (keyframes_[i].fixed || m == MotionModel::kStatic || HasTranslation(m)) continue;
+      promote[i] = 1;
+      zoom_removed[i] = HasZoom(m);
+      any = true;
+    }
+    if (any) {
+      std::vector<MotionModel> labels(n);
+      for (int i = 0; i < n; ++i) labels[i] = promote[i] ? MotionModel::kGeneral : keyframes_[i].model;
+      const Candidate p = solve_from(build_cameras(false, &labels));
+      if (p.summary.success) {
+        const PromotionEvidence ev = ComparePromotion(p.cams, p.pts, cams, pts, obs, promote, zoom_removed,
+                                                      options_.two_view.noise_floor);
+        if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
+          std::fprintf(stderr,
+                       "promotion_test frame %d: keyframes %d, promoting %d (zoom removed %d): chi2 current %.1f "
+                       "promoted %.1f, penalty %.1f, sigma %.3f px -> %s\n",
+                       report.first_frame, n, ev.promoted, ev.zoom_removed, ev.chi2_current, ev.chi2_promoted,
+                       ev.penalty, ev.sigma * 960, ev.PaysOff() ? "promoted" : "kept");
+        LogStage("window: promotion test");
+        if (ev.PaysOff()) {
+          if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
+          for (int i = 0; i < n; ++i)
+            if (promote[i]) keyframes_[i].model = MotionModel::kGeneral;
+          freedoms_dropped_ = true;  // the re-run is not tested again
+          ProcessWindow(final);
+          return;
+        }
       }
     }
   }

@@ -6,6 +6,20 @@
 #include "core/statistics.h"
 
 namespace hapcine {
+namespace {
+
+// Median of |e| of a 2-D Gaussian residual = sigma sqrt(2 ln 2) = 1.1774 sigma.
+double SigmaOf(const std::vector<double>& errors, double noise_floor) {
+  return std::max(Median(errors, 0.0) / 1.1774, noise_floor);
+}
+
+double CappedChi2(const std::vector<double>& errors, double sigma) {
+  double sum = 0;
+  for (double v : errors) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
+  return sum;
+}
+
+}  // namespace
 
 FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const std::vector<BaPoint>& with_points,
                                 const std::vector<BaCamera>& without_cams,
@@ -16,15 +30,9 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
   FreedomEvidence ev;
   const std::vector<double> e_with = ObservationErrors(with_cams, with_points, observations, true);
   const std::vector<double> e_without = ObservationErrors(without_cams, without_points, observations, false);
-  // Median of |e| of a 2-D Gaussian residual = sigma sqrt(2 ln 2) = 1.1774 sigma.
-  ev.sigma = std::max(Median(e_with, 0.0) / 1.1774, noise_floor);
-  auto chi2 = [&](const std::vector<double>& e) {
-    double sum = 0;
-    for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (ev.sigma * ev.sigma), 9.0) : 9.0;
-    return sum;
-  };
-  ev.chi2_with = chi2(e_with);
-  ev.chi2_without = chi2(e_without);
+  ev.sigma = SigmaOf(e_with, noise_floor);
+  ev.chi2_with = CappedChi2(e_with, ev.sigma);
+  ev.chi2_without = CappedChi2(e_without, ev.sigma);
 
   const int n = static_cast<int>(with_cams.size());
   auto at = [](const std::vector<char>& v, int i) { return i < static_cast<int>(v.size()) && v[i]; };
@@ -48,6 +56,26 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
     if (last[k] > first[k] && dropped_before[last[k] + 1] > dropped_before[first[k] + 1]) ++ev.informed_points;
   const double m = 2.0 * static_cast<double>(observations.size());
   ev.penalty = (3.0 * ev.translation_dropped + ev.zoom_dropped + ev.informed_points) * std::log(std::max(m, 2.0));
+  return ev;
+}
+
+PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
+                                   const std::vector<BaPoint>& promoted_points,
+                                   const std::vector<BaCamera>& current_cams,
+                                   const std::vector<BaPoint>& current_points,
+                                   const std::vector<BaObservation>& observations,
+                                   const std::vector<char>& promoted, const std::vector<char>& zoom_removed,
+                                   double noise_floor) {
+  PromotionEvidence ev;
+  const std::vector<double> e_promoted = ObservationErrors(promoted_cams, promoted_points, observations, true);
+  const std::vector<double> e_current = ObservationErrors(current_cams, current_points, observations, true);
+  ev.sigma = SigmaOf(e_promoted, noise_floor);
+  ev.chi2_promoted = CappedChi2(e_promoted, ev.sigma);
+  ev.chi2_current = CappedChi2(e_current, ev.sigma);
+  for (char c : promoted) ev.promoted += c != 0;
+  for (char c : zoom_removed) ev.zoom_removed += c != 0;
+  const double m = 2.0 * static_cast<double>(observations.size());
+  ev.penalty = (3.0 * ev.promoted - ev.zoom_removed) * std::log(std::max(m, 2.0));
   return ev;
 }
 

@@ -60,4 +60,25 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
                                 const std::vector<char>& drop_translation, const std::vector<char>& drop_zoom,
                                 double noise_floor);
 
+// The other way: in a window with translation, do its intervals labelled
+// without translation (zoom, rotation, rotation+zoom: a pair of frames reads
+// the slow start of a forward dolly as a zoom, of a sideways one as a pan)
+// fit better as general (translation, no zoom)? Both solves have inverse
+// depths; k = 3 per promoted keyframe - 1 per zoom it loses.
+struct PromotionEvidence {
+  double chi2_current = 0, chi2_promoted = 0;  // capped, units of sigma^2
+  double penalty = 0;                          // k ln(2 m)
+  double sigma = 0;                            // from the promoted solve, normalised units
+  int promoted = 0, zoom_removed = 0;
+  bool PaysOff() const { return chi2_current - chi2_promoted > penalty; }
+};
+
+PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
+                                   const std::vector<BaPoint>& promoted_points,
+                                   const std::vector<BaCamera>& current_cams,
+                                   const std::vector<BaPoint>& current_points,
+                                   const std::vector<BaObservation>& observations,
+                                   const std::vector<char>& promoted, const std::vector<char>& zoom_removed,
+                                   double noise_floor);
+
 }  // namespace hapcine
