@@ -121,9 +121,9 @@ int RunEstimate(int argc, char** argv) {
       ->capture_default_str();
   bool no_freedom_test = false;
   app.add_flag("--no-freedom-test", no_freedom_test,
-               "keep the translation (and zoom) of windows where few keyframe intervals read as "
-               "translating even when it does not pay for itself by BIC over the window "
-               "(docs/estimate.md)");
+               "keep the two-view labels: no window-level BIC test of a few translating (or "
+               "zooming) intervals, nor of intervals without translation among translating ones "
+               "(docs/estimate.md, step 4)");
   app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
                "score the two-view models with a track-noise covariance measured from the rough "
                "part of the rotation fit's residuals (blur along a whip pan is then not read as "

@@ -76,11 +76,13 @@ struct TrackEstimatorOptions {
   // Off: it flags about a tenth of them and left crane_shot as it was
   // (docs/estimate.md, "crane_shot").
   bool depth_layer_cut = false;
-  // In windows where fewer than half the keyframe intervals translate, solve
-  // also without their translation (and zoom, if few zoom) and keep them only
-  // if they pay for themselves by BIC over the whole window
-  // (window_freedoms.h): motion blur or a fade reads as translation in a pair
-  // of frames, not in a window.
+  // Window-level BIC tests of the two-view labels (window_freedoms.h): a few
+  // translating (or, without translation, zooming) intervals keep their
+  // freedoms only if they pay for themselves over the whole window (motion
+  // blur or a fade reads as translation in a pair of frames, not in a
+  // window); in a window with translation, intervals labelled without it
+  // become general if that pays (the slow start of a forward dolly reads as
+  // a zoom in a pair of frames).
   bool freedom_test = true;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
