@@ -122,7 +122,7 @@ int RunEstimate(int argc, char** argv) {
   bool no_freedom_test = false;
   app.add_flag("--no-freedom-test", no_freedom_test,
                "keep the two-view labels: no window-level BIC test of a few translating (or "
-               "zooming) intervals, nor of intervals without translation among translating ones "
+               "zooming) intervals, nor of zoom intervals among translating ones "
                "(docs/estimate.md, step 4)");
   app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
                "score the two-view models with a track-noise covariance measured from the rough "

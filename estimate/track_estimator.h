@@ -80,7 +80,7 @@ struct TrackEstimatorOptions {
   // translating (or, without translation, zooming) intervals keep their
   // freedoms only if they pay for themselves over the whole window (motion
   // blur or a fade reads as translation in a pair of frames, not in a
-  // window); in a window with translation, intervals labelled without it
+  // window); in a window with translation, intervals labelled as a zoom
   // become general if that pays (the slow start of a forward dolly reads as
   // a zoom in a pair of frames).
   bool freedom_test = true;

@@ -571,7 +571,8 @@ TEST(TrackEstimator, ForwardDollyIsNotAZoom) {
               << ", zoom error max " << MaxZoomRatioErrorPercent(run) << " %, rotation " << run.mean_rot_err_deg
               << " deg\n";
     EXPECT_EQ(run.models["zoom"] + run.models["general+zoom"] + run.models["rotation+zoom"], 0);
-    EXPECT_GT(run.models["general"], 150);
+    EXPECT_GT(run.models["general"], pan_first ? 80 : 150);
+    if (pan_first) EXPECT_GT(run.models["rotation"], 60);  // the pan stays a pan
     EXPECT_LT(MaxZoomRatioErrorPercent(run), 0.5);
     EXPECT_LT(run.mean_rot_err_deg, 0.05);
     if (pan_first) EXPECT_NEAR(*run.path.frames[199].focal_px / 800, 1.0, 0.01);

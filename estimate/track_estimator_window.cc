@@ -393,17 +393,18 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       }
     }
   }
-  // The other way (window_freedoms.h): intervals labelled without
+  // The other way (window_freedoms.h): intervals labelled as a zoom without
   // translation in a window with translation (the slow start of a forward
-  // dolly read as a zoom by a pair of frames, of a sideways one as a pan)
-  // become general if that pays for itself over the window. Static
-  // intervals stay: nothing moved there.
+  // dolly read as a zoom by a pair of frames) become general if that pays
+  // for itself over the window. Not `rotation` ones: next to a whip pan's
+  // blur read as translation they would take that translation too
+  // (whip_pan at --klt-window 19: 11 -> 18 `general` frames).
   if (options_.freedom_test && !rerun && has_translation && summary.success) {
     std::vector<char> promote(n, 0), zoom_removed(n, 0);
     bool any = false;
     for (int i = 1; i < n; ++i) {
       const MotionModel m = keyframes_[i].model;
-      if (keyframes_[i].fixed || m == MotionModel::kStatic || HasTranslation(m)) continue;
+      if (keyframes_[i].fixed || !HasZoom(m) || HasTranslation(m)) continue;
       promote[i] = 1;
       zoom_removed[i] = HasZoom(m);
       any = true;

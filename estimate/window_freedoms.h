@@ -60,11 +60,11 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
                                 const std::vector<char>& drop_translation, const std::vector<char>& drop_zoom,
                                 double noise_floor);
 
-// The other way: in a window with translation, do its intervals labelled
-// without translation (zoom, rotation, rotation+zoom: a pair of frames reads
-// the slow start of a forward dolly as a zoom, of a sideways one as a pan)
-// fit better as general (translation, no zoom)? Both solves have inverse
-// depths; k = 3 per promoted keyframe - 1 per zoom it loses.
+// The other way: in a window with translation, do its intervals labelled as
+// a zoom without translation (zoom, rotation+zoom: a pair of frames reads the
+// slow start of a forward dolly as a zoom) fit better as general
+// (translation, no zoom)? Both solves have inverse depths; k = 3 per
+// promoted keyframe - 1 per zoom it loses.
 struct PromotionEvidence {
   double chi2_current = 0, chi2_promoted = 0;  // capped, units of sigma^2
   double penalty = 0;                          // k ln(2 m)
