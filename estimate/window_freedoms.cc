@@ -8,15 +8,29 @@
 namespace hapcine {
 namespace {
 
-// Median of |e| of a 2-D Gaussian residual = sigma sqrt(2 ln 2) = 1.1774 sigma.
-double SigmaOf(const std::vector<double>& errors, double noise_floor) {
-  return std::max(Median(errors, 0.0) / 1.1774, noise_floor);
+// The capped chi2 of two fits of the same observations, with one sigma
+// measured from the first, the more general one (the median of |e| of a 2-D
+// Gaussian residual is sigma sqrt(2 ln 2) = 1.1774 sigma; at least the floor).
+struct Chi2Pair {
+  double sigma = 0, general = 0, simpler = 0;
+};
+
+Chi2Pair CappedChi2Pair(const std::vector<double>& e_general, const std::vector<double>& e_simpler,
+                        double noise_floor) {
+  Chi2Pair c;
+  c.sigma = std::max(Median(e_general, 0.0) / 1.1774, noise_floor);
+  auto chi2 = [&](const std::vector<double>& e) {
+    double sum = 0;
+    for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (c.sigma * c.sigma), 9.0) : 9.0;
+    return sum;
+  };
+  c.general = chi2(e_general);
+  c.simpler = chi2(e_simpler);
+  return c;
 }
 
-double CappedChi2(const std::vector<double>& errors, double sigma) {
-  double sum = 0;
-  for (double v : errors) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
-  return sum;
+double BicPenalty(double parameters, size_t observations) {
+  return parameters * std::log(std::max(2.0 * static_cast<double>(observations), 2.0));
 }
 
 }  // namespace
@@ -28,11 +42,12 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
                                 const std::vector<char>& drop_translation, const std::vector<char>& drop_zoom,
                                 double noise_floor) {
   FreedomEvidence ev;
-  const std::vector<double> e_with = ObservationErrors(with_cams, with_points, observations, true);
-  const std::vector<double> e_without = ObservationErrors(without_cams, without_points, observations, false);
-  ev.sigma = SigmaOf(e_with, noise_floor);
-  ev.chi2_with = CappedChi2(e_with, ev.sigma);
-  ev.chi2_without = CappedChi2(e_without, ev.sigma);
+  const Chi2Pair c = CappedChi2Pair(ObservationErrors(with_cams, with_points, observations, true),
+                                    ObservationErrors(without_cams, without_points, observations, false),
+                                    noise_floor);
+  ev.sigma = c.sigma;
+  ev.chi2_with = c.general;
+  ev.chi2_without = c.simpler;
 
   const int n = static_cast<int>(with_cams.size());
   auto at = [](const std::vector<char>& v, int i) { return i < static_cast<int>(v.size()) && v[i]; };
@@ -54,8 +69,7 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
   }
   for (size_t k = 0; k < with_points.size(); ++k)
     if (last[k] > first[k] && dropped_before[last[k] + 1] > dropped_before[first[k] + 1]) ++ev.informed_points;
-  const double m = 2.0 * static_cast<double>(observations.size());
-  ev.penalty = (3.0 * ev.translation_dropped + ev.zoom_dropped + ev.informed_points) * std::log(std::max(m, 2.0));
+  ev.penalty = BicPenalty(3.0 * ev.translation_dropped + ev.zoom_dropped + ev.informed_points, observations.size());
   return ev;
 }
 
@@ -67,15 +81,15 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
                                    const std::vector<char>& promoted, const std::vector<char>& zoom_removed,
                                    double noise_floor) {
   PromotionEvidence ev;
-  const std::vector<double> e_promoted = ObservationErrors(promoted_cams, promoted_points, observations, true);
-  const std::vector<double> e_current = ObservationErrors(current_cams, current_points, observations, true);
-  ev.sigma = SigmaOf(e_promoted, noise_floor);
-  ev.chi2_promoted = CappedChi2(e_promoted, ev.sigma);
-  ev.chi2_current = CappedChi2(e_current, ev.sigma);
-  for (char c : promoted) ev.promoted += c != 0;
-  for (char c : zoom_removed) ev.zoom_removed += c != 0;
-  const double m = 2.0 * static_cast<double>(observations.size());
-  ev.penalty = (3.0 * ev.promoted - ev.zoom_removed) * std::log(std::max(m, 2.0));
+  const Chi2Pair c = CappedChi2Pair(ObservationErrors(promoted_cams, promoted_points, observations, true),
+                                    ObservationErrors(current_cams, current_points, observations, true),
+                                    noise_floor);
+  ev.sigma = c.sigma;
+  ev.chi2_promoted = c.general;
+  ev.chi2_current = c.simpler;
+  for (char p : promoted) ev.promoted += p != 0;
+  for (char z : zoom_removed) ev.zoom_removed += z != 0;
+  ev.penalty = BicPenalty(3.0 * ev.promoted - ev.zoom_removed, observations.size());
   return ev;
 }
 
