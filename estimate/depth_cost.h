@@ -17,47 +17,43 @@
 
 namespace hapcine {
 
-class DepthCostFunction : public ceres::SizedCostFunction<2, 4, 3, 1, 4> {
+// What the three depth residuals below keep: the observation u, the point's
+// anchor and 1 / the residual scale. kBlockSizes: their parameter blocks.
+template <int... kBlockSizes>
+class AnchoredDepthCost : public ceres::SizedCostFunction<2, kBlockSizes...> {
  public:
-  DepthCostFunction(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
+  AnchoredDepthCost(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
       : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
- private:
+ protected:
   Eigen::Vector2d u_;
   Eigen::Vector3d anchor_;
   double inv_scale_;
 };
 
+class DepthCostFunction : public AnchoredDepthCost<4, 3, 1, 4> {
+ public:
+  using AnchoredDepthCost::AnchoredDepthCost;
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+};
+
 // The same residual with rotation and centre in one block (q x, y, z, w, c;
 // ProductManifold of EigenQuaternionManifold and R^3): where a camera owns
 // both, one 6-dof block instead of two halves the Schur eliminator's cells.
-class PoseDepthCostFunction : public ceres::SizedCostFunction<2, 7, 1, 4> {
+class PoseDepthCostFunction : public AnchoredDepthCost<7, 1, 4> {
  public:
-  PoseDepthCostFunction(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
-      : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
+  using AnchoredDepthCost::AnchoredDepthCost;
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-
- private:
-  Eigen::Vector2d u_;
-  Eigen::Vector3d anchor_;
-  double inv_scale_;
 };
 
 // The same residual with rotation, centre and log focal in one block (q x,
 // y, z, w, c, log f; ProductManifold of EigenQuaternionManifold and R^4):
 // where a keyframe owns all three (general+zoom segments), one 7-dof block
 // instead of a 6-dof and a 1-dof one, again ~4x fewer Schur cells.
-class PoseFocalDepthCostFunction : public ceres::SizedCostFunction<2, 8, 4> {
+class PoseFocalDepthCostFunction : public AnchoredDepthCost<8, 4> {
  public:
-  PoseFocalDepthCostFunction(const Eigen::Vector2d& u, const Eigen::Vector3d& anchor, double inv_scale)
-      : u_(u), anchor_(anchor), inv_scale_(inv_scale) {}
+  using AnchoredDepthCost::AnchoredDepthCost;
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-
- private:
-  Eigen::Vector2d u_;
-  Eigen::Vector3d anchor_;
-  double inv_scale_;
 };
 
 // Rotation-only window: the bearing d alone (a point at infinity relative to a

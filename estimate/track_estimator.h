@@ -97,7 +97,7 @@ struct WindowReport {
   double rms_px = 0;                 // after BA, pixels of the decoded frame
   bool focal_observable = false;
   bool zoom_by_bic = false;          // general segments were upgraded to general+zoom
-  bool freedoms_dropped = false;     // its few translating intervals did not pay off (window_freedoms.h)
+  bool labels_revised = false;       // re-run with the labels the window-level tests revised (window_freedoms.h)
 };
 
 class TrackCameraEstimator {
@@ -184,9 +184,9 @@ class TrackCameraEstimator {
   bool focal_observed_ = false;
   bool scale_set_ = false;
   double scene_depth_ = 1;
-  // Set when ProcessWindow re-runs a window without the freedoms that did
-  // not pay off (window_freedoms.h); read into the re-run's report.
-  bool freedoms_dropped_ = false;
+  // Set when ProcessWindow re-runs a window with the labels its window-level
+  // tests revised (window_freedoms.h); read into the re-run's report.
+  bool labels_revised_ = false;
 };
 
 }  // namespace hapcine

@@ -53,8 +53,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   report.first_frame = At(keyframes_.front().pos).tracks.index;
   // A re-run without the freedoms that did not pay off is not tested again
   // (the lead-in's labels, held, may still have them).
-  const bool rerun = std::exchange(freedoms_dropped_, false);
-  report.freedoms_dropped = rerun;
+  const bool rerun = std::exchange(labels_revised_, false);
+  report.labels_revised = rerun;
 
   PromoteShortRuns();
 
@@ -232,11 +232,18 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // The tight cut is for windows with parallax throughout: where a few
   // intervals among rotation read as general (the blur of a whip pan), the
   // tracks' RMS is mostly tracking noise, as without translation.
-  int translating = 0, free_keyframes = 0;
+  // Also counted in frames, for the window-level label tests below: a fast
+  // whip makes a keyframe of every frame, a still part one every
+  // keyframe_max_gap frames.
+  int translating = 0, free_keyframes = 0, translating_frames = 0, zooming_frames = 0, free_frames = 0;
   for (int i = 1; i < n; ++i) {
     if (keyframes_[i].fixed) continue;
     ++free_keyframes;
     translating += HasTranslation(keyframes_[i].model);
+    const int span = keyframes_[i].pos - keyframes_[i - 1].pos;
+    free_frames += span;
+    if (HasTranslation(keyframes_[i].model)) translating_frames += span;
+    if (HasZoom(keyframes_[i].model)) zooming_frames += span;
   }
   const bool mostly_translating = has_translation && 2 * translating >= free_keyframes;
   // Tracks between two depth layers (depth_layers.h) under the solution the
@@ -319,21 +326,12 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // (window_freedoms.h). A pair of frames reads motion blur or a fade as
   // translation; one depth per point across the window does not fit it.
   // The same for a few zooming intervals in a window without translation (a
-  // tilt read as a zoom in a pair of frames).
-  // "Few" by frames, not keyframes: a fast whip makes a keyframe of every
-  // frame, a still part one every keyframe_max_gap frames.
-  int translating_frames = 0, zooming_frames = 0, free_frames = 0;
-  for (int i = 1; i < n; ++i) {
-    if (keyframes_[i].fixed) continue;
-    const int span = keyframes_[i].pos - keyframes_[i - 1].pos;
-    free_frames += span;
-    if (HasTranslation(keyframes_[i].model)) translating_frames += span;
-    if (HasZoom(keyframes_[i].model)) zooming_frames += span;
-  }
+  // tilt read as a zoom in a pair of frames). "Few": by frames.
   const bool few_translating = has_translation && 2 * translating_frames < free_frames;
   const bool few_zooming = zooming_frames > 0 && 2 * zooming_frames < free_frames;
   std::future<Candidate> without_freedoms;
   std::vector<char> drop_translation(n, 0), drop_zoom(n, 0);
+  std::vector<MotionModel> reduced_labels(n);
   bool anything_to_drop = false;
   if (options_.freedom_test && !rerun && (few_translating || (!has_translation && few_zooming))) {
     for (int i = 0; i < n; ++i) {
@@ -344,9 +342,9 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     }
   }
   if (anything_to_drop) {
-    std::vector<MotionModel> labels(n);
-    for (int i = 0; i < n; ++i) labels[i] = ReducedModel(keyframes_[i].model, drop_translation[i], drop_zoom[i]);
-    std::vector<BaCamera> reduced = build_cameras(false, &labels);
+    for (int i = 0; i < n; ++i)
+      reduced_labels[i] = ReducedModel(keyframes_[i].model, drop_translation[i], drop_zoom[i]);
+    std::vector<BaCamera> reduced = build_cameras(false, &reduced_labels);
     without_freedoms = std::async(std::launch::async, [&, c = std::move(reduced)]() mutable {
       Candidate r;
       r.cams = std::move(c);
@@ -370,6 +368,14 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   std::vector<BaObservation> ob = obs;
   BaSummary summary = solve(&cams, &pts, &ob);
   LogStage("window: constant-focal solve");
+  // The window again from the start with revised labels (once: the re-run
+  // is not tested again).
+  auto rerun_with = [&](const std::vector<MotionModel>& labels) {
+    if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
+    for (int i = 0; i < n; ++i) keyframes_[i].model = labels[i];
+    labels_revised_ = true;
+    ProcessWindow(final);
+  };
   if (without_freedoms.valid()) {
     const Candidate r = without_freedoms.get();
     if (summary.success && r.summary.success) {
@@ -384,11 +390,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
                      ev.PaysOff() ? "kept" : "dropped");
       LogStage("window: freedom test");
       if (!ev.PaysOff()) {
-        if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
-        for (int i = 0; i < n; ++i)
-          keyframes_[i].model = ReducedModel(keyframes_[i].model, drop_translation[i], drop_zoom[i]);
-        freedoms_dropped_ = true;
-        ProcessWindow(final);  // the window again, with the reduced models
+        rerun_with(reduced_labels);
         return;
       }
     }
@@ -400,35 +402,28 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // blur read as translation they would take that translation too
   // (whip_pan at --klt-window 19: 11 -> 18 `general` frames).
   if (options_.freedom_test && !rerun && has_translation && summary.success) {
-    std::vector<char> promote(n, 0), zoom_removed(n, 0);
-    bool any = false;
-    for (int i = 1; i < n; ++i) {
+    std::vector<MotionModel> promoted_labels(n);
+    int promoted = 0;
+    for (int i = 0; i < n; ++i) {
       const MotionModel m = keyframes_[i].model;
-      if (keyframes_[i].fixed || !HasZoom(m) || HasTranslation(m)) continue;
-      promote[i] = 1;
-      zoom_removed[i] = HasZoom(m);
-      any = true;
+      const bool promote = i > 0 && !keyframes_[i].fixed && HasZoom(m) && !HasTranslation(m);
+      promoted_labels[i] = promote ? MotionModel::kGeneral : m;
+      promoted += promote;
     }
-    if (any) {
-      std::vector<MotionModel> labels(n);
-      for (int i = 0; i < n; ++i) labels[i] = promote[i] ? MotionModel::kGeneral : keyframes_[i].model;
-      const Candidate p = solve_from(build_cameras(false, &labels));
+    if (promoted > 0) {
+      const Candidate p = solve_from(build_cameras(false, &promoted_labels));
       if (p.summary.success) {
-        const PromotionEvidence ev = ComparePromotion(p.cams, p.pts, cams, pts, obs, promote, zoom_removed,
-                                                      options_.two_view.noise_floor);
+        const PromotionEvidence ev =
+            ComparePromotion(p.cams, p.pts, cams, pts, obs, promoted, options_.two_view.noise_floor);
         if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
           std::fprintf(stderr,
-                       "promotion_test frame %d: keyframes %d, promoting %d (zoom removed %d): chi2 current %.1f "
-                       "promoted %.1f, penalty %.1f, sigma %.3f px -> %s\n",
-                       report.first_frame, n, ev.promoted, ev.zoom_removed, ev.chi2_current, ev.chi2_promoted,
-                       ev.penalty, ev.sigma * 960, ev.PaysOff() ? "promoted" : "kept");
+                       "promotion_test frame %d: keyframes %d, promoting %d: chi2 current %.1f promoted %.1f, "
+                       "penalty %.1f, sigma %.3f px -> %s\n",
+                       report.first_frame, n, ev.promoted, ev.chi2_current, ev.chi2_promoted, ev.penalty,
+                       ev.sigma * 960, ev.PaysOff() ? "promoted" : "kept");
         LogStage("window: promotion test");
         if (ev.PaysOff()) {
-          if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
-          for (int i = 0; i < n; ++i)
-            if (promote[i]) keyframes_[i].model = MotionModel::kGeneral;
-          freedoms_dropped_ = true;  // the re-run is not tested again
-          ProcessWindow(final);
+          rerun_with(promoted_labels);
           return;
         }
       }

@@ -68,6 +68,20 @@ bool NullVector(const Matrix& A, Eigen::Matrix<double, 9, 1>* v) {
   return true;
 }
 
+// The null vector of a DLT system of `rows` rows that `fill(&A)` writes:
+// into a fixed-size matrix for a minimal sample (8 rows), else a dynamic one.
+template <typename Fill>
+bool DltNullVector(Eigen::Index rows, const Fill& fill, Eigen::Matrix<double, 9, 1>* v) {
+  if (rows == 8) {
+    DltMinimal A;
+    fill(&A);
+    return NullVector(A, v);
+  }
+  DltRows A(rows, 9);
+  fill(&A);
+  return NullVector(A, v);
+}
+
 template <typename Matrix>
 void FillHomographyRows(const std::vector<Eigen::Vector2d>& x1, const std::vector<Eigen::Vector2d>& x2,
                         const Eigen::Matrix3d& T1, const Eigen::Matrix3d& T2, Matrix* A) {
@@ -206,15 +220,8 @@ std::vector<Eigen::Matrix3d> HomographyEstimator::Estimate(const std::vector<X_t
   if (!HartleyNormalise(x1, &T1) || !HartleyNormalise(x2, &T2)) return {};
   // Three collinear points (or repeated points) leave a 2-d null space.
   Eigen::Matrix<double, 9, 1> h;
-  if (n == 4) {
-    DltMinimal A;
-    FillHomographyRows(x1, x2, T1, T2, &A);
-    if (!NullVector(A, &h)) return {};
-  } else {
-    DltRows A(2 * n, 9);
-    FillHomographyRows(x1, x2, T1, T2, &A);
-    if (!NullVector(A, &h)) return {};
-  }
+  const auto fill = [&](auto* A) { FillHomographyRows(x1, x2, T1, T2, A); };
+  if (!DltNullVector(static_cast<Eigen::Index>(2 * n), fill, &h)) return {};
   Eigen::Matrix3d Hn;
   Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
   // A singular homography maps the plane to a line: reject (scale-free test
@@ -243,16 +250,9 @@ std::vector<Eigen::Matrix3d> EssentialEstimator::Estimate(const std::vector<X_t>
   if (n < 8) return {};
   Eigen::Matrix3d T1, T2;
   if (!HartleyNormalise(x1, &T1) || !HartleyNormalise(x2, &T2)) return {};
-  Eigen::Matrix<double, 9, 1> e;  // false: degenerate configuration
-  if (n == 8) {
-    DltMinimal A;
-    FillEssentialRows(x1, x2, T1, T2, &A);
-    if (!NullVector(A, &e)) return {};
-  } else {
-    DltRows A(n, 9);
-    FillEssentialRows(x1, x2, T1, T2, &A);
-    if (!NullVector(A, &e)) return {};
-  }
+  Eigen::Matrix<double, 9, 1> e;
+  const auto fill = [&](auto* A) { FillEssentialRows(x1, x2, T1, T2, A); };
+  if (!DltNullVector(static_cast<Eigen::Index>(n), fill, &e)) return {};  // degenerate configuration
   Eigen::Matrix3d En;
   En << e(0), e(1), e(2), e(3), e(4), e(5), e(6), e(7), e(8);
   Eigen::Matrix3d E = T2.transpose() * En * T1;

@@ -77,8 +77,7 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
                                    const std::vector<BaPoint>& promoted_points,
                                    const std::vector<BaCamera>& current_cams,
                                    const std::vector<BaPoint>& current_points,
-                                   const std::vector<BaObservation>& observations,
-                                   const std::vector<char>& promoted, const std::vector<char>& zoom_removed,
+                                   const std::vector<BaObservation>& observations, int promoted,
                                    double noise_floor) {
   PromotionEvidence ev;
   const Chi2Pair c = CappedChi2Pair(ObservationErrors(promoted_cams, promoted_points, observations, true),
@@ -87,9 +86,8 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
   ev.sigma = c.sigma;
   ev.chi2_promoted = c.general;
   ev.chi2_current = c.simpler;
-  for (char p : promoted) ev.promoted += p != 0;
-  for (char z : zoom_removed) ev.zoom_removed += z != 0;
-  ev.penalty = BicPenalty(3.0 * ev.promoted - ev.zoom_removed, observations.size());
+  ev.promoted = promoted;
+  ev.penalty = BicPenalty(2.0 * promoted, observations.size());  // a centre gained, a focal lost
   return ev;
 }
 

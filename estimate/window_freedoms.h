@@ -63,22 +63,22 @@ FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const st
 // The other way: in a window with translation, do its intervals labelled as
 // a zoom without translation (zoom, rotation+zoom: a pair of frames reads the
 // slow start of a forward dolly as a zoom) fit better as general
-// (translation, no zoom)? Both solves have inverse depths; k = 3 per
-// promoted keyframe - 1 per zoom it loses.
+// (translation instead of the zoom)? Both solves have inverse depths; k = 3
+// - 1 = 2 per promoted keyframe (a centre gained, a focal lost).
 struct PromotionEvidence {
   double chi2_current = 0, chi2_promoted = 0;  // capped, units of sigma^2
   double penalty = 0;                          // k ln(2 m)
   double sigma = 0;                            // from the promoted solve, normalised units
-  int promoted = 0, zoom_removed = 0;
+  int promoted = 0;
   bool PaysOff() const { return chi2_current - chi2_promoted > penalty; }
 };
 
+// `promoted`: how many keyframes the promoted solve turned from a zoom into general.
 PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
                                    const std::vector<BaPoint>& promoted_points,
                                    const std::vector<BaCamera>& current_cams,
                                    const std::vector<BaPoint>& current_points,
-                                   const std::vector<BaObservation>& observations,
-                                   const std::vector<char>& promoted, const std::vector<char>& zoom_removed,
+                                   const std::vector<BaObservation>& observations, int promoted,
                                    double noise_floor);
 
 }  // namespace hapcine

@@ -117,5 +117,21 @@ TEST(CompareFreedoms, ANegligibleZoomIsDroppedEvenWhenItFitsBetter) {
   EXPECT_TRUE(ev.PaysOff());
 }
 
+TEST(ComparePromotion, PaysOnlyForAClearlyBetterFitAtTwoParametersPerKeyframe) {
+  const Scene s = MakeScene(100, 0.3 / 960, 7);
+  PromotionEvidence ev = ComparePromotion(s.cams, s.points, s.cams, s.points, s.obs, 2, 0.25 / 960);
+  EXPECT_DOUBLE_EQ(ev.chi2_current, ev.chi2_promoted);
+  EXPECT_NEAR(ev.penalty, 2 * 2 * std::log(600.0), 1e-9);  // a centre gained, a focal lost; m = 300
+  EXPECT_FALSE(ev.PaysOff());
+  std::vector<BaCamera> worse = s.cams;
+  worse[2].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(0.002, Eigen::Vector3d::UnitY()));
+  ev = ComparePromotion(s.cams, s.points, worse, s.points, s.obs, 2, 0.25 / 960);
+  EXPECT_GT(ev.chi2_current, ev.chi2_promoted + ev.penalty);
+  EXPECT_TRUE(ev.PaysOff());
+  // The other way round: the promoted solve fits worse, nothing to pay for.
+  ev = ComparePromotion(worse, s.points, s.cams, s.points, s.obs, 2, 0.25 / 960);
+  EXPECT_FALSE(ev.PaysOff());
+}
+
 }  // namespace
 }  // namespace hapcine
