@@ -124,6 +124,11 @@ int RunEstimate(int argc, char** argv) {
                "keep the two-view labels: no window-level BIC test of a few translating (or "
                "zooming) intervals, nor of zoom intervals among translating ones "
                "(docs/estimate.md, step 4)");
+  app.add_option("--blur-noise", opt.estimator.blur_noise_per_speed,
+                 "those window-level tests count tracking noise growing with the image speed "
+                 "(motion blur): px of noise per px/frame of motion, added in quadrature "
+                 "(0: off; docs/estimate.md, step 4)")
+      ->capture_default_str();
   app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
                "score the two-view models with a track-noise covariance measured from the rough "
                "part of the rotation fit's residuals (blur along a whip pan is then not read as "
@@ -150,6 +155,10 @@ int RunEstimate(int argc, char** argv) {
                    "; options given beside it win");
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
       ->capture_default_str();
+  bool no_klt_predict = false;
+  app.add_flag("--no-klt-predict", no_klt_predict,
+               "start each KLT search at zero motion; by default a track moving more than a "
+               "KLT window per frame starts where its last motion takes it (whip pans)");
   // Tuning knobs for bench/speed.sh, not worth a line in --help.
   app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
       ->group("");
@@ -177,6 +186,7 @@ int RunEstimate(int argc, char** argv) {
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;
     if (no_freedom_test) opt.estimator.freedom_test = false;
+    if (no_klt_predict) opt.tracker.klt_predict = false;
     opt.Check();
     const std::filesystem::path out_path(output);
     const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");

@@ -17,6 +17,8 @@ namespace hapcine {
 void TrackEstimatorOptions::Check() const {
   if (!(prior_hfov_deg > 1 && prior_hfov_deg < 179)) throw UsageError("prior FOV must be in (1, 179) degrees");
   if (window_frames < 10) throw UsageError("window must be at least 10 frames");
+  if (!(blur_noise_per_speed >= 0 && blur_noise_per_speed <= 1))
+    throw UsageError("blur noise must be in [0, 1] px per px/frame");
   if (max_points < 20) throw UsageError("max points must be at least 20");
   if (!(spread_points_factor >= 1 && spread_points_factor <= 10))
     throw UsageError("spread points factor must be in [1, 10]");

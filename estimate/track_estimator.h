@@ -84,6 +84,9 @@ struct TrackEstimatorOptions {
   // become general if that pays (the slow start of a forward dolly reads as
   // a zoom in a pair of frames).
   bool freedom_test = true;
+  // Those tests' noise grows with the image speed (motion blur,
+  // window_freedoms.h BlurSigmas): sigma^2 + (this * px per frame)^2.
+  double blur_noise_per_speed = 0.04;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   void Check() const;                // throws UsageError

@@ -368,6 +368,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   std::vector<BaObservation> ob = obs;
   BaSummary summary = solve(&cams, &pts, &ob);
   LogStage("window: constant-focal solve");
+  auto blur_sigmas = [&] {
+    std::vector<int> frame_of_camera(n);
+    for (int i = 0; i < n; ++i) frame_of_camera[i] = keyframes_[i].pos;
+    return BlurSigmas(obs, frame_of_camera, options_.blur_noise_per_speed);
+  };
   // The window again from the start with revised labels (once: the re-run
   // is not tested again).
   auto rerun_with = [&](const std::vector<MotionModel>& labels) {
@@ -380,7 +385,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     const Candidate r = without_freedoms.get();
     if (summary.success && r.summary.success) {
       const FreedomEvidence ev = CompareFreedoms(cams, pts, r.cams, r.pts, obs, drop_translation, drop_zoom,
-                                                 options_.two_view.noise_floor);
+                                                 options_.two_view.noise_floor, blur_sigmas());
       if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
         std::fprintf(stderr,
                      "freedom_test frame %d: keyframes %d, dropping translation %d zoom %d (|d ln f| %.2g), "
@@ -414,7 +419,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       const Candidate p = solve_from(build_cameras(false, &promoted_labels));
       if (p.summary.success) {
         const PromotionEvidence ev =
-            ComparePromotion(p.cams, p.pts, cams, pts, obs, promoted, options_.two_view.noise_floor);
+            ComparePromotion(p.cams, p.pts, cams, pts, obs, promoted, options_.two_view.noise_floor,
+                             blur_sigmas());
         if (std::getenv("HAPCINE_FREEDOM_DEBUG"))
           std::fprintf(stderr,
                        "promotion_test frame %d: keyframes %d, promoting %d: chi2 current %.1f promoted %.1f, "

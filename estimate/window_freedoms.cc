@@ -16,12 +16,16 @@ struct Chi2Pair {
 };
 
 Chi2Pair CappedChi2Pair(const std::vector<double>& e_general, const std::vector<double>& e_simpler,
-                        double noise_floor) {
+                        double noise_floor, const std::vector<double>& blur_sigma) {
   Chi2Pair c;
   c.sigma = std::max(Median(e_general, 0.0) / 1.1774, noise_floor);
   auto chi2 = [&](const std::vector<double>& e) {
     double sum = 0;
-    for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (c.sigma * c.sigma), 9.0) : 9.0;
+    for (size_t i = 0; i < e.size(); ++i) {
+      const double b = i < blur_sigma.size() ? blur_sigma[i] : 0.0;
+      const double var = c.sigma * c.sigma + b * b;
+      sum += std::isfinite(e[i]) ? std::min(e[i] * e[i] / var, 9.0) : 9.0;
+    }
     return sum;
   };
   c.general = chi2(e_general);
@@ -35,16 +39,48 @@ double BicPenalty(double parameters, size_t observations) {
 
 }  // namespace
 
+std::vector<double> BlurSigmas(const std::vector<BaObservation>& observations,
+                               const std::vector<int>& frame_of_camera, double per_speed) {
+  std::vector<double> sigma(observations.size(), 0.0);
+  if (!(per_speed > 0)) return sigma;
+  // The point's observation at the nearest earlier and later cameras.
+  std::vector<std::vector<std::pair<int, int>>> by_point;  // (camera, observation)
+  for (size_t i = 0; i < observations.size(); ++i) {
+    const BaObservation& o = observations[i];
+    if (o.point < 0) continue;
+    if (static_cast<size_t>(o.point) >= by_point.size()) by_point.resize(o.point + 1);
+    by_point[o.point].emplace_back(o.camera, static_cast<int>(i));
+  }
+  const int cameras = static_cast<int>(frame_of_camera.size());
+  for (auto& seen : by_point) {
+    std::sort(seen.begin(), seen.end());
+    for (size_t j = 0; j < seen.size(); ++j) {
+      double speed = 0;
+      for (size_t k : {j - 1, j + 1}) {  // j - 1 wraps to a huge index at j = 0
+        if (k >= seen.size()) continue;
+        const int a = seen[j].first, b = seen[k].first;
+        if (a < 0 || b < 0 || a >= cameras || b >= cameras) continue;
+        const int frames = std::abs(frame_of_camera[a] - frame_of_camera[b]);
+        if (frames < 1) continue;
+        const Eigen::Vector2d d = observations[seen[j].second].u - observations[seen[k].second].u;
+        speed = std::max(speed, d.norm() / frames);
+      }
+      sigma[seen[j].second] = per_speed * speed;
+    }
+  }
+  return sigma;
+}
+
 FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const std::vector<BaPoint>& with_points,
                                 const std::vector<BaCamera>& without_cams,
                                 const std::vector<BaPoint>& without_points,
                                 const std::vector<BaObservation>& observations,
                                 const std::vector<char>& drop_translation, const std::vector<char>& drop_zoom,
-                                double noise_floor) {
+                                double noise_floor, const std::vector<double>& blur_sigma) {
   FreedomEvidence ev;
   const Chi2Pair c = CappedChi2Pair(ObservationErrors(with_cams, with_points, observations, true),
                                     ObservationErrors(without_cams, without_points, observations, false),
-                                    noise_floor);
+                                    noise_floor, blur_sigma);
   ev.sigma = c.sigma;
   ev.chi2_with = c.general;
   ev.chi2_without = c.simpler;
@@ -78,11 +114,11 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
                                    const std::vector<BaCamera>& current_cams,
                                    const std::vector<BaPoint>& current_points,
                                    const std::vector<BaObservation>& observations, int promoted,
-                                   double noise_floor) {
+                                   double noise_floor, const std::vector<double>& blur_sigma) {
   PromotionEvidence ev;
   const Chi2Pair c = CappedChi2Pair(ObservationErrors(promoted_cams, promoted_points, observations, true),
                                     ObservationErrors(current_cams, current_points, observations, true),
-                                    noise_floor);
+                                    noise_floor, blur_sigma);
   ev.sigma = c.sigma;
   ev.chi2_promoted = c.general;
   ev.chi2_current = c.simpler;

@@ -34,6 +34,16 @@ namespace hapcine {
 // viewer sees, however well the tracks support it (tilting: 0.007 %).
 constexpr double kNegligibleLogZoom = 1e-3;
 
+// Motion blur: KLT on a blurred corner is off along the blur by an amount
+// that depends on the corner's texture and lasts while the blur does (a bias
+// per track that a small move there and back with one depth per track fits).
+// The blur grows with the image speed, so each observation's noise is taken
+// as sigma^2 + (per_speed * speed)^2, speed = the point's image motion per
+// frame to its neighbouring observations in the window (normalised units).
+// Returns per_speed * speed per observation (0 for a point seen once).
+std::vector<double> BlurSigmas(const std::vector<BaObservation>& observations,
+                               const std::vector<int>& frame_of_camera, double per_speed);
+
 struct FreedomEvidence {
   double chi2_with = 0, chi2_without = 0;  // capped, in units of sigma^2
   double penalty = 0;                      // k ln(2 m)
@@ -52,13 +62,14 @@ struct FreedomEvidence {
 // `observations` index both (all of the window's, outliers included: the cap
 // bounds them). `drop_translation[i]` / `drop_zoom[i]`: the interval ending
 // at camera i has that freedom in the `with` solve and not in the other.
-// `noise_floor`: the smallest sigma, normalised units.
+// `noise_floor`: the smallest sigma, normalised units. `blur_sigma`: per
+// observation, noise added to sigma in quadrature (BlurSigmas; empty: none).
 FreedomEvidence CompareFreedoms(const std::vector<BaCamera>& with_cams, const std::vector<BaPoint>& with_points,
                                 const std::vector<BaCamera>& without_cams,
                                 const std::vector<BaPoint>& without_points,
                                 const std::vector<BaObservation>& observations,
                                 const std::vector<char>& drop_translation, const std::vector<char>& drop_zoom,
-                                double noise_floor);
+                                double noise_floor, const std::vector<double>& blur_sigma = {});
 
 // The other way: in a window with translation, do its intervals labelled as
 // a zoom without translation (zoom, rotation+zoom: a pair of frames reads the
@@ -79,6 +90,6 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
                                    const std::vector<BaCamera>& current_cams,
                                    const std::vector<BaPoint>& current_points,
                                    const std::vector<BaObservation>& observations, int promoted,
-                                   double noise_floor);
+                                   double noise_floor, const std::vector<double>& blur_sigma = {});
 
 }  // namespace hapcine

@@ -58,6 +58,41 @@ TEST(CompareFreedoms, AClearlyBetterFitPaysForThem) {
   EXPECT_EQ(ev.zoom_dropped, 1);
 }
 
+TEST(BlurSigmas, GrowWithEachPointsImageSpeedToItsNeighbouringCameras) {
+  // One point seen by cameras at frames 0, 1 and 3, moving 0.1 (frame 0 -> 1)
+  // then 0.1 in two frames; a second point seen once.
+  std::vector<BaObservation> obs = {{0, 0, {0.0, 0.0}}, {1, 0, {0.1, 0.0}}, {2, 0, {0.2, 0.0}},
+                                    {1, 1, {0.3, 0.3}}};
+  const std::vector<double> b = BlurSigmas(obs, {0, 1, 3}, 0.04);
+  ASSERT_EQ(b.size(), 4u);
+  EXPECT_NEAR(b[0], 0.04 * 0.1, 1e-12);   // its only neighbour: 0.1 per frame
+  EXPECT_NEAR(b[1], 0.04 * 0.1, 1e-12);   // the faster of 0.1 and 0.05 per frame
+  EXPECT_NEAR(b[2], 0.04 * 0.05, 1e-12);  // 0.1 over two frames
+  EXPECT_EQ(b[3], 0.0);                   // seen once: no speed
+  EXPECT_EQ(BlurSigmas(obs, {0, 1, 3}, 0.0), std::vector<double>(4, 0.0));
+  // Two cameras at the same frame (a degenerate window) give no speed, not inf.
+  EXPECT_EQ(BlurSigmas(obs, {0, 0, 0}, 0.04)[0], 0.0);
+}
+
+TEST(CompareFreedoms, BlurNoiseDiscountsMisfitOnFastMovingObservations) {
+  // The simpler fit is 2 px off on camera 2, where the points move 100 px a
+  // frame: at 0.04 px per px/frame that is 4 px of blur noise, so the misfit
+  // no longer pays for a centre and 100 depths; without the blur term it does.
+  const Scene s = MakeScene(100, 0.3 / 960, 2);
+  std::vector<BaCamera> worse = s.cams;
+  worse[2].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(0.002, Eigen::Vector3d::UnitY()));
+  std::vector<double> blur(s.obs.size(), 0.0);
+  for (size_t i = 0; i < s.obs.size(); ++i)
+    if (s.obs[i].camera == 2) blur[i] = 0.04 * 100.0 / 960;
+  const FreedomEvidence sharp =
+      CompareFreedoms(s.cams, s.points, worse, s.points, s.obs, {0, 0, 1}, {0, 0, 0}, 0.25 / 960);
+  const FreedomEvidence blurred =
+      CompareFreedoms(s.cams, s.points, worse, s.points, s.obs, {0, 0, 1}, {0, 0, 0}, 0.25 / 960, blur);
+  EXPECT_TRUE(sharp.PaysOff());
+  EXPECT_FALSE(blurred.PaysOff());
+  EXPECT_LT(blurred.chi2_without - blurred.chi2_with, 0.1 * (sharp.chi2_without - sharp.chi2_with));
+}
+
 TEST(CompareFreedoms, OnlyPointsSeenAcrossADroppedIntervalCountDepths) {
   Scene s = MakeScene(10, 0, 3, 0, 1);       // seen by cameras 0-1 only
   const Scene t = MakeScene(20, 0, 4, 1, 2);  // seen by cameras 1-2

@@ -15,6 +15,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <string>
+#include <limits>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "core/error.h"
@@ -98,6 +100,9 @@ struct FeatureTracker::Impl {
   cv::Size prev_size;
   std::vector<cv::Point2f> prev_points;
   std::vector<long> prev_ids;
+  // Each previous point's displacement over its last frame (x NaN: none, as
+  // for new detections and re-links); seeds the next KLT (klt_predict).
+  std::vector<cv::Point2f> prev_velocity;
   // The current run of transition-flagged frames, as the tracker saw it.
   bool after_blank = false;    // the previous frame was blank
   RelinkResult bridge;         // re-links across a fade through black
@@ -108,6 +113,7 @@ struct FeatureTracker::Impl {
     prev_pyramid.clear();
     prev_points.clear();
     prev_ids.clear();
+    prev_velocity.clear();
     relinker.Clear();
   }
 
@@ -275,6 +281,35 @@ struct FeatureTracker::Impl {
   }
 
   // KLT from the previous pyramid to `pyramid`, forward then backward.
+  // Constant velocity: each point is expected where its last displacement
+  // takes it; points without one (new detections, re-links) move by the
+  // median of the others. Why: KLT started at zero displacement has to find
+  // a whip pan's 100+ px per frame through the pyramid alone, and on the
+  // blurred pictures it settles short (synth whip_pan at 1280 px lost 6 of
+  // its 80 degrees); the previous frame's motion is a far closer start.
+  // False when no point has a velocity (the shot's first frames, after a
+  // collapse), or when the median moved less than a KLT window: such motion
+  // the pyramid finds from zero, and a start carrying last frame's tracking
+  // noise gains nothing there.
+  bool PredictMotion(std::vector<cv::Point2f>* predicted) const {
+    std::vector<float> vx, vy;
+    for (const cv::Point2f& v : prev_velocity)
+      if (std::isfinite(v.x)) {
+        vx.push_back(v.x);
+        vy.push_back(v.y);
+      }
+    if (vx.empty() || prev_velocity.size() != prev_points.size()) return false;
+    const size_t mid = vx.size() / 2;
+    std::nth_element(vx.begin(), vx.begin() + mid, vx.end());
+    std::nth_element(vy.begin(), vy.begin() + mid, vy.end());
+    const cv::Point2f median(vx[mid], vy[mid]);
+    if (std::hypot(median.x, median.y) < options.klt_window) return false;
+    predicted->resize(prev_points.size());
+    for (size_t i = 0; i < prev_points.size(); ++i)
+      (*predicted)[i] = std::isfinite(prev_velocity[i].x) ? prev_velocity[i] : median;
+    return true;
+  }
+
   void Track(const std::vector<cv::Mat>& pyramid, cv::Size size, std::vector<cv::Point2f>* points,
              std::vector<long>* ids, std::vector<cv::Point2f>* from) {
     points->clear();
@@ -284,8 +319,14 @@ struct FeatureTracker::Impl {
     const PyramidLkOptions lk = LkOptions();
     std::vector<cv::Point2f> forward, backward;
     std::vector<unsigned char> ok_f, ok_b;
-    PyramidLk(prev_pyramid, pyramid, prev_points, &forward, &ok_f, lk);
-    PyramidLk(pyramid, prev_pyramid, forward, &backward, &ok_b, lk);
+    std::vector<cv::Point2f> predicted;
+    const bool predict = options.klt_predict && PredictMotion(&predicted);
+    if (predict)
+      for (size_t i = 0; i < prev_points.size(); ++i) forward.push_back(prev_points[i] + predicted[i]);
+    PyramidLk(prev_pyramid, pyramid, prev_points, &forward, &ok_f, lk, predict);
+    if (predict)
+      for (size_t i = 0; i < forward.size(); ++i) backward.push_back(forward[i] - predicted[i]);
+    PyramidLk(pyramid, prev_pyramid, forward, &backward, &ok_b, lk, predict);
     const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
     const float max_x = static_cast<float>(size.width - 1),
                 max_y = static_cast<float>(size.height - 1);
@@ -339,6 +380,7 @@ struct FeatureTracker::Impl {
       // black, to bridge a fade through black (above).
       prev_pyramid.clear();
       prev_points.clear();
+      prev_velocity.clear();
       prev_ids.clear();
       after_blank = true;
       return out;
@@ -354,6 +396,8 @@ struct FeatureTracker::Impl {
     bool had_tracks = !prev_points.empty();
     const size_t before = prev_points.size();
     Track(pyramid, size, &points, &ids, &from);
+    std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id
+    for (size_t i = 0; i < points.size(); ++i) moved.emplace(ids[i], points[i] - from[i]);
     size_t survived = points.size();
     std::vector<float> klt_disp;  // for the transition-run statistics
     if (decision.transition)
@@ -470,6 +514,12 @@ struct FeatureTracker::Impl {
     spare_pyramid = std::move(prev_pyramid);
     prev_pyramid = std::move(pyramid);
     prev_size = size;
+    const float unknown = std::numeric_limits<float>::quiet_NaN();
+    prev_velocity.assign(ids.size(), cv::Point2f(unknown, unknown));
+    for (size_t i = 0; i < ids.size(); ++i) {
+      const auto it = moved.find(ids[i]);
+      if (it != moved.end()) prev_velocity[i] = it->second;
+    }
     prev_points = std::move(points);
     prev_ids = std::move(ids);
     return out;

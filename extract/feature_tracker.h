@@ -27,6 +27,10 @@ struct TrackerOptions {
   // on the coarser levels (which only seed the next one) at these.
   int klt_coarse_iterations = 10;
   double klt_coarse_step_px = 0.1;
+  // Start each track's KLT where its last displacement takes it (constant
+  // velocity; the median displacement for new tracks) instead of at zero
+  // motion: fast pans stay within the pyramid's reach.
+  bool klt_predict = true;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
   // Appearance check (extract/appearance_check.h): a track ends when the
   // NCC of its 11x11 working-pixel patch with its patch
