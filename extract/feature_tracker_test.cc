@@ -369,6 +369,51 @@ TEST(FeatureTrackerTest, BlurredWhipPanIsTrackedFromItsLastMotion) {
   EXPECT_LT(error_px[error_px.size() / 2], 1.0) << "median error of the per-frame motion, decoded px";
 }
 
+// The prediction's hard case: a fast pan (80 decoded px a frame, over a KLT
+// window at the half-size working image) that stops dead, and starts again.
+// At the stop every search starts 40 working px off. Few tracks may pass the
+// forward-backward check on a look-alike (a start from zero has the same
+// risk: the first frames of each move); the prediction must not add to them,
+// and enough tracks must survive the stop.
+TEST(FeatureTrackerTest, FastPanStoppingDeadIsTrackedWithoutMoreFalseMatches) {
+  const cv::Mat wide = NoiseTexture({3000, 800}, 27, {0.2, -0.1, 0.3});
+  const auto position = [](int f) { return f < 6 ? 80.0 * f : f < 10 ? 400.0 : 400.0 + 80.0 * (f - 9); };
+  struct Counts {
+    int matched = 0, wrong = 0;  // tracks continued from the previous frame; off by > 1 px
+  };
+  const auto run = [&](bool predict) {
+    TrackerOptions options = SmallOptions();
+    options.klt_predict = predict;
+    FeatureTracker tracker(options);
+    std::vector<FrameTracks> out;
+    std::vector<Counts> counts(14);
+    for (int f = 0; f < 14; ++f) {
+      out.push_back(tracker.Process(MakeFrame(Shifted(wide, -position(f), 0, kDecoded, {200, 100}), f, 0.5)));
+      EXPECT_EQ(out[f].shot, 0) << f;
+      if (f == 0) continue;
+      const double shift = position(f) - position(f - 1);
+      for (const TrackPoint& now : out[f].points)
+        for (const TrackPoint& before : out[f - 1].points)
+          if (before.track_id == now.track_id) {
+            ++counts[f].matched;
+            counts[f].wrong += std::hypot(now.px.x() - before.px.x() + shift, now.px.y() - before.px.y()) > 1.0;
+            break;
+          }
+    }
+    return counts;
+  };
+  const std::vector<Counts> with = run(true), without = run(false);
+  int wrong_with = 0, wrong_without = 0;
+  for (int f = 1; f < 14; ++f) {
+    EXPECT_GT(with[f].matched, 100) << "frame " << f;
+    EXPECT_LE(with[f].wrong, 0.02 * with[f].matched) << "frame " << f;
+    wrong_with += with[f].wrong;
+    wrong_without += without[f].wrong;
+  }
+  EXPECT_LE(with[6].wrong, 1) << "the stop";
+  EXPECT_LT(wrong_with, wrong_without);
+}
+
 // A fade down to a dim (not blank) picture and back on a panning camera: the
 // histograms change gradually, tracks may die, one shot.
 TEST(FeatureTrackerTest, FadeThatStaysAboveBlackIsNotACut) {
