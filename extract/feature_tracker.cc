@@ -11,11 +11,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <string>
-#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -280,7 +280,6 @@ struct FeatureTracker::Impl {
     KeepTracksIf(points, ids, [&](size_t i) { return ncc[i] >= threshold; });
   }
 
-  // KLT from the previous pyramid to `pyramid`, forward then backward.
   // Constant velocity: each point is expected where its last displacement
   // takes it; points without one (new detections, re-links) move by the
   // median of the others. Why: KLT started at zero displacement has to find
@@ -310,6 +309,7 @@ struct FeatureTracker::Impl {
     return true;
   }
 
+  // KLT from the previous pyramid to `pyramid`, forward then backward.
   void Track(const std::vector<cv::Mat>& pyramid, cv::Size size, std::vector<cv::Point2f>* points,
              std::vector<long>* ids, std::vector<cv::Point2f>* from) {
     points->clear();

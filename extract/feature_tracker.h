@@ -1,6 +1,7 @@
 #pragma once
 // Shot detection + feature tracking over a FrameSource, one frame at a time.
-//   pyramidal KLT with a forward-backward check, detections spread over a
+//   pyramidal KLT with a forward-backward check (started from each track's
+//   last motion when the picture moves fast), detections spread over a
 //   grid and topped up as tracks die, descriptor (ORB) matching to re-link
 //   when tracking collapses (whip pans, blur); hard cuts and fades split shots;
 //   blank frames are flagged and not tracked.
