@@ -153,6 +153,8 @@ class TrackCameraEstimator {
   // Bundle adjustment of the current window, then its frames
   // (track_estimator_window.cc). `final`: the shot ends with it.
   void ProcessWindow(bool final);
+  std::vector<BaCamera> WindowCameras(bool zoom_in_general, bool free_lead_in_focal,
+                                      const std::vector<MotionModel>* labels) const;
   // Labels of short runs between two equal, more general neighbours take
   // theirs (a keyframe interval or two misread).
   void PromoteShortRuns();

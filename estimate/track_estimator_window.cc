@@ -17,7 +17,7 @@
 #include "core/rotation.h"
 #include "core/statistics.h"
 #include "estimate/axial_ambiguity.h"
-#include "estimate/point_selection.h"
+#include "estimate/window_points.h"
 #include "estimate/robust_bundle.h"
 #include "estimate/stage_timing.h"
 #include "estimate/two_view_geometry.h"
@@ -41,6 +41,37 @@ void TrackCameraEstimator::PromoteShortRuns() {
       }
     }
   }
+}
+
+// The window's cameras from the keyframes, with the blocks each interval's
+// model shares with the previous keyframe (no rotation, translation or zoom
+// of its own). `labels`: models to use instead of the keyframes' own
+// (candidate solves); `zoom_in_general`: general intervals get a zoom too.
+// `free_lead_in_focal`: the held lead-in's focal is solved (its first
+// calibration, ProcessWindow).
+std::vector<BaCamera> TrackCameraEstimator::WindowCameras(bool zoom_in_general, bool free_lead_in_focal,
+                                                          const std::vector<MotionModel>* labels) const {
+  const int n = static_cast<int>(keyframes_.size());
+  std::vector<BaCamera> cams(n);
+  for (int i = 0; i < n; ++i) {
+    cams[i] = keyframes_[i].cam;
+    cams[i].fixed = keyframes_[i].fixed;
+    cams[i].fixed_focal = keyframes_[i].fixed_focal && !free_lead_in_focal;
+    cams[i].rotation_source = cams[i].center_source = cams[i].focal_source = -1;
+    if (i == 0 || keyframes_[i].fixed) continue;
+    MotionModel m = labels ? (*labels)[i] : keyframes_[i].model;
+    if (zoom_in_general && m == MotionModel::kGeneral) m = MotionModel::kGeneralZoom;
+    if (!HasRotation(m)) cams[i].rotation_source = i - 1;
+    if (!HasTranslation(m)) cams[i].center_source = i - 1;
+    if (!HasZoom(m)) cams[i].focal_source = i - 1;
+  }
+  // Shared blocks start from the source's value.
+  for (int i = 1; i < n; ++i) {
+    if (cams[i].rotation_source >= 0) cams[i].world_from_cam = cams[i - 1].world_from_cam;
+    if (cams[i].center_source >= 0) cams[i].center = cams[i - 1].center;
+    if (cams[i].focal_source >= 0) cams[i].log_focal = cams[i - 1].log_focal;
+  }
+  return cams;
 }
 
 void TrackCameraEstimator::ProcessWindow(bool final) {
@@ -83,41 +114,13 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     for (auto& k : keyframes_) k.cam.log_focal += shift;
   }
 
-  // --- cameras with the models' sharing.
   // `labels`: the keyframes' models to use instead of theirs (candidates).
   auto build_cameras = [&](bool zoom_in_general, const std::vector<MotionModel>* labels = nullptr) {
-    std::vector<BaCamera> cams(n);
-    for (int i = 0; i < n; ++i) {
-      cams[i] = keyframes_[i].cam;
-      cams[i].fixed = keyframes_[i].fixed;
-      cams[i].fixed_focal = keyframes_[i].fixed_focal && !recalibrate_lead_in;
-      cams[i].rotation_source = cams[i].center_source = cams[i].focal_source = -1;
-      if (i == 0 || keyframes_[i].fixed) continue;
-      MotionModel m = labels ? (*labels)[i] : keyframes_[i].model;
-      if (zoom_in_general && m == MotionModel::kGeneral) m = MotionModel::kGeneralZoom;
-      if (!HasRotation(m)) cams[i].rotation_source = i - 1;
-      if (!HasTranslation(m)) cams[i].center_source = i - 1;
-      if (!HasZoom(m)) cams[i].focal_source = i - 1;
-    }
-    // Shared blocks start from the source's value.
-    for (int i = 1; i < n; ++i) {
-      if (cams[i].rotation_source >= 0) cams[i].world_from_cam = cams[i - 1].world_from_cam;
-      if (cams[i].center_source >= 0) cams[i].center = cams[i - 1].center;
-      if (cams[i].focal_source >= 0) cams[i].log_focal = cams[i - 1].log_focal;
-    }
-    return cams;
+    return WindowCameras(zoom_in_general, recalibrate_lead_in, labels);
   };
 
   // --- points: tracks seen by >= 2 keyframes, spread over the image
-  // (point_selection.h), longest first within an image cell.
-  std::map<long, std::vector<int>> seen;  // track -> keyframes
-  for (int i = 0; i < n; ++i)
-    for (const auto& [id, u] : At(keyframes_[i].pos).u)
-      if (!outlier_tracks_.count(id)) seen[id].push_back(i);
-  std::vector<TrackCandidate> candidates;
-  for (const auto& [id, kfs] : seen)
-    if (kfs.size() >= 2)
-      candidates.push_back({id, static_cast<int>(kfs.size()), At(keyframes_[kfs[kfs.size() / 2]].pos).u.at(id)});
+  // (window_points.h, point_selection.h), longest first within an image cell.
   // Only where the camera translates, and not along the optical axis:
   // without parallax an occlusion edge does not slide (every track is rigid,
   // the longest are best), and along the axis the tracks in front of the
@@ -129,7 +132,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   int held = 0;
   while (held + 1 < n && keyframes_[held + 1].fixed) ++held;
   const bool spread_points = has_translation && !IsAxialMotion(initial, held);
-  std::vector<std::pair<int, long>> order;
   // Where the grid spreads the points, the whole-track cut below also drops
   // the occlusion-edge corners (a third or more of the tracks near
   // silhouettes) and the good tracks the first, bent solve puts far: take
@@ -137,61 +139,14 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   const int window_points =
       spread_points ? static_cast<int>(std::lround(options_.max_points * options_.spread_points_factor))
                     : options_.max_points;
-  for (long id : SelectWindowTracks(std::move(candidates), window_points,
-                                    spread_points ? options_.point_grid_cells : 0))
-    order.push_back({-static_cast<int>(seen[id].size()), id});
-
+  std::vector<const KeyframeTracks*> tracks_at(n);
+  for (int i = 0; i < n; ++i) tracks_at[i] = &At(keyframes_[i].pos).u;
+  WindowTracks window_tracks = SelectWindowPoints(tracks_at, outlier_tracks_, window_points,
+                                                  spread_points ? options_.point_grid_cells : 0);
+  const std::map<long, int>& point_of_track = window_tracks.point_of_track;
   // Point k is the track order[k] in every candidate reconstruction.
-  std::map<long, int> point_of_track;
-  for (size_t k = 0; k < order.size(); ++k) point_of_track[order[k].second] = static_cast<int>(k);
-  // Points from the cameras' initial poses: anchored at the first keyframe
-  // that sees them, depth by midpoint triangulation with the most distant one.
-  // Reads only (it runs on two threads at once in general windows, below).
-  auto init_points = [&](const std::vector<BaCamera>& cams, std::vector<BaPoint>* points_out,
-                         std::vector<BaObservation>* obs_out) {
-    std::vector<BaPoint>& points = *points_out;
-    std::vector<BaObservation>& obs = *obs_out;
-    points.clear();
-    obs.clear();
-    for (const auto& [neg, id] : order) {
-      const auto& kfs = seen.at(id);
-      const BaCamera& ca = cams[kfs[0]];
-      const Eigen::Vector2d ua = At(keyframes_[kfs[0]].pos).u.at(id);
-      const double fa = std::exp(ca.log_focal);
-      const Eigen::Vector3d ray_a = (ca.world_from_cam * Eigen::Vector3d(ua.x() / fa, ua.y() / fa, 1)).normalized();
-      double rho = 0;
-      if (has_translation) {
-        // Midpoint triangulation with the most distant observing keyframe.
-        int best = -1;
-        double best_base = 0;
-        for (int j : kfs) {
-          const double base = (cams[j].center - ca.center).norm();
-          if (base > best_base) {
-            best_base = base;
-            best = j;
-          }
-        }
-        if (best >= 0) {
-          const BaCamera& cb = cams[best];
-          const Eigen::Vector2d ub = At(keyframes_[best].pos).u.at(id);
-          const double fb = std::exp(cb.log_focal);
-          const Eigen::Vector3d ray_b = (cb.world_from_cam * Eigen::Vector3d(ub.x() / fb, ub.y() / fb, 1)).normalized();
-          const Eigen::Vector3d w = cb.center - ca.center;
-          const double bb = ray_a.dot(ray_b), d1 = ray_a.dot(w), d2 = ray_b.dot(w);
-          const double den = 1 - bb * bb;
-          if (den > 1e-8) {
-            const double lambda = (d1 - bb * d2) / den;
-            if (lambda > 0 && std::isfinite(lambda)) rho = 1 / lambda;
-          }
-        }
-        if (!(rho > 0)) rho = 0.2 / scene_depth_;
-      }
-      BaPoint p;
-      p.anchor = ca.center;
-      p.homogeneous = Eigen::Vector4d(ray_a.x(), ray_a.y(), ray_a.z(), rho).normalized();
-      for (int j : kfs) obs.push_back({j, static_cast<int>(points.size()), At(keyframes_[j].pos).u.at(id)});
-      points.push_back(p);
-    }
+  auto init_points = [&](const std::vector<BaCamera>& c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
+    InitWindowPoints(c, window_tracks, tracks_at, has_translation, 0.2 / scene_depth_, p, o);
   };
   std::vector<BaCamera> cams = build_cameras(false);
   std::vector<BaPoint> points;
@@ -554,7 +509,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
 
   WindowSolution solution;
   solution.points = std::move(points);
-  solution.point_of_track = std::move(point_of_track);
+  solution.point_of_track = std::move(window_tracks.point_of_track);
   solution.point_kept = std::move(point_kept);
   solution.pose_options = ba;
   solution.success = summary.success;
