@@ -422,21 +422,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     try_zoom(zoom_from_chain.get());
     if (axial) try_zoom(std::move(mirrored));
     LogStage("window: per-keyframe-focal solves");
-    // Every candidate is scored on all observations (capped), with one sigma.
-    const auto e0 = ObservationErrors(cams, pts, obs, true);
-    std::vector<std::vector<double>> ez;
-    std::vector<double> finite;
-    for (const Candidate& c : zoomed) {
-      ez.push_back(ObservationErrors(c.cams, c.pts, obs, true));
-      for (double e : ez.back())
-        if (std::isfinite(e)) finite.push_back(e);
-    }
-    const double sigma = std::max(Median(finite, 0.0) / 1.1774, options_.two_view.noise_floor);
-    auto chi2 = [&](const std::vector<double>& e) {
-      double sum = 0;
-      for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
-      return sum;
-    };
     // Along the optical axis the fit cannot tell the branches apart: the
     // occlusion order can (occlusion_order.h). A candidate it contradicts,
     // when another agrees with it, is out of the choice; [0]: constant focal.
@@ -447,32 +432,23 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       ruled_out = ContradictedByOcclusion(OcclusionVotesOf(candidate_cams));
       for (char r : ruled_out) branch_by_occlusion |= r;
     }
-    int best = -1;
-    double best_chi2 = 0;
-    for (size_t c = 0; c < zoomed.size(); ++c) {
-      if (ruled_out[c + 1]) continue;
-      const double x = chi2(ez[c]);
-      if (best < 0 || x < best_chi2) {
-        best = static_cast<int>(c);
-        best_chi2 = x;
-      }
-    }
+    // Every candidate is scored on all observations (capped), with one sigma.
+    std::vector<std::vector<double>> ez;
+    for (const Candidate& c : zoomed) ez.push_back(ObservationErrors(c.cams, c.pts, obs, true));
+    int extra = 0;
+    for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
+    const int best = ChooseFocalCandidate(ObservationErrors(cams, pts, obs, true), ez, ruled_out, extra,
+                                          options_.two_view.noise_floor);
     if (best >= 0) {
-      int extra = 0;
-      for (int i = 1; i < n; ++i) extra += keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed;
-      const double m = 2.0 * obs.size();
-      const double bic0 = chi2(e0), bic1 = best_chi2 + extra * std::log(std::max(m, 2.0));
-      if (bic1 < bic0 || ruled_out[0]) {
-        Candidate& c = zoomed[best];
-        cams = c.cams;
-        pts = c.pts;
-        ob = c.ob;
-        summary = c.summary;
-        report.zoom_by_bic = true;
-        for (int i = 1; i < n; ++i)
-          if (keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed)
-            keyframes_[i].model = MotionModel::kGeneralZoom;
-      }
+      Candidate& c = zoomed[best];
+      cams = c.cams;
+      pts = c.pts;
+      ob = c.ob;
+      summary = c.summary;
+      report.zoom_by_bic = true;
+      for (int i = 1; i < n; ++i)
+        if (keyframes_[i].model == MotionModel::kGeneral && !keyframes_[i].fixed)
+          keyframes_[i].model = MotionModel::kGeneralZoom;
     }
   }
   // Not along the optical axis: there the tracks in front of the subject are

@@ -127,4 +127,32 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
   return ev;
 }
 
+int ChooseFocalCandidate(const std::vector<double>& e_constant,
+                         const std::vector<std::vector<double>>& e_candidates,
+                         const std::vector<char>& ruled_out, int extra_parameters, double noise_floor) {
+  std::vector<double> finite;
+  for (const auto& e : e_candidates)
+    for (double v : e)
+      if (std::isfinite(v)) finite.push_back(v);
+  const double sigma = std::max(Median(finite, 0.0) / 1.1774, noise_floor);
+  auto chi2 = [&](const std::vector<double>& e) {
+    double sum = 0;
+    for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
+    return sum;
+  };
+  int best = -1;
+  double best_chi2 = 0;
+  for (size_t c = 0; c < e_candidates.size(); ++c) {
+    if (c + 1 < ruled_out.size() && ruled_out[c + 1]) continue;
+    const double x = chi2(e_candidates[c]);
+    if (best < 0 || x < best_chi2) {
+      best = static_cast<int>(c);
+      best_chi2 = x;
+    }
+  }
+  if (best < 0) return -1;
+  const double bic0 = chi2(e_constant), bic1 = best_chi2 + BicPenalty(extra_parameters, e_constant.size());
+  return bic1 < bic0 || (!ruled_out.empty() && ruled_out[0]) ? best : -1;
+}
+
 }  // namespace hapcine

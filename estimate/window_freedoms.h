@@ -92,4 +92,17 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
                                    const std::vector<BaObservation>& observations, int promoted,
                                    double noise_floor, const std::vector<double>& blur_sigma = {});
 
+// A general window's per-keyframe focal (zoom in every general interval):
+// does a candidate solved with it pay for itself against the constant-focal
+// solve? `e_constant`, `e_candidates[c]`: each solve's errors on the same
+// observations (ObservationErrors); sigma from all candidates' finite errors
+// (median / 1.1774, at least `noise_floor`), chi2 capped as above. The
+// candidate with the lowest chi2 among those not `ruled_out[c + 1]`
+// (ruled_out[0]: the constant-focal solve) is taken if its chi2 +
+// `extra_parameters` ln(2 m) is below the constant solve's, or if the
+// constant solve is ruled out. Returns its index, or -1 (keep the constant focal).
+int ChooseFocalCandidate(const std::vector<double>& e_constant,
+                         const std::vector<std::vector<double>>& e_candidates,
+                         const std::vector<char>& ruled_out, int extra_parameters, double noise_floor);
+
 }  // namespace hapcine

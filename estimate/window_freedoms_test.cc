@@ -170,3 +170,26 @@ TEST(ComparePromotion, PaysOnlyForAClearlyBetterFitAtTwoParametersPerKeyframe) {
 
 }  // namespace
 }  // namespace hapcine
+
+namespace hapcine {
+namespace {
+
+TEST(ChooseFocalCandidate, TakesTheBestUnlessTheFreedomsDoNotPay) {
+  const double px = 1.0 / 960;
+  const std::vector<double> constant(400, 2.0 * px);  // 2 px everywhere
+  const std::vector<double> better(400, 0.5 * px), same(400, 2.0 * px), worse(400, 3.0 * px);
+  // A clear gain over 400 observations pays for 5 focals; the better of two wins.
+  EXPECT_EQ(ChooseFocalCandidate(constant, {worse, better}, {0, 0, 0}, 5, 0.25 * px), 1);
+  // No gain: the penalty keeps the constant focal.
+  EXPECT_EQ(ChooseFocalCandidate(constant, {same}, {0, 0}, 5, 0.25 * px), -1);
+  // The occlusion order rules the better candidate out: the other is no gain.
+  EXPECT_EQ(ChooseFocalCandidate(constant, {same, better}, {0, 0, 1}, 5, 0.25 * px), -1);
+  // It rules the constant solve out: the best remaining is taken, gain or not.
+  EXPECT_EQ(ChooseFocalCandidate(constant, {worse}, {1, 0}, 5, 0.25 * px), 0);
+  // Nothing to choose from.
+  EXPECT_EQ(ChooseFocalCandidate(constant, {}, {0}, 5, 0.25 * px), -1);
+  EXPECT_EQ(ChooseFocalCandidate(constant, {better}, {0, 1}, 5, 0.25 * px), -1);
+}
+
+}  // namespace
+}  // namespace hapcine
