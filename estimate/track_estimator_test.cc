@@ -40,24 +40,37 @@ void Score(TrackCameraEstimator* est, SimRun* run) {
   run->mean_rot_err_deg = sum / frames;
 }
 
-SimRun Simulate(int frames, const std::function<SceneCamera(int)>& camera_at,
-             const std::vector<Eigen::Vector3d>& pts, double noise_px,
-             const std::function<bool(int)>& blank = {}, TrackEstimatorOptions opt = {}) {
+// The estimator over `frames` frames: camera_at(i) is the truth, frame_at
+// its tracks (drawing noise from the run's generator).
+using FrameAt = std::function<FrameTracks(int, const SceneCamera&, std::mt19937*)>;
+SimRun SimulateFrames(int frames, const std::function<SceneCamera(int)>& camera_at, const FrameAt& frame_at,
+                      const TrackEstimatorOptions& opt = {}, unsigned seed = 42) {
   TrackCameraEstimator est(kW, kH, opt);
-  std::mt19937 rng(42);
+  std::mt19937 rng(seed);
   SimRun run;
   for (int i = 0; i < frames; ++i) {
     const SceneCamera cam = camera_at(i);
     run.truth.push_back(cam);
-    FrameTracks ft = MakeFrameTracks(i, 25, cam, pts, kW, kH, noise_px, 0.0, &rng);
-    if (blank && blank(i)) {
-      ft.points.clear();
-      ft.blank = true;
-    }
-    est.AddFrame(ft);
+    est.AddFrame(frame_at(i, cam, &rng));
   }
   Score(&est, &run);
   return run;
+}
+
+SimRun Simulate(int frames, const std::function<SceneCamera(int)>& camera_at,
+             const std::vector<Eigen::Vector3d>& pts, double noise_px,
+             const std::function<bool(int)>& blank = {}, TrackEstimatorOptions opt = {}) {
+  return SimulateFrames(
+      frames, camera_at,
+      [&](int i, const SceneCamera& cam, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, cam, pts, kW, kH, noise_px, 0.0, rng);
+        if (blank && blank(i)) {
+          ft.points.clear();
+          ft.blank = true;
+        }
+        return ft;
+      },
+      opt);
 }
 
 SceneCamera PanCamera(int i, double total_deg, double focal_px) {
@@ -519,18 +532,15 @@ TEST(TrackEstimator, TravelingThenPanInTheNextWindow) {
 // new from frame 100: the chain restarts there, holding the last pose).
 TEST(TrackEstimator, TravelingThenLostTrackingThenPan) {
   const auto pts = RandomPoints(2000, 3, 12, 2.5, 11);
-  TrackCameraEstimator est(kW, kH, {});
-  std::mt19937 rng(12);
-  SimRun run;
-  for (int i = 0; i < 200; ++i) {
-    const SceneCamera c = TravelingThenPan(i);
-    run.truth.push_back(c);
-    FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, &rng);
-    if (i >= 100)
-      for (auto& p : ft.points) p.track_id += 100000;  // lost and found again: new ids
-    est.AddFrame(ft);
-  }
-  Score(&est, &run);
+  const SimRun run = SimulateFrames(
+      200, TravelingThenPan,
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        if (i >= 100)
+          for (auto& p : ft.points) p.track_id += 100000;  // lost and found again: new ids
+        return ft;
+      },
+      {}, 12);
   EXPECT_LT(run.mean_rot_err_deg, 0.1);
   EXPECT_NEAR(*run.path.frames[199].focal_px / 800, 1.0, 0.01);
   EXPECT_NEAR(*run.path.frames[20].focal_px / *run.path.frames[199].focal_px, 1.0, 0.002);
@@ -587,18 +597,11 @@ TEST(TrackEstimator, ForwardDollyIsNotAZoom) {
 SimRun SimulateWithWalker(const std::function<SceneCamera(int)>& camera_at, int object_points) {
   const auto background = RandomPoints(1200, 3, 30, 0.6, 31);
   const auto object = RandomPoints(object_points, 4.5, 5.5, 0.12, 32);
-  TrackCameraEstimator est(kW, kH, {});
-  std::mt19937 rng(42);
-  SimRun run;
-  for (int i = 0; i < 90; ++i) {
-    const SceneCamera cam = camera_at(i);
-    run.truth.push_back(cam);
+  return SimulateFrames(90, camera_at, [&](int i, const SceneCamera& cam, std::mt19937* rng) {
     std::vector<Eigen::Vector3d> pts = background;
     for (const Eigen::Vector3d& p : object) pts.push_back(p + Eigen::Vector3d(-1.0 + 0.05 * i, 0, 0));
-    est.AddFrame(MakeFrameTracks(i, 25, cam, pts, kW, kH, 0.3, 0.0, &rng));
-  }
-  Score(&est, &run);
-  return run;
+    return MakeFrameTracks(i, 25, cam, pts, kW, kH, 0.3, 0.0, rng);
+  });
 }
 
 TEST(TrackEstimator, WalkerAcrossTheViewDoesNotMoveTheCamera) {
