@@ -54,6 +54,8 @@ void TrackerOptions::Check() const {
 
 namespace {
 
+// An unknown displacement (a new track's, no tracks' at all).
+constexpr float kNoMotion = std::numeric_limits<float>::quiet_NaN();
 // A collapse: fewer than this fraction of last frame's tracks survived.
 constexpr double kCollapseFraction = 0.3;
 // Below this many live tracks there is nothing to "collapse" from.
@@ -103,6 +105,8 @@ struct FeatureTracker::Impl {
   // Each previous point's displacement over its last frame (x NaN: none, as
   // for new detections and re-links); seeds the next KLT (klt_predict).
   std::vector<cv::Point2f> prev_velocity;
+  // Median of prev_velocity, and the same a frame earlier (x NaN: none).
+  cv::Point2f motion_last{kNoMotion, kNoMotion}, motion_before{kNoMotion, kNoMotion};
   // The current run of transition-flagged frames, as the tracker saw it.
   bool after_blank = false;    // the previous frame was blank
   RelinkResult bridge;         // re-links across a fade through black
@@ -114,6 +118,7 @@ struct FeatureTracker::Impl {
     prev_points.clear();
     prev_ids.clear();
     prev_velocity.clear();
+    motion_last = motion_before = {kNoMotion, kNoMotion};
     relinker.Clear();
   }
 
@@ -286,27 +291,39 @@ struct FeatureTracker::Impl {
   // a whip pan's 100+ px per frame through the pyramid alone, and on the
   // blurred pictures it settles short (synth whip_pan at 1280 px lost 6 of
   // its 80 degrees); the previous frame's motion is a far closer start.
-  // False when no point has a velocity (the shot's first frames, after a
-  // collapse), or when the median moved less than a KLT window: such motion
-  // the pyramid finds from zero, and a start carrying last frame's tracking
-  // noise gains nothing there.
+  // False (KLT starts at zero motion, as without it) when the picture moved
+  // less than a KLT window last frame (the pyramid finds that from zero, and
+  // a start carrying last frame's tracking noise gains nothing), or when the
+  // last two frames' median motions differ by more than half the last (a
+  // shake back and forth: the last motion is no guide to the next), or when
+  // either is unknown (a shot's first frames, after a collapse).
   bool PredictMotion(std::vector<cv::Point2f>* predicted) const {
+    if (!std::isfinite(motion_last.x) || !std::isfinite(motion_before.x) ||
+        prev_velocity.size() != prev_points.size())
+      return false;
+    const double last = std::hypot(motion_last.x, motion_last.y);
+    if (last < options.klt_window) return false;
+    const cv::Point2f change = motion_last - motion_before;
+    if (std::hypot(change.x, change.y) > 0.5 * last) return false;
+    predicted->resize(prev_points.size());
+    for (size_t i = 0; i < prev_points.size(); ++i)
+      (*predicted)[i] = std::isfinite(prev_velocity[i].x) ? prev_velocity[i] : motion_last;
+    return true;
+  }
+
+  // The median of the known velocities (x NaN when none is known).
+  static cv::Point2f MedianMotion(const std::vector<cv::Point2f>& velocity) {
     std::vector<float> vx, vy;
-    for (const cv::Point2f& v : prev_velocity)
+    for (const cv::Point2f& v : velocity)
       if (std::isfinite(v.x)) {
         vx.push_back(v.x);
         vy.push_back(v.y);
       }
-    if (vx.empty() || prev_velocity.size() != prev_points.size()) return false;
+    if (vx.empty()) return {kNoMotion, kNoMotion};
     const size_t mid = vx.size() / 2;
     std::nth_element(vx.begin(), vx.begin() + mid, vx.end());
     std::nth_element(vy.begin(), vy.begin() + mid, vy.end());
-    const cv::Point2f median(vx[mid], vy[mid]);
-    if (std::hypot(median.x, median.y) < options.klt_window) return false;
-    predicted->resize(prev_points.size());
-    for (size_t i = 0; i < prev_points.size(); ++i)
-      (*predicted)[i] = std::isfinite(prev_velocity[i].x) ? prev_velocity[i] : median;
-    return true;
+    return {vx[mid], vy[mid]};
   }
 
   // KLT from the previous pyramid to `pyramid`, forward then backward.
@@ -316,30 +333,62 @@ struct FeatureTracker::Impl {
     ids->clear();
     from->clear();
     if (prev_points.empty() || prev_pyramid.empty() || prev_size != size) return;
-    const PyramidLkOptions lk = LkOptions();
-    std::vector<cv::Point2f> forward, backward;
-    std::vector<unsigned char> ok_f, ok_b;
     std::vector<cv::Point2f> predicted;
     const bool predict = options.klt_predict && PredictMotion(&predicted);
-    if (predict)
-      for (size_t i = 0; i < prev_points.size(); ++i) forward.push_back(prev_points[i] + predicted[i]);
-    PyramidLk(prev_pyramid, pyramid, prev_points, &forward, &ok_f, lk, predict);
-    if (predict)
-      for (size_t i = 0; i < forward.size(); ++i) backward.push_back(forward[i] - predicted[i]);
-    PyramidLk(pyramid, prev_pyramid, forward, &backward, &ok_b, lk, predict);
-    const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
-    const float max_x = static_cast<float>(size.width - 1),
-                max_y = static_cast<float>(size.height - 1);
+    std::vector<cv::Point2f> tracked;
+    std::vector<char> ok = TrackFrom(pyramid, size, prev_points, predict ? &predicted : nullptr, &tracked);
+    if (predict) {
+      // A track the prediction lost (the motion changed: a stop, a jolt)
+      // gets the search from zero motion too.
+      std::vector<size_t> lost;
+      std::vector<cv::Point2f> lost_points, retried;
+      for (size_t i = 0; i < ok.size(); ++i)
+        if (!ok[i]) {
+          lost.push_back(i);
+          lost_points.push_back(prev_points[i]);
+        }
+      const std::vector<char> ok_retried = TrackFrom(pyramid, size, lost_points, nullptr, &retried);
+      for (size_t k = 0; k < lost.size(); ++k)
+        if (ok_retried[k]) {
+          ok[lost[k]] = 1;
+          tracked[lost[k]] = retried[k];
+        }
+    }
     for (size_t i = 0; i < prev_points.size(); ++i) {
-      if (!ok_f[i] || !ok_b[i]) continue;
-      const cv::Point2f& p = forward[i];
-      if (!(p.x >= 0 && p.y >= 0 && p.x <= max_x && p.y <= max_y)) continue;
-      const cv::Point2f e = backward[i] - prev_points[i];
-      if (!(e.x * e.x + e.y * e.y <= fb2)) continue;  // also rejects NaN
-      points->push_back(p);
+      if (!ok[i]) continue;
+      points->push_back(tracked[i]);
       ids->push_back(prev_ids[i]);
       from->push_back(prev_points[i]);
     }
+  }
+
+  // KLT of `starts` from the previous pyramid to `pyramid` (from start +
+  // offset[i] when given, else from zero motion) and back; ok[i]: both
+  // converged, inside the image, forward-backward error within the limit.
+  std::vector<char> TrackFrom(const std::vector<cv::Mat>& pyramid, cv::Size size,
+                              const std::vector<cv::Point2f>& starts, const std::vector<cv::Point2f>* offset,
+                              std::vector<cv::Point2f>* tracked) const {
+    const PyramidLkOptions lk = LkOptions();
+    std::vector<cv::Point2f> forward, backward;
+    std::vector<unsigned char> ok_f, ok_b;
+    if (offset)
+      for (size_t i = 0; i < starts.size(); ++i) forward.push_back(starts[i] + (*offset)[i]);
+    PyramidLk(prev_pyramid, pyramid, starts, &forward, &ok_f, lk, offset != nullptr);
+    if (offset)
+      for (size_t i = 0; i < forward.size(); ++i) backward.push_back(forward[i] - (*offset)[i]);
+    PyramidLk(pyramid, prev_pyramid, forward, &backward, &ok_b, lk, offset != nullptr);
+    const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
+    const float max_x = static_cast<float>(size.width - 1), max_y = static_cast<float>(size.height - 1);
+    std::vector<char> ok(starts.size(), 0);
+    for (size_t i = 0; i < starts.size(); ++i) {
+      if (!ok_f[i] || !ok_b[i]) continue;
+      const cv::Point2f& p = forward[i];
+      if (!(p.x >= 0 && p.y >= 0 && p.x <= max_x && p.y <= max_y)) continue;
+      const cv::Point2f e = backward[i] - starts[i];
+      ok[i] = e.x * e.x + e.y * e.y <= fb2;  // also rejects NaN
+    }
+    *tracked = std::move(forward);
+    return ok;
   }
 
   FrameTracks Process(const Frame& frame) {
@@ -381,6 +430,7 @@ struct FeatureTracker::Impl {
       prev_pyramid.clear();
       prev_points.clear();
       prev_velocity.clear();
+      motion_last = motion_before = {kNoMotion, kNoMotion};
       prev_ids.clear();
       after_blank = true;
       return out;
@@ -514,12 +564,13 @@ struct FeatureTracker::Impl {
     spare_pyramid = std::move(prev_pyramid);
     prev_pyramid = std::move(pyramid);
     prev_size = size;
-    const float unknown = std::numeric_limits<float>::quiet_NaN();
-    prev_velocity.assign(ids.size(), cv::Point2f(unknown, unknown));
+    prev_velocity.assign(ids.size(), cv::Point2f(kNoMotion, kNoMotion));
     for (size_t i = 0; i < ids.size(); ++i) {
       const auto it = moved.find(ids[i]);
       if (it != moved.end()) prev_velocity[i] = it->second;
     }
+    motion_before = motion_last;
+    motion_last = MedianMotion(prev_velocity);
     prev_points = std::move(points);
     prev_ids = std::move(ids);
     return out;

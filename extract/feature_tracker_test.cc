@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -369,6 +371,35 @@ TEST(FeatureTrackerTest, BlurredWhipPanIsTrackedFromItsLastMotion) {
   EXPECT_LT(error_px[error_px.size() / 2], 1.0) << "median error of the per-frame motion, decoded px";
 }
 
+// Tracks continued from the previous frame on a texture shifted by
+// position(f) decoded px (horizontally), and how many are off by > 1 px.
+struct Continued {
+  int matched = 0, wrong = 0;
+};
+
+std::vector<Continued> TrackShifts(const std::function<double(int)>& position, int frames, bool predict) {
+  const cv::Mat wide = NoiseTexture({3000, 800}, 27, {0.2, -0.1, 0.3});
+  TrackerOptions options = SmallOptions();
+  options.klt_predict = predict;
+  FeatureTracker tracker(options);
+  std::vector<FrameTracks> out;
+  std::vector<Continued> counts(frames);
+  for (int f = 0; f < frames; ++f) {
+    out.push_back(tracker.Process(MakeFrame(Shifted(wide, -position(f), 0, kDecoded, {200, 100}), f, 0.5)));
+    EXPECT_EQ(out[f].shot, 0) << f;
+    if (f == 0) continue;
+    const double shift = position(f) - position(f - 1);
+    for (const TrackPoint& now : out[f].points)
+      for (const TrackPoint& before : out[f - 1].points)
+        if (before.track_id == now.track_id) {
+          ++counts[f].matched;
+          counts[f].wrong += std::hypot(now.px.x() - before.px.x() + shift, now.px.y() - before.px.y()) > 1.0;
+          break;
+        }
+  }
+  return counts;
+}
+
 // The prediction's hard case: a fast pan (80 decoded px a frame, over a KLT
 // window at the half-size working image) that stops dead, and starts again.
 // At the stop every search starts 40 working px off. Few tracks may pass the
@@ -376,33 +407,8 @@ TEST(FeatureTrackerTest, BlurredWhipPanIsTrackedFromItsLastMotion) {
 // risk: the first frames of each move); the prediction must not add to them,
 // and enough tracks must survive the stop.
 TEST(FeatureTrackerTest, FastPanStoppingDeadIsTrackedWithoutMoreFalseMatches) {
-  const cv::Mat wide = NoiseTexture({3000, 800}, 27, {0.2, -0.1, 0.3});
   const auto position = [](int f) { return f < 6 ? 80.0 * f : f < 10 ? 400.0 : 400.0 + 80.0 * (f - 9); };
-  struct Counts {
-    int matched = 0, wrong = 0;  // tracks continued from the previous frame; off by > 1 px
-  };
-  const auto run = [&](bool predict) {
-    TrackerOptions options = SmallOptions();
-    options.klt_predict = predict;
-    FeatureTracker tracker(options);
-    std::vector<FrameTracks> out;
-    std::vector<Counts> counts(14);
-    for (int f = 0; f < 14; ++f) {
-      out.push_back(tracker.Process(MakeFrame(Shifted(wide, -position(f), 0, kDecoded, {200, 100}), f, 0.5)));
-      EXPECT_EQ(out[f].shot, 0) << f;
-      if (f == 0) continue;
-      const double shift = position(f) - position(f - 1);
-      for (const TrackPoint& now : out[f].points)
-        for (const TrackPoint& before : out[f - 1].points)
-          if (before.track_id == now.track_id) {
-            ++counts[f].matched;
-            counts[f].wrong += std::hypot(now.px.x() - before.px.x() + shift, now.px.y() - before.px.y()) > 1.0;
-            break;
-          }
-    }
-    return counts;
-  };
-  const std::vector<Counts> with = run(true), without = run(false);
+  const std::vector<Continued> with = TrackShifts(position, 14, true), without = TrackShifts(position, 14, false);
   int wrong_with = 0, wrong_without = 0;
   for (int f = 1; f < 14; ++f) {
     EXPECT_GT(with[f].matched, 100) << "frame " << f;
@@ -412,6 +418,20 @@ TEST(FeatureTrackerTest, FastPanStoppingDeadIsTrackedWithoutMoreFalseMatches) {
   }
   EXPECT_LE(with[6].wrong, 1) << "the stop";
   EXPECT_LT(wrong_with, wrong_without);
+}
+
+// A violent shake, 60 decoded px (30 working, over a KLT window) back and
+// forth every frame: the last motion is no guide to the next, so KLT starts
+// from zero motion as without the prediction and keeps every track (with
+// the last motion as the start it kept ~90 of 270 a frame).
+TEST(FeatureTrackerTest, ShakeBackAndForthIsTrackedAsWithoutPrediction) {
+  const auto position = [](int f) { return (f % 2) ? 60.0 : 0.0; };
+  const std::vector<Continued> with = TrackShifts(position, 12, true), without = TrackShifts(position, 12, false);
+  for (int f = 1; f < 12; ++f) {
+    EXPECT_GT(without[f].matched, 250) << "frame " << f;
+    EXPECT_GE(with[f].matched, without[f].matched) << "frame " << f;
+    EXPECT_EQ(with[f].wrong, 0) << "frame " << f;
+  }
 }
 
 // A fade down to a dim (not blank) picture and back on a panning camera: the
