@@ -4,8 +4,9 @@
 //
 // Per frame cost: one pyramid (with derivatives) built once and used three
 // times (backward check now, forward flow next frame); two LK passes over the
-// live tracks; corner detection only when the track count fell below 90% of
-// max_tracks; ORB only on collapse.
+// live tracks (two more, from zero motion, over the tracks a predicted start
+// lost on a fast pan); corner detection only when the track count fell
+// below 90% of max_tracks; ORB only on collapse.
 
 #include "extract/feature_tracker.h"
 
