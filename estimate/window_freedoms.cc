@@ -15,21 +15,29 @@ struct Chi2Pair {
   double sigma = 0, general = 0, simpler = 0;
 };
 
+// sigma from residual magnitudes: their median / 1.1774, at least the floor.
+double SigmaOf(const std::vector<double>& errors, double noise_floor) {
+  return std::max(Median(errors, 0.0) / 1.1774, noise_floor);
+}
+
+// sum_i min(e_i^2 / (sigma^2 + blur_i^2), 9); a non-finite error counts 9.
+// `blur_sigma`: per observation (BlurSigmas), or empty.
+double CappedChi2(const std::vector<double>& e, double sigma, const std::vector<double>& blur_sigma = {}) {
+  double sum = 0;
+  for (size_t i = 0; i < e.size(); ++i) {
+    const double b = i < blur_sigma.size() ? blur_sigma[i] : 0.0;
+    const double var = sigma * sigma + b * b;
+    sum += std::isfinite(e[i]) ? std::min(e[i] * e[i] / var, 9.0) : 9.0;
+  }
+  return sum;
+}
+
 Chi2Pair CappedChi2Pair(const std::vector<double>& e_general, const std::vector<double>& e_simpler,
                         double noise_floor, const std::vector<double>& blur_sigma) {
   Chi2Pair c;
-  c.sigma = std::max(Median(e_general, 0.0) / 1.1774, noise_floor);
-  auto chi2 = [&](const std::vector<double>& e) {
-    double sum = 0;
-    for (size_t i = 0; i < e.size(); ++i) {
-      const double b = i < blur_sigma.size() ? blur_sigma[i] : 0.0;
-      const double var = c.sigma * c.sigma + b * b;
-      sum += std::isfinite(e[i]) ? std::min(e[i] * e[i] / var, 9.0) : 9.0;
-    }
-    return sum;
-  };
-  c.general = chi2(e_general);
-  c.simpler = chi2(e_simpler);
+  c.sigma = SigmaOf(e_general, noise_floor);
+  c.general = CappedChi2(e_general, c.sigma, blur_sigma);
+  c.simpler = CappedChi2(e_simpler, c.sigma, blur_sigma);
   return c;
 }
 
@@ -134,12 +142,8 @@ int ChooseFocalCandidate(const std::vector<double>& e_constant,
   for (const auto& e : e_candidates)
     for (double v : e)
       if (std::isfinite(v)) finite.push_back(v);
-  const double sigma = std::max(Median(finite, 0.0) / 1.1774, noise_floor);
-  auto chi2 = [&](const std::vector<double>& e) {
-    double sum = 0;
-    for (double v : e) sum += std::isfinite(v) ? std::min(v * v / (sigma * sigma), 9.0) : 9.0;
-    return sum;
-  };
+  const double sigma = SigmaOf(finite, noise_floor);
+  auto chi2 = [&](const std::vector<double>& e) { return CappedChi2(e, sigma); };
   int best = -1;
   double best_chi2 = 0;
   for (size_t c = 0; c < e_candidates.size(); ++c) {

@@ -447,8 +447,9 @@ struct FeatureTracker::Impl {
     bool had_tracks = !prev_points.empty();
     const size_t before = prev_points.size();
     Track(pyramid, size, &points, &ids, &from);
-    std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id
-    for (size_t i = 0; i < points.size(); ++i) moved.emplace(ids[i], points[i] - from[i]);
+    std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id (klt_predict)
+    if (options.klt_predict)
+      for (size_t i = 0; i < points.size(); ++i) moved.emplace(ids[i], points[i] - from[i]);
     size_t survived = points.size();
     std::vector<float> klt_disp;  // for the transition-run statistics
     if (decision.transition)
@@ -565,13 +566,15 @@ struct FeatureTracker::Impl {
     spare_pyramid = std::move(prev_pyramid);
     prev_pyramid = std::move(pyramid);
     prev_size = size;
-    prev_velocity.assign(ids.size(), cv::Point2f(kNoMotion, kNoMotion));
-    for (size_t i = 0; i < ids.size(); ++i) {
-      const auto it = moved.find(ids[i]);
-      if (it != moved.end()) prev_velocity[i] = it->second;
+    if (options.klt_predict) {
+      prev_velocity.assign(ids.size(), cv::Point2f(kNoMotion, kNoMotion));
+      for (size_t i = 0; i < ids.size(); ++i) {
+        const auto it = moved.find(ids[i]);
+        if (it != moved.end()) prev_velocity[i] = it->second;
+      }
+      motion_before = motion_last;
+      motion_last = MedianMotion(prev_velocity);
     }
-    motion_before = motion_last;
-    motion_last = MedianMotion(prev_velocity);
     prev_points = std::move(points);
     prev_ids = std::move(ids);
     return out;
