@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <iostream>
+#include <limits>
 
 #include "core/rotation.h"
 #include "estimate/test_scene.h"
@@ -644,6 +645,13 @@ TEST(TrackEstimatorOptions, CheckRejectsBadValues) {
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.spread_points_factor = 0.5;
+  EXPECT_THROW(o.Check(), UsageError);
+  o = {};
+  o.blur_noise_per_speed = -0.01;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.blur_noise_per_speed = 1.5;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.blur_noise_per_speed = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(o.Check(), UsageError);
   o = {};
   o.window_lead_in_frames = -1;
