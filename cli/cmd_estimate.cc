@@ -124,6 +124,11 @@ int RunEstimate(int argc, char** argv) {
                "keep the two-view labels: no window-level BIC test of a few translating (or "
                "zooming) intervals, nor of zoom intervals among translating ones "
                "(docs/estimate.md, step 4)");
+  bool no_plane_prior = false;
+  app.add_flag("--no-plane-prior", no_plane_prior,
+               "a dolly with a zoom along the optical axis keeps the depths its fit started from "
+               "(the farthest points at infinity) instead of those that make a floor or wall "
+               "parallel to the move (docs/estimate.md, step 4)");
   app.add_option("--blur-noise", opt.estimator.blur_noise_per_speed,
                  "those window-level tests count tracking noise growing with the image speed "
                  "(motion blur): px of noise per px/frame of motion, added in quadrature "
@@ -186,6 +191,7 @@ int RunEstimate(int argc, char** argv) {
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;
     if (no_freedom_test) opt.estimator.freedom_test = false;
+    if (no_plane_prior) opt.estimator.motion_plane_prior = false;
     if (no_klt_predict) opt.tracker.klt_predict = false;
     opt.Check();
     const std::filesystem::path out_path(output);

@@ -16,6 +16,7 @@
 // distant points at infinity, the smallest zoom the tracks allow.
 
 #include <Eigen/Core>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -42,5 +43,40 @@ double RadialScalePercentile(const std::vector<std::pair<Eigen::Vector2d, Eigen:
 std::vector<BaCamera> MirroredAxialBranch(
     const std::vector<BaCamera>& cams, int pivot,
     const std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>>& matches);
+
+// Points (x, y, w) in `cam`: normalised image coordinates and inverse depth
+// (0 at infinity) of the points with `used[i]`, those in front of it only.
+std::vector<Eigen::Vector3d> InverseDepthsIn(const BaCamera& cam, const std::vector<BaPoint>& points,
+                                             const std::vector<char>& used);
+
+// The solution moved along the ambiguity by `delta`: every inverse depth in
+// the pivot camera becomes w + delta, i.e. the projective map X' = X / (1 +
+// delta Z) of the pivot's frame. A camera at Z = c along the pivot's axis
+// goes to c / (1 + delta c), its focal to f / (1 + delta c): the tracks are
+// the same for a move exactly along the axis (otherwise to first order; a
+// solve polishes). Nothing when a camera would pass to or behind the plane
+// Z = -1/delta, or a fixed camera is not at the pivot's centre (the move
+// before the pivot already pins the depths).
+std::optional<std::vector<BaCamera>> ShiftedAxialSolution(const std::vector<BaCamera>& cams, int pivot,
+                                                          double delta);
+
+// The points under the same map (pivot: the camera of `cams` before the
+// shift); each anchor moves with the map, so it stays its camera's centre.
+std::vector<BaPoint> ShiftedAxialPoints(const BaCamera& pivot, double delta, const std::vector<BaPoint>& points);
+
+// Where the window moves along the pivot's optical axis and the points
+// `xyw` (InverseDepthsIn the pivot camera) show a sloped plane
+// (motion_plane.h): the shift that makes that plane contain the direction of
+// motion, as a floor under a dolly does. Nothing without such a plane, or
+// when the shift would put points beyond infinity (the plane is not parallel
+// to the move).
+struct PlaneShift {
+  double delta = 0;                                 // inverse depth shift in the pivot camera
+  Eigen::Vector3d plane = Eigen::Vector3d::Zero();  // w = plane . (x, y, 1) before the shift
+  int inliers = 0, points = 0;
+  double min_w = 0, max_w = 0;                      // smallest and largest inverse depth before the shift
+};
+std::optional<PlaneShift> ShiftForMotionPlane(const std::vector<BaCamera>& cams, int pivot,
+                                              const std::vector<Eigen::Vector3d>& xyw);
 
 }  // namespace hapcine

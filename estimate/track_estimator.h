@@ -87,6 +87,10 @@ struct TrackEstimatorOptions {
   // Those tests' noise grows with the image speed (motion blur,
   // window_freedoms.h BlurSigmas): sigma^2 + (this * px per frame)^2.
   double blur_noise_per_speed = 0.04;
+  // A dolly with a zoom along the optical axis: the depths the images leave
+  // open (axial_ambiguity.h) are those that put a sloped plane among the
+  // points (the floor, a wall) parallel to the move (motion_plane.h).
+  bool motion_plane_prior = true;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   void Check() const;                // throws UsageError
@@ -101,6 +105,7 @@ struct WindowReport {
   bool focal_observable = false;
   bool zoom_by_bic = false;          // general segments were upgraded to general+zoom
   bool labels_revised = false;       // re-run with the labels the window-level tests revised (window_freedoms.h)
+  bool plane_prior = false;          // depths shifted to put a floor or wall parallel to an axial move (plane_prior.h)
 };
 
 class TrackCameraEstimator {
@@ -165,6 +170,11 @@ class TrackCameraEstimator {
   // Occlusion-order votes of candidate reconstructions of the current window
   // (track_estimator_occlusion.cc).
   std::vector<OcclusionVotes> OcclusionVotesOf(const std::vector<const std::vector<BaCamera>*>& candidates) const;
+  // The plane prior of an axial dolly/zoom window (plane_prior.h) on its
+  // solution, pivot `held` (track_estimator_plane.cc). `taken`: it applied.
+  void ApplyPlanePriorToWindow(const BaOptions& ba, int held, int first_frame, std::vector<BaCamera>* cams,
+                               std::vector<BaPoint>* pts, const std::vector<BaObservation>& obs,
+                               BaSummary* summary, bool* taken) const;
   // Tracks of the current window between two depth layers under `cams`
   // (depth_layers.h), among all tracks but `excluded` (track_estimator_depth_layers.cc).
   std::set<long> TracksBetweenLayersOf(const std::vector<BaCamera>& cams, const std::set<long>& excluded) const;

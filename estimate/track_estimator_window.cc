@@ -459,6 +459,14 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   if (summary.success && (branch_by_occlusion || !(has_translation && IsAxialMotion(cams, held))))
     drop_bad_tracks(&cams, &pts, obs, &ob, &summary);
   LogStage("window: track rejection");
+  // Along the axis the fit leaves every inverse depth open by one shift
+  // (axial_ambiguity.h) unless the lead-in's own move pins the depths: take
+  // the shift that makes a floor or wall parallel to the move. After every
+  // other polish: the focal smoothness prior, the only term that is not flat
+  // along the shift, would pull the solve back towards where it started.
+  if (summary.success && report.zoom_by_bic && !scale_pinned && options_.motion_plane_prior &&
+      IsAxialMotion(cams, held))
+    ApplyPlanePriorToWindow(ba, held, report.first_frame, &cams, &pts, ob, &summary, &report.plane_prior);
   if (summary.success) {
     if (recalibrate_lead_in) {
       const double shift = cams[0].log_focal - lead_in_log_focal;

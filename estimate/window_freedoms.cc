@@ -159,4 +159,9 @@ int ChooseFocalCandidate(const std::vector<double>& e_constant,
   return bic1 < bic0 || (!ruled_out.empty() && ruled_out[0]) ? best : -1;
 }
 
+bool FitsAsWell(const std::vector<double>& e_reference, const std::vector<double>& e_candidate, double noise_floor) {
+  const Chi2Pair c = CappedChi2Pair(e_reference, e_candidate, noise_floor, {});
+  return c.simpler <= c.general + BicPenalty(1, e_reference.size());
+}
+
 }  // namespace hapcine

@@ -105,4 +105,10 @@ int ChooseFocalCandidate(const std::vector<double>& e_constant,
                          const std::vector<std::vector<double>>& e_candidates,
                          const std::vector<char>& ruled_out, int extra_parameters, double noise_floor);
 
+// A candidate that moved along a direction the images leave open (a prior
+// chose it) must fit about as well as the solve it came from: its capped
+// chi2 (sigma from the reference's errors) at most one parameter's BIC
+// penalty above the reference's. Otherwise the data disagree with the prior.
+bool FitsAsWell(const std::vector<double>& e_reference, const std::vector<double>& e_candidate, double noise_floor);
+
 }  // namespace hapcine

@@ -1,0 +1,51 @@
+#pragma once
+// The prior that picks a depth for a dolly with a zoom along the optical
+// axis, where the images leave every inverse depth open by one shift
+// (axial_ambiguity.h): the shift that makes a sloped plane among the points,
+// the floor under the dolly or a wall beside it (motion_plane.h), parallel to
+// the move. docs/estimate.md, "Algorithm", step 4.
+
+#include <functional>
+#include <vector>
+
+#include "estimate/axial_ambiguity.h"
+#include "estimate/bundle_adjustment.h"
+
+namespace hapcine {
+
+struct PlanePriorOptions {
+  int max_rounds = 4;             // shift and polish, until the shift is negligible
+  double negligible_share = 0.01; // of the points' largest inverse depth
+};
+
+struct PlanePriorResult {
+  bool found = false;  // a sloped plane, and a shift that keeps every point in front
+  bool taken = false;  // the shifted solution fits as well (FitsAsWell) and replaced the input
+  int rounds = 0;
+  PlaneShift shift;                // the first round's
+  double total_delta_over_w = 0;   // the rounds' shifts, each over its points' largest w
+  double log_zoom_before = 0, log_zoom_after = 0;  // log f of the last camera over the pivot's
+  double rms_before = 0, rms_after = 0;            // normalised units, the solve's own observations
+};
+
+// Points (x, y, w) in the pivot camera (InverseDepthsIn) of the solution
+// `cams`, the plane is searched among.
+using PlanePointsFn = std::function<std::vector<Eigen::Vector3d>(const std::vector<BaCamera>& cams)>;
+
+// Moves a solved window whose cameras after `pivot` translate along its
+// optical axis along the ambiguity (cameras and points, ShiftedAxialSolution
+// and ShiftedAxialPoints), then polishes it with every focal held: the map is
+// exact only for a move exactly along the axis (a lateral drift of the
+// centres by 1/2000 of the move costs ~0.1 px), and every term of the fit is
+// flat along the shift, so a polish free to move the focals wanders along it
+// to take up that inexactness (9 % of zoom in a unit test; the focal
+// smoothness prior, the only term not flat, pulls back to where the solve
+// started). Held, rotations and centres take it up. Repeated on the polished
+// solution until the shift is negligible. The result replaces the input only
+// when it fits as well (FitsAsWell).
+PlanePriorResult ApplyPlanePrior(const BaOptions& options, int pivot, double noise_floor,
+                                 const PlanePointsFn& plane_points, std::vector<BaCamera>* cameras,
+                                 std::vector<BaPoint>* points, const std::vector<BaObservation>& observations,
+                                 BaSummary* summary, const PlanePriorOptions& prior = {});
+
+}  // namespace hapcine
