@@ -58,4 +58,12 @@ PlanePriorResult ApplyPlanePrior(const BaOptions& options, int pivot, double noi
   return r;
 }
 
+std::vector<char> ContradictedByPlane(const std::vector<int>& support, int min_support) {
+  std::vector<char> out(support.size(), 0);
+  const int best = support.empty() ? 0 : *std::max_element(support.begin(), support.end());
+  if (best < min_support) return out;
+  for (size_t c = 0; c < support.size(); ++c) out[c] = 2 * support[c] < best;
+  return out;
+}
+
 }  // namespace hapcine

@@ -48,4 +48,14 @@ PlanePriorResult ApplyPlanePrior(const BaOptions& options, int pivot, double noi
                                  std::vector<BaPoint>* points, const std::vector<BaObservation>& observations,
                                  BaSummary* summary, const PlanePriorOptions& prior = {});
 
+// The branch of the axial ambiguity a floor decides. `support[c]`: the
+// points of the plane the prior would use under candidate c (0: none). On
+// the wrong branch the depth order is flipped: a floor's inverse depth falls
+// towards the bottom of the image, and no shift makes it parallel to the
+// move without putting its own points beyond infinity, so that candidate
+// has no such plane. Ruled out: the candidates with under a quarter of the
+// best support, when the best has at least `min_support` points; otherwise
+// none (no evidence).
+std::vector<char> ContradictedByPlane(const std::vector<int>& support, int min_support = 24);
+
 }  // namespace hapcine

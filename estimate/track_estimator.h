@@ -32,6 +32,7 @@
 #include "estimate/model_selection.h"
 #include "estimate/motion_model.h"
 #include "estimate/occlusion_order.h"
+#include "estimate/plane_prior.h"
 #include "extract/tracks.h"
 
 namespace hapcine {
@@ -175,6 +176,13 @@ class TrackCameraEstimator {
   void ApplyPlanePriorToWindow(const BaOptions& ba, int held, int first_frame, std::vector<BaCamera>* cams,
                                std::vector<BaPoint>* pts, const std::vector<BaObservation>& obs,
                                BaSummary* summary, bool* taken) const;
+  // The points the plane prior searches a floor among, under a solution of
+  // the current window (track_estimator_plane.cc).
+  PlanePointsFn PlanePointsOf(const BaOptions& ba, int held) const;
+  // Points of the plane prior's support under each candidate reconstruction
+  // of the current window (0: no plane parallel to the move).
+  std::vector<int> PlaneSupportOf(const BaOptions& ba, int held,
+                                  const std::vector<const std::vector<BaCamera>*>& candidates) const;
   // Tracks of the current window between two depth layers under `cams`
   // (depth_layers.h), among all tracks but `excluded` (track_estimator_depth_layers.cc).
   std::set<long> TracksBetweenLayersOf(const std::vector<BaCamera>& cams, const std::set<long>& excluded) const;

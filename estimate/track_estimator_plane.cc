@@ -19,10 +19,7 @@ constexpr int kMaxPlanePoints = 2000;
 
 }  // namespace
 
-void TrackCameraEstimator::ApplyPlanePriorToWindow(const BaOptions& ba, int held, int first_frame,
-                                                   std::vector<BaCamera>* cams, std::vector<BaPoint>* pts,
-                                                   const std::vector<BaObservation>& obs, BaSummary* summary,
-                                                   bool* taken) const {
+PlanePointsFn TrackCameraEstimator::PlanePointsOf(const BaOptions& ba, int held) const {
   const int n = static_cast<int>(keyframes_.size());
   std::vector<const KeyframeTracks*> tracks_at(n);
   for (int i = 0; i < n; ++i) tracks_at[i] = &At(keyframes_[i].pos).u;
@@ -31,18 +28,48 @@ void TrackCameraEstimator::ApplyPlanePriorToWindow(const BaOptions& ba, int held
   // its longest tracks, and a floor's leave the view soonest.
   const WindowTracks every_track =
       SelectWindowPoints(tracks_at, outlier_tracks_, kMaxPlanePoints, options_.point_grid_cells);
-  auto plane_points = [&](const std::vector<BaCamera>& c) {
+  const double cut = 1.5 * ba.huber_scale;
+  return [=](const std::vector<BaCamera>& c) {
     std::vector<BaPoint> p;
     std::vector<BaObservation> o;
     InitWindowPoints(c, every_track, tracks_at, true, 0.0, &p, &o);
     std::vector<char> rigid(p.size(), 1);
     const std::vector<double> e = ObservationErrors(c, p, o, true);
     for (size_t i = 0; i < o.size(); ++i)
-      if (!(e[i] <= 1.5 * ba.huber_scale)) rigid[o[i].point] = 0;
+      if (!(e[i] <= cut)) rigid[o[i].point] = 0;
     return InverseDepthsIn(c[held], p, rigid);
   };
+}
+
+std::vector<int> TrackCameraEstimator::PlaneSupportOf(
+    const BaOptions& ba, int held, const std::vector<const std::vector<BaCamera>*>& candidates) const {
+  const PlanePointsFn plane_points = PlanePointsOf(ba, held);
+  std::vector<int> support;
+  for (const auto* c : candidates) {
+    const std::optional<PlaneShift> s = ShiftForMotionPlane(*c, held, plane_points(*c));
+    support.push_back(s ? s->inliers : 0);
+    if (std::getenv("HAPCINE_PLANE_DEBUG")) {
+      const BaCamera& a = (*c)[held];
+      const BaCamera& b = c->back();
+      std::fprintf(stderr, "candidate: forward %.4f zoom %.4f plane %s delta %.4f\n",
+                   (a.world_from_cam.conjugate() * (b.center - a.center)).z(), std::exp(b.log_focal - a.log_focal),
+                   s ? "yes" : "no", s ? s->delta : 0.0);
+    }
+  }
+  if (std::getenv("HAPCINE_PLANE_DEBUG")) {
+    std::fprintf(stderr, "plane_support frame %d:", At(keyframes_.front().pos).tracks.index);
+    for (int s : support) std::fprintf(stderr, " %d", s);
+    std::fprintf(stderr, "\n");
+  }
+  return support;
+}
+
+void TrackCameraEstimator::ApplyPlanePriorToWindow(const BaOptions& ba, int held, int first_frame,
+                                                   std::vector<BaCamera>* cams, std::vector<BaPoint>* pts,
+                                                   const std::vector<BaObservation>& obs, BaSummary* summary,
+                                                   bool* taken) const {
   const PlanePriorResult r =
-      ApplyPlanePrior(ba, held, options_.two_view.noise_floor, plane_points, cams, pts, obs, summary);
+      ApplyPlanePrior(ba, held, options_.two_view.noise_floor, PlanePointsOf(ba, held), cams, pts, obs, summary);
   *taken = r.taken;
   if (!std::getenv("HAPCINE_PLANE_DEBUG")) return;
   if (!r.found) {
