@@ -34,8 +34,8 @@ PlanePriorResult ApplyPlanePrior(const BaOptions& options, int pivot, double noi
     // the polish meets it partly by undoing the shift (both are free).
     if (polish.scale_a >= 0 && polish.scale_b < n)
       polish.scale_distance = (cams[polish.scale_b].center - cams[polish.scale_a].center).norm();
-    // Focals held (see the header).
-    for (BaCamera& c : cams) c.fixed_focal = true;
+    // The two ends' focals held (see the header).
+    cams[pivot].fixed_focal = cams[n - 1].fixed_focal = true;
     PolishBundle(polish, &cams, &pts, observations, &s);
     for (size_t i = 0; i < cams.size(); ++i) cams[i].fixed_focal = (*cameras)[i].fixed_focal;
     r.found = true;
