@@ -159,16 +159,36 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
                                    chart.height_px - 18}, font, 0.5, black, 1, cv::LINE_AA);
   cv::putText(img, chart.y_label, {8, top - 10}, font, 0.5, black, 1, cv::LINE_AA);
 
-  int legend_y = top + 10;
-  for (const auto& s : chart.series) {
-    const cv::Scalar color = Palette(s.color_index);
-    std::vector<cv::Point> pts;
+  // Every series' points first, so that labels avoid each other across series.
+  std::vector<std::vector<cv::Point>> points(chart.series.size());
+  std::vector<cv::Point> label_anchor;
+  std::vector<cv::Size> label_size;
+  std::vector<std::pair<size_t, size_t>> label_of;  // (series, point index in the series)
+  for (size_t k = 0; k < chart.series.size(); ++k) {
+    const ScatterSeries& s = chart.series[k];
     for (size_t i = 0; i < s.x.size(); ++i) {
       if (!Usable(s.x[i], chart.log_x) || !Usable(s.y[i], chart.log_y)) continue;
-      pts.push_back(to_px(s.x[i], s.y[i]));
-      if (i < s.labels.size() && !s.labels[i].empty())
-        cv::putText(img, s.labels[i], pts.back() + cv::Point(8, -6), font, 0.38, color, 1, cv::LINE_AA);
+      points[k].push_back(to_px(s.x[i], s.y[i]));
+      if (i < s.labels.size() && !s.labels[i].empty()) {
+        label_anchor.push_back(points[k].back());
+        label_size.push_back(cv::getTextSize(s.labels[i], font, 0.38, 1, nullptr));
+        label_of.push_back({k, i});
+      }
     }
+  }
+  const std::vector<cv::Rect> boxes =
+      PlaceLabels(label_anchor, label_size, cv::Rect(0, 0, area.x + area.width + 10, chart.height_px));
+  for (size_t j = 0; j < boxes.size(); ++j) {
+    const ScatterSeries& s = chart.series[label_of[j].first];
+    cv::putText(img, s.labels[label_of[j].second], {boxes[j].x, boxes[j].y + boxes[j].height}, font, 0.38,
+                Palette(s.color_index), 1, cv::LINE_AA);
+  }
+
+  int legend_y = top + 10;
+  for (size_t k = 0; k < chart.series.size(); ++k) {
+    const ScatterSeries& s = chart.series[k];
+    const cv::Scalar color = Palette(s.color_index);
+    const std::vector<cv::Point>& pts = points[k];
     if (s.line && pts.size() > 1) cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
     for (const auto& p : pts) DrawMarker(img, p, s.marker, color);
     if (!s.name.empty() && !pts.empty()) {  // no legend entry for a series with nothing drawn
@@ -180,6 +200,41 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
     }
   }
   return img;
+}
+
+std::vector<cv::Rect> PlaceLabels(const std::vector<cv::Point>& anchors, const std::vector<cv::Size>& sizes,
+                                  const cv::Rect& bounds) {
+  std::vector<cv::Rect> placed;
+  auto free_at = [&](const cv::Rect& r) {
+    if ((r & bounds) != r) return false;
+    for (const cv::Rect& q : placed)
+      if ((r & q).area() > 0) return false;
+    for (const cv::Point& p : anchors)  // the markers (radius ~5 px)
+      if ((r & cv::Rect(p.x - 5, p.y - 5, 11, 11)).area() > 0) return false;
+    return true;
+  };
+  for (size_t i = 0; i < anchors.size() && i < sizes.size(); ++i) {
+    const cv::Point a = anchors[i];
+    const cv::Size sz = sizes[i];
+    // Baseline 6 px above the point (upper) or the text's top 6 px below it
+    // (lower); then stacked further up or down, one line at a time.
+    std::vector<cv::Rect> options;
+    for (int row = 0; row < 4; ++row) {
+      const int up = a.y - 6 - sz.height - row * (sz.height + 4), down = a.y + 6 + row * (sz.height + 4);
+      for (int x : {a.x + 8, a.x - 8 - sz.width}) {
+        options.emplace_back(x, up, sz.width, sz.height);
+        options.emplace_back(x, down, sz.width, sz.height);
+      }
+    }
+    cv::Rect chosen = options[0];
+    for (const cv::Rect& r : options)
+      if (free_at(r)) {
+        chosen = r;
+        break;
+      }
+    placed.push_back(chosen);
+  }
+  return placed;
 }
 
 void WriteScatterPng(const ScatterChart& chart, const std::string& file) {

@@ -34,6 +34,15 @@ cv::Mat RenderScatter(const ScatterChart& chart);  // CV_8UC3
 // Atomic PNG write (temporary name, then rename); throws hapcine::Error.
 void WriteScatterPng(const ScatterChart& chart, const std::string& file);
 
+// Where each point's label goes: the box (text of `sizes[i]`) to the upper
+// right of `anchors[i]`, else the first of lower right, upper left, lower
+// left, then the same one to three lines further out, that overlaps no box
+// placed before it nor a point and stays inside `bounds`; when none does,
+// the upper right. Points close together (two settings with the same error)
+// would otherwise print over each other.
+std::vector<cv::Rect> PlaceLabels(const std::vector<cv::Point>& anchors, const std::vector<cv::Size>& sizes,
+                                  const cv::Rect& bounds);
+
 // Tick positions for [lo, hi]: 1-2-5 steps on a linear axis, 1-2-5 per
 // decade on a log axis (values, not logs).
 std::vector<double> AxisTicks(double lo, double hi, bool log);
