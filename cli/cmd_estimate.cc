@@ -128,7 +128,8 @@ int RunEstimate(int argc, char** argv) {
   app.add_flag("--no-plane-prior", no_plane_prior,
                "a dolly with a zoom along the optical axis keeps the depths its fit started from "
                "(the farthest points at infinity) instead of those that make a floor or wall "
-               "parallel to the move (docs/estimate.md, step 4)");
+               "parallel to the move, and the floor does not help choose between a forward and a "
+               "backward move (docs/estimate.md, step 4)");
   app.add_option("--blur-noise", opt.estimator.blur_noise_per_speed,
                  "those window-level tests count tracking noise growing with the image speed "
                  "(motion blur): px of noise per px/frame of motion, added in quadrature "
