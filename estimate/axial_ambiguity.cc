@@ -10,17 +10,23 @@ namespace {
 
 constexpr double kFarPercentile = 0.1;
 
-}  // namespace
-
-bool IsAxialMotion(const std::vector<BaCamera>& cams, int pivot, double min_axial_share) {
-  if (pivot < 0 || pivot + 1 >= static_cast<int>(cams.size())) return false;
+// The move from the pivot's centre to the centre farthest from it among the
+// cameras after it, in the pivot camera's frame (zero when none moves).
+Eigen::Vector3d FarthestMoveInPivot(const std::vector<BaCamera>& cams, int pivot) {
   const BaCamera& p = cams[pivot];
   Eigen::Vector3d far = Eigen::Vector3d::Zero();
   for (size_t k = pivot + 1; k < cams.size(); ++k)
     if ((cams[k].center - p.center).norm() > far.norm()) far = cams[k].center - p.center;
-  const double len = far.norm();
+  return p.world_from_cam.conjugate() * far;
+}
+
+}  // namespace
+
+bool IsAxialMotion(const std::vector<BaCamera>& cams, int pivot, double min_axial_share) {
+  if (pivot < 0 || pivot + 1 >= static_cast<int>(cams.size())) return false;
+  const Eigen::Vector3d in_cam = FarthestMoveInPivot(cams, pivot);
+  const double len = in_cam.norm();
   if (!(len > 1e-12)) return false;
-  const Eigen::Vector3d in_cam = p.world_from_cam.conjugate() * far;
   return std::abs(in_cam.z()) >= min_axial_share * len;
 }
 
@@ -117,11 +123,7 @@ std::vector<BaPoint> ShiftedAxialPoints(const BaCamera& pivot, double delta, con
 std::optional<PlaneShift> ShiftForMotionPlane(const std::vector<BaCamera>& cams, int pivot,
                                               const std::vector<Eigen::Vector3d>& xyw) {
   if (!IsAxialMotion(cams, pivot)) return std::nullopt;
-  const BaCamera& p = cams[pivot];
-  Eigen::Vector3d far = Eigen::Vector3d::Zero();
-  for (size_t k = pivot + 1; k < cams.size(); ++k)
-    if ((cams[k].center - p.center).norm() > far.norm()) far = cams[k].center - p.center;
-  const Eigen::Vector3d m = (p.world_from_cam.conjugate() * far).normalized();
+  const Eigen::Vector3d m = FarthestMoveInPivot(cams, pivot).normalized();
   if (xyw.empty()) return std::nullopt;
   PlaneShift s;
   s.points = static_cast<int>(xyw.size());

@@ -73,7 +73,8 @@ std::optional<InverseDepthPlane> FindSlopedPlane(const std::vector<Eigen::Vector
     for (int i : in) w.push_back(xyw[i].z());
     std::sort(w.begin(), w.end());
     const double span = w.back() - w.front();
-    if (WRange(xyw, in) < options.min_slope_share * range) return false;
+    auto sorted_quantile = [&](double q) { return w[std::min(w.size() - 1, static_cast<size_t>(q * w.size()))]; };
+    if (sorted_quantile(0.98) - sorted_quantile(0.02) < options.min_slope_share * range) return false;
     for (size_t i = 1; i < w.size(); ++i)
       if (w[i] - w[i - 1] > options.max_gap_share * span) return false;
     return true;

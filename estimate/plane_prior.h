@@ -56,9 +56,10 @@ PlanePriorResult ApplyPlanePrior(const BaOptions& options, int pivot, double noi
 // the wrong branch the depth order is flipped: a floor's inverse depth falls
 // towards the bottom of the image, and no shift makes it parallel to the
 // move without putting its own points beyond infinity, so that candidate
-// has no such plane. Ruled out: the candidates with under a quarter of the
-// best support, when the best has at least `min_support` points; otherwise
-// none (no evidence).
+// has no such plane. Ruled out: the candidates with under half of the best
+// support (a slab through a cluster can give the wrong branch a few points),
+// when the best has at least `min_support` points; otherwise none (no
+// evidence).
 std::vector<char> ContradictedByPlane(const std::vector<int>& support, int min_support = 24);
 
 }  // namespace hapcine
