@@ -153,6 +153,10 @@ int RunEstimate(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--threads", opt.estimator.num_threads, "Ceres solver threads")
       ->capture_default_str();
+  app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
+               "decode only the frames others are predicted from (about half of H.264/HEVC "
+               "with B-frames): faster; the skipped frames' poses are interpolated between "
+               "their neighbours' (docs/estimate.md \"Speed\")");
   app.add_option("--decode-threads", opt.frames.decode_threads,
                  "FFmpeg decoder threads (0 = FFmpeg's choice); decoding runs beside tracking")
       ->capture_default_str();

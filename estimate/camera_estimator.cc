@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "estimate/skipped_frames.h"
 #include "estimate/stage_timing.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
@@ -19,6 +20,8 @@ void EstimatorOptions::Check() const {
   tracker.Check();
   estimator.Check();
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
+  if (backend == "colmap" && frames.skip_nonref_frames)
+    throw UsageError("skipping non-reference frames is for the hapcine backend only");
 }
 
 // Measured on the 17 synthetic clips (docs/estimate.md "Speed"): 0.56x the
@@ -89,12 +92,17 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   FeatureTracker tracker(options.tracker);
   TrackCameraEstimator estimator(info.width, info.height, options.estimator);
   BoundedQueue<FrameTracks> queue(kTrackQueueFrames);
+  std::vector<SkippedFrame> skipped;  // written by the tracking thread, read after join
+  std::vector<int> index_of_position;  // frame index of the estimator's n-th frame
   LogStage("tracking and estimation start");
   std::thread tracking([&] {
     try {
       Frame frame;
-      while (source.Next(&frame))
+      while (source.Next(&frame)) {
+        const int n = static_cast<int>(frame.skipped_before_s.size());
+        for (int k = 0; k < n; ++k) skipped.push_back({frame.index - n + k, frame.skipped_before_s[k]});
         if (!queue.Push(tracker.Process(frame))) return;  // the estimator gave up
+      }
       LogStage("tracking done");
       queue.Finish();
     } catch (...) {
@@ -103,11 +111,13 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   });
   try {
     FrameTracks tracks;
-    long done = 0;
     while (queue.Pop(&tracks)) {
+      // The estimator counts frames by index: it sees the decoded ones as
+      // consecutive, and its output is mapped back below.
+      if (progress) progress(tracks.index + 1, info.frame_count);  // skipped frames count as done
+      index_of_position.push_back(tracks.index);
+      tracks.index = static_cast<int>(index_of_position.size()) - 1;
       estimator.AddFrame(tracks);
-      ++done;
-      if (progress) progress(done, info.frame_count);
     }
   } catch (...) {
     queue.Cancel();
@@ -117,6 +127,8 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   tracking.join();
   LogStage("all frames estimated, last window next");
   CameraPath path = estimator.Finish();
+  for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
+  InsertSkippedFrames(skipped, info.width, &path);
   LogStage("estimation done");
   return path;
 }

@@ -10,8 +10,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <opencv2/core.hpp>
+#include <queue>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "extract/half_gray.h"
@@ -131,6 +134,7 @@ class FfmpegSource : public FrameSource {
     dec_->thread_count = options_.decode_threads;  // 0 = automatic
     dec_->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
     if (options_.skip_loop_filter) dec_->skip_loop_filter = AVDISCARD_ALL;
+    if (options_.skip_nonref_frames) dec_->skip_frame = AVDISCARD_NONREF;
     r = avcodec_open2(dec_, codec, nullptr);
     if (r < 0) throw Error(path, "cannot open " + info_.codec + " decoder (" + AvError(r) + ")");
 
@@ -220,6 +224,7 @@ class FfmpegSource : public FrameSource {
   // complete one when it ends.
   void NoteVideoPacket() {
     ++video_packets_;
+    if (options_.skip_nonref_frames && pkt_->pts != AV_NOPTS_VALUE) unseen_pts_.push(pkt_->pts);
     const int64_t pts = pkt_->pts != AV_NOPTS_VALUE ? pkt_->pts : pkt_->dts;
     if (pts == AV_NOPTS_VALUE) return;
     const int64_t start = fmt_->streams[stream_index_]->start_time;
@@ -267,6 +272,31 @@ class FfmpegSource : public FrameSource {
       std::snprintf(buf, sizeof buf, "truncated: %ld of the %ld frames declared", video_packets_,
                     static_cast<long>(declared_frames));
     throw Error(info_.path, buf);
+  }
+
+  // skip_nonref_frames: every packet read carries a frame's timestamp; the
+  // ones before this frame's that no decoded frame took are the frames the
+  // decoder skipped. Their packets have all been read by now: a decoder
+  // outputs a frame only after the reordering delay, i.e. after every frame
+  // that comes before it in presentation order was sent. Timestamps outside
+  // (previous frame, this frame) (broken files, before the first frame)
+  // are dropped and not counted.
+  void IndexAfterSkipped(double previous_time_s, Frame* out) {
+    out->skipped_before_s.clear();
+    int64_t pts = frame_->best_effort_timestamp;
+    if (pts == AV_NOPTS_VALUE) pts = frame_->pts;
+    if (pts != AV_NOPTS_VALUE && start_pts_ != AV_NOPTS_VALUE) {
+      while (!unseen_pts_.empty() && unseen_pts_.top() < pts) {
+        const double t = (unseen_pts_.top() - start_pts_) * time_base_s_;
+        unseen_pts_.pop();
+        if (decoded_ > 0 && t > previous_time_s && t < out->time_s) {
+          out->skipped_before_s.push_back(t);
+          ++presented_;
+        }
+      }
+      if (!unseen_pts_.empty() && unseen_pts_.top() == pts) unseen_pts_.pop();
+    }
+    out->index = static_cast<int>(presented_++);
   }
 
   double FrameTime() {
@@ -371,8 +401,12 @@ class FfmpegSource : public FrameSource {
       }
       if (info_.rotation_deg != 180) std::swap(dec_w, dec_h);
     }
-    out->index = static_cast<int>(decoded_);
+    const double previous_time_s = last_time_s_;
     out->time_s = FrameTime();
+    if (options_.skip_nonref_frames)
+      IndexAfterSkipped(previous_time_s, out);
+    else
+      out->index = static_cast<int>(decoded_);
     out->gray = gray;
     out->bgr = bgr;
     out->decoded_width = dec_w;
@@ -404,6 +438,10 @@ class FfmpegSource : public FrameSource {
   int64_t start_pts_ = AV_NOPTS_VALUE;
   double last_time_s_ = 0;
   long decoded_ = 0;
+  long presented_ = 0;  // skip_nonref_frames: frames decoded or skipped so far
+  // skip_nonref_frames: timestamps of the packets read, not yet matched to
+  // a decoded frame, smallest first.
+  std::priority_queue<int64_t, std::vector<int64_t>, std::greater<int64_t>> unseen_pts_;
   long bad_packets_ = 0;
   long video_packets_ = 0;  // read from the demuxer
   double read_end_s_ = 0;   // end of the latest video packet read, from the stream start

@@ -6,6 +6,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace hapcine {
 
@@ -37,6 +38,10 @@ struct Frame {
   //   p_decoded = (p_working + 0.5) / scale_axis - 0.5
   int decoded_width = 0;
   int decoded_height = 0;
+  // With FrameSourceOptions::skip_nonref_frames: the presentation times of
+  // the frames the decoder skipped just before this one, in order (their
+  // indices are index - size() .. index - 1). Empty otherwise.
+  std::vector<double> skipped_before_s;
 };
 
 struct FrameSourceOptions {
@@ -52,6 +57,12 @@ struct FrameSourceOptions {
   // gets cheaper, the picture gets slightly blockier, and drifts from the
   // encoder's references until the next keyframe. For analysis only.
   bool skip_loop_filter = false;
+  // Decode only the frames other frames are predicted from (FFmpeg's
+  // skip_frame = AVDISCARD_NONREF): about half the frames of H.264/HEVC with
+  // B-frames are never decoded. Frame::index still counts every frame in
+  // presentation order (from the packets' timestamps) and
+  // Frame::skipped_before_s lists the skipped ones' times. For speed only.
+  bool skip_nonref_frames = false;
   int decode_threads = 0;  // 0 = FFmpeg's choice (all cores)
   // Image sequences carry no timestamps: frame i is at time i / this rate.
   double image_sequence_fps = 24;
