@@ -132,6 +132,27 @@ TEST(HomographyEstimator, ExactWithOutliersAndScaledCoordinates) {
   }
 }
 
+TEST(HomographyEstimator, ExactFromMinimalSampleAtAnyScale) {
+  // Four points: the 8 x 9 DLT system's null vector (QR, not SVD) is the
+  // homography itself, to round-off, in pixel and in normalised units.
+  Eigen::Matrix3d H;
+  H << 0.9, -0.1, 35, 0.08, 1.05, -12, -2e-4, 1e-4, 1;
+  H /= H.norm();
+  for (double scale : {1e-3, 1.0, 1e4}) {
+    std::vector<Eigen::Vector2d> x1 = {{10, 20}, {900, 40}, {850, 700}, {30, 650}}, x2;
+    for (auto& p : x1) {
+      p *= scale;
+      Eigen::Matrix3d S = Eigen::Vector3d(scale, scale, 1).asDiagonal();
+      x2.push_back((S * H * S.inverse() * p.homogeneous()).hnormalized());
+    }
+    const auto m = HomographyEstimator::Estimate(x1, x2);
+    ASSERT_EQ(m.size(), 1u) << scale;
+    std::vector<double> r;
+    HomographyEstimator::Residuals(x1, x2, m[0], &r);
+    for (double v : r) EXPECT_LT(std::sqrt(v), 1e-9 * scale) << scale;
+  }
+}
+
 TEST(HomographyEstimator, CollinearPointsGiveNoModel) {
   const std::vector<Eigen::Vector2d> x = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
   EXPECT_TRUE(HomographyEstimator::Estimate(x, x).empty());
