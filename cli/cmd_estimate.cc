@@ -73,10 +73,13 @@ int RunEstimate(int argc, char** argv) {
       argv[0]};
   std::string video, output;
   EstimatorOptions opt;
-  bool no_smooth = false, quiet = false, fast = false;
-  // The preset goes in first, so options given beside --fast still win.
-  for (int i = 1; i < argc; ++i)
+  bool no_smooth = false, quiet = false, fast = false, draft = false;
+  // The preset goes in first, so options given beside --fast or --draft
+  // still win.
+  for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--fast") ApplyFastPreset(&opt);
+    if (std::string(argv[i]) == "--draft") ApplyDraftPreset(&opt);
+  }
   app.add_option("video", video, "input video (anything FFmpeg reads) or image folder/pattern")
       ->required();
   app.add_option("-o,--output", output, "output camera path (*.camera.csv), written atomically")
@@ -156,13 +159,20 @@ int RunEstimate(int argc, char** argv) {
   app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
                "decode only the frames others are predicted from (about half of H.264/HEVC "
                "with B-frames): faster; the skipped frames' poses are interpolated between "
-               "their neighbours' (docs/estimate.md \"Speed\")");
+               "their neighbours' at lower confidence; fast pans may break into shots "
+               "(docs/estimate.md \"Speed\")");
+  app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,
+               "skip H.264/HEVC deblocking when decoding: ~10 % cheaper decoding, slightly "
+               "blockier analysis images");
   app.add_option("--decode-threads", opt.frames.decode_threads,
                  "FFmpeg decoder threads (0 = FFmpeg's choice); decoding runs beside tracking")
       ->capture_default_str();
   app.add_flag("--fast", fast,
                "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
                    "; options given beside it win");
+  app.add_flag("--draft", draft,
+               "about the decoder's own speed, least accurate (docs/estimate.md \"Speed\"): " +
+                   DraftPresetSummary() + "; options given beside it win");
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
       ->capture_default_str();
   bool no_klt_predict = false;
@@ -185,9 +195,6 @@ int RunEstimate(int argc, char** argv) {
                  "frames back to the reference patch of the appearance check (0: birth)")
       ->group("");
   app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
-      ->group("");
-  app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,
-               "skip H.264 deblocking when decoding")
       ->group("");
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();

@@ -47,6 +47,17 @@ std::string FastPresetSummary() {
   return s.str();
 }
 
+void ApplyDraftPreset(EstimatorOptions* options) {
+  ApplyFastPreset(options);
+  options->frames.skip_nonref_frames = true;
+  options->frames.skip_loop_filter = true;
+}
+
+std::string DraftPresetSummary() {
+  return "--fast, and decode only the frames others are predicted from (the others' poses "
+         "interpolated) without deblocking";
+}
+
 namespace {
 
 // Decoded frames allowed to wait for the tracker: enough to ride out one
@@ -78,6 +89,8 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
     path->metadata["prior_hfov_deg"] = Num(options.estimator.prior_hfov_deg);
     path->metadata["smooth_sigma_frames"] =
         options.estimator.smooth ? Num(options.estimator.smooth_sigma_frames) : "0";
+    // Readers of the path should know its in-between frames were not seen.
+    if (options.frames.skip_nonref_frames) path->metadata["skip_nonref"] = "1";
   }
 }
 
@@ -92,8 +105,12 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   FeatureTracker tracker(options.tracker);
   TrackCameraEstimator estimator(info.width, info.height, options.estimator);
   BoundedQueue<FrameTracks> queue(kTrackQueueFrames);
-  std::vector<SkippedFrame> skipped;  // written by the tracking thread, read after join
-  std::vector<int> index_of_position;  // frame index of the estimator's n-th frame
+  // --skip-nonref: the frames the decoder skipped (written by the tracking
+  // thread, read after it ended), and the frame index of the estimator's
+  // n-th frame: the estimator sees the decoded frames as consecutive.
+  std::vector<SkippedFrame> skipped;
+  std::vector<int> index_of_position;
+  int last_index = -1;
   LogStage("tracking and estimation start");
   std::thread tracking([&] {
     try {
@@ -101,8 +118,10 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
       while (source.Next(&frame)) {
         const int n = static_cast<int>(frame.skipped_before_s.size());
         for (int k = 0; k < n; ++k) skipped.push_back({frame.index - n + k, frame.skipped_before_s[k]});
+        last_index = frame.index;
         if (!queue.Push(tracker.Process(frame))) return;  // the estimator gave up
       }
+      for (double t : source.SkippedAtEnd()) skipped.push_back({++last_index, t});
       LogStage("tracking done");
       queue.Finish();
     } catch (...) {
@@ -112,8 +131,6 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   try {
     FrameTracks tracks;
     while (queue.Pop(&tracks)) {
-      // The estimator counts frames by index: it sees the decoded ones as
-      // consecutive, and its output is mapped back below.
       if (progress) progress(tracks.index + 1, info.frame_count);  // skipped frames count as done
       index_of_position.push_back(tracks.index);
       tracks.index = static_cast<int>(index_of_position.size()) - 1;

@@ -34,6 +34,12 @@ struct EstimatorOptions {
 void ApplyFastPreset(EstimatorOptions* options);
 // One line naming what ApplyFastPreset() changes, for --help.
 std::string FastPresetSummary();
+// The decoding-speed draft (--draft): the fast preset, and the decoder
+// skips the frames nothing is predicted from (their poses are interpolated)
+// and H.264's deblocking. About the decoder's own wall time on 1080p H.264;
+// fast pans and dolly zooms suffer (docs/estimate.md "Speed").
+void ApplyDraftPreset(EstimatorOptions* options);
+std::string DraftPresetSummary();
 
 // Progress: frames done, total frames (0 when unknown).
 using ProgressFn = std::function<void(long done, long total)>;

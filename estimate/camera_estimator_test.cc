@@ -36,6 +36,20 @@ TEST(FastPreset, SummaryNamesTheSettings) {
   EXPECT_NE(s.find("--tracks " + std::to_string(fast.tracker.max_tracks)), std::string::npos) << s;
 }
 
+TEST(DraftPreset, IsTheFastPresetWithTheDecoderSkipping) {
+  EstimatorOptions fast, draft;
+  ApplyFastPreset(&fast);
+  ApplyDraftPreset(&draft);
+  EXPECT_NO_THROW(draft.Check());
+  EXPECT_EQ(draft.frames.max_working_side, fast.frames.max_working_side);
+  EXPECT_EQ(draft.tracker.max_tracks, fast.tracker.max_tracks);
+  EXPECT_TRUE(draft.frames.skip_nonref_frames);
+  EXPECT_TRUE(draft.frames.skip_loop_filter);
+  EXPECT_FALSE(fast.frames.skip_nonref_frames);
+  draft.backend = "colmap";  // COLMAP reads every frame itself
+  EXPECT_THROW(draft.Check(), UsageError);
+}
+
 // A slow pan over a noise texture, 320x180; throws a hapcine::Error instead
 // of frame `fail_at` (if >= 0).
 class PanSource : public FrameSource {
@@ -88,6 +102,60 @@ TEST(EstimateCameraPath, EveryFrameInOrderWithProgressOnTheCallersThread) {
     EXPECT_EQ(path.frames[i].center, path2.frames[i].center) << i;
     EXPECT_EQ(path.frames[i].world_from_cam.coeffs(), path2.frames[i].world_from_cam.coeffs()) << i;
   }
+}
+
+// PanSource as a decoder that skipped every other frame (--skip-nonref):
+// it delivers frames 0, 2, 4, ... with the skipped ones' times attached, and
+// `trailing` more skipped after the last.
+class SkippingPanSource : public FrameSource {
+ public:
+  SkippingPanSource(int count, int trailing) : inner_(count), trailing_(trailing), count_(count) {}
+  const VideoInfo& info() const override { return inner_.info(); }
+  bool Next(Frame* frame) override {
+    Frame f;
+    if (!inner_.Next(&f)) return false;
+    std::vector<double> skipped;
+    if (f.index % 2 == 1) {  // drop it, keep its time for the next one
+      skipped.push_back(f.time_s);
+      if (!inner_.Next(&f)) return false;
+    }
+    *frame = f;
+    frame->skipped_before_s = skipped;
+    return true;
+  }
+  std::vector<double> SkippedAtEnd() const override {
+    std::vector<double> t;
+    for (int k = 0; k < trailing_; ++k) t.push_back((count_ + k) / 24.0);
+    return t;
+  }
+
+ private:
+  PanSource inner_;
+  int trailing_, count_;
+};
+
+TEST(EstimateCameraPath, SkippedFramesGetTheirIndexTimeAndAPoseBetweenNeighbours) {
+  SkippingPanSource source(31, 2);  // decodes 0, 2, ..., 30; then 31, 32 skipped
+  EstimatorOptions options;
+  options.tracker.max_tracks = 150;
+  const CameraPath path = EstimateCameraPath(source, options);
+  ASSERT_EQ(path.frames.size(), 33u);
+  for (int i = 0; i < 33; ++i) {
+    const CameraFrame& f = path.frames[i];
+    EXPECT_EQ(f.frame, i);
+    EXPECT_NEAR(f.time_s, i / 24.0, 1e-12) << i;  // MakeFrame's times
+    if (i % 2 == 1 && i < 31) {  // halfway between its decoded neighbours
+      const CameraFrame &a = path.frames[i - 1], &b = path.frames[i + 1];
+      EXPECT_LT(f.world_from_cam.angularDistance(a.world_from_cam.slerp(0.5, b.world_from_cam)), 1e-9) << i;
+      ASSERT_TRUE(f.confidence && b.confidence);
+      EXPECT_LT(*f.confidence, *b.confidence + 1e-12) << i;
+    }
+  }
+  // The two after the last decoded frame hold its pose.
+  for (int i : {31, 32})
+    EXPECT_LT(path.frames[i].world_from_cam.angularDistance(path.frames[30].world_from_cam), 1e-12);
+  // The pan itself is there: the camera turned between frames 0 and 30.
+  EXPECT_GT(path.frames[30].world_from_cam.angularDistance(path.frames[0].world_from_cam), 1e-3);
 }
 
 TEST(EstimateCameraPath, DecoderErrorReachesTheCaller) {

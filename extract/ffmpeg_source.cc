@@ -70,6 +70,7 @@ class FfmpegSource : public FrameSource {
   ~FfmpegSource() override { Close(); }
 
   const VideoInfo& info() const override { return info_; }
+  std::vector<double> SkippedAtEnd() const override { return skipped_at_end_s_; }
 
   bool Next(Frame* out) override {
     if (finished_) return false;
@@ -134,7 +135,8 @@ class FfmpegSource : public FrameSource {
     dec_->thread_count = options_.decode_threads;  // 0 = automatic
     dec_->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
     if (options_.skip_loop_filter) dec_->skip_loop_filter = AVDISCARD_ALL;
-    if (options_.skip_nonref_frames) dec_->skip_frame = AVDISCARD_NONREF;
+    skipping_ = options_.skip_nonref_frames;
+    if (skipping_) dec_->skip_frame = AVDISCARD_NONREF;
     r = avcodec_open2(dec_, codec, nullptr);
     if (r < 0) throw Error(path, "cannot open " + info_.codec + " decoder (" + AvError(r) + ")");
 
@@ -216,6 +218,13 @@ class FfmpegSource : public FrameSource {
     finished_ = true;
     if (decoded_ == 0) throw Error(info_.path, "no video frame could be decoded");
     CheckNotTruncated();
+    // Frames skipped after the last decoded one (a non-reference frame shown
+    // last: HEVC's low-delay B-frames) have no later frame to carry them.
+    while (!unseen_pts_.empty() && start_pts_ != AV_NOPTS_VALUE) {
+      const double t = (unseen_pts_.top() - start_pts_) * time_base_s_;
+      unseen_pts_.pop();
+      if (t > last_time_s_) skipped_at_end_s_.push_back(t);
+    }
     return false;
   }
 
@@ -224,7 +233,16 @@ class FfmpegSource : public FrameSource {
   // complete one when it ends.
   void NoteVideoPacket() {
     ++video_packets_;
-    if (options_.skip_nonref_frames && pkt_->pts != AV_NOPTS_VALUE) unseen_pts_.push(pkt_->pts);
+    if (skipping_) {
+      if (pkt_->pts != AV_NOPTS_VALUE) {
+        unseen_pts_.push(pkt_->pts);
+      } else {
+        // A skipped frame without a timestamp could not be counted (AVI's
+        // packed B-frames have none): decode every frame from here on.
+        skipping_ = false;
+        dec_->skip_frame = AVDISCARD_DEFAULT;
+      }
+    }
     const int64_t pts = pkt_->pts != AV_NOPTS_VALUE ? pkt_->pts : pkt_->dts;
     if (pts == AV_NOPTS_VALUE) return;
     const int64_t start = fmt_->streams[stream_index_]->start_time;
@@ -403,7 +421,7 @@ class FfmpegSource : public FrameSource {
     }
     const double previous_time_s = last_time_s_;
     out->time_s = FrameTime();
-    if (options_.skip_nonref_frames)
+    if (options_.skip_nonref_frames)  // also after skipping_ stopped: the index counts on
       IndexAfterSkipped(previous_time_s, out);
     else
       out->index = static_cast<int>(decoded_);
@@ -439,6 +457,8 @@ class FfmpegSource : public FrameSource {
   double last_time_s_ = 0;
   long decoded_ = 0;
   long presented_ = 0;  // skip_nonref_frames: frames decoded or skipped so far
+  bool skipping_ = false;  // the decoder skips non-reference frames now
+  std::vector<double> skipped_at_end_s_;  // SkippedAtEnd()
   // skip_nonref_frames: timestamps of the packets read, not yet matched to
   // a decoded frame, smallest first.
   std::priority_queue<int64_t, std::vector<int64_t>, std::greater<int64_t>> unseen_pts_;

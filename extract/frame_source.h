@@ -77,6 +77,10 @@ class FrameSource {
   // Next frame in presentation order; false at the end. Throws hapcine::Error
   // naming the file on a decode failure that cannot be skipped.
   virtual bool Next(Frame* frame) = 0;
+  // With FrameSourceOptions::skip_nonref_frames, once Next() returned false:
+  // the presentation times of frames skipped after the last decoded one
+  // (indices last index + 1, + 2, ...). Empty otherwise.
+  virtual std::vector<double> SkippedAtEnd() const { return {}; }
 };
 
 // Opens a video file (anything FFmpeg reads), an image folder, or a printf

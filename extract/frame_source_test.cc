@@ -176,6 +176,59 @@ TEST_F(FrameSourceTest, SkippingTheLoopFilterKeepsThePicture) {
     EXPECT_LT(cv::norm(fast[i].gray, full[i].gray, cv::NORM_L1) / fast[i].gray.total(), 3.0) << i;
 }
 
+TEST_F(FrameSourceTest, SkippingNonReferenceFramesKeepsEveryIndexAndTime) {
+  FrameSourceOptions o;
+  o.skip_nonref_frames = true;
+  auto source = OpenFrameSource(Testsrc(), o);  // x264's defaults: B-frames, some not referenced
+  std::vector<Frame> decoded;
+  std::vector<double> time_of(64, -1);  // by index, decoded or skipped
+  Frame f;
+  while (source->Next(&f)) {
+    const int n = static_cast<int>(f.skipped_before_s.size());
+    for (int k = 0; k < n; ++k) time_of.at(f.index - n + k) = f.skipped_before_s[k];
+    time_of.at(f.index) = f.time_s;
+    decoded.push_back(f);
+  }
+  int next = decoded.back().index + 1;
+  for (double t : source->SkippedAtEnd()) time_of.at(next++) = t;
+  const auto full = ReadAll(Testsrc());
+  ASSERT_EQ(next, static_cast<int>(full.size()));
+  EXPECT_LT(decoded.size(), full.size() * 3 / 4);  // about half skipped
+  for (size_t i = 0; i < full.size(); ++i) EXPECT_NEAR(time_of[i], full[i].time_s, 1e-9) << i;
+  // A reference frame decodes to the same picture whether or not the
+  // frames nothing refers to were decoded.
+  for (const Frame& d : decoded) {
+    EXPECT_EQ(cv::norm(d.gray, full.at(d.index).gray, cv::NORM_INF), 0) << d.index;
+    EXPECT_EQ(d.time_s, full.at(d.index).time_s);
+  }
+  // Without B-frames every frame is a reference: nothing is skipped.
+  const std::string no_b = Make("testsrc_nob.mp4",
+                                "-f lavfi -i testsrc=size=320x240:rate=24 -t 1 -c:v libx264 -bf 0 "
+                                "-pix_fmt yuv420p");
+  const auto all = ReadAll(no_b, o);
+  ASSERT_EQ(all.size(), 24u);
+  for (size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(all[i].index, static_cast<int>(i));
+    EXPECT_TRUE(all[i].skipped_before_s.empty());
+  }
+}
+
+TEST_F(FrameSourceTest, SkippingNonReferenceFramesWithoutTimestampsDecodesThemAll) {
+  // MPEG-4 with B-frames in AVI: packets carry no presentation time, so a
+  // skipped frame could not be counted; every frame is decoded instead.
+  const std::string avi = Make("testsrc_b.avi",
+                               "-f lavfi -i testsrc=size=160x120:rate=24 -t 1 -c:v mpeg4 -bf 2");
+  FrameSourceOptions o;
+  o.skip_nonref_frames = true;
+  const auto frames = ReadAll(avi, o);
+  const auto full = ReadAll(avi);
+  ASSERT_EQ(frames.size(), full.size());
+  for (size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i].index, static_cast<int>(i));
+    EXPECT_NEAR(frames[i].time_s, full[i].time_s, 1e-9) << i;
+  }
+}
+
 TEST_F(FrameSourceTest, BlackIsBlackInGray) {
   // Limited-range video: black (Y=16) must come out near 0 for blank tests.
   const auto frames = ReadAll(Make("black.mp4",

@@ -74,4 +74,9 @@ bool ThreadedFrameSource::Next(Frame* frame) {
   return true;
 }
 
+std::vector<double> ThreadedFrameSource::SkippedAtEnd() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return producer_done_ ? inner_->SkippedAtEnd() : std::vector<double>{};
+}
+
 }  // namespace hapcine

@@ -37,6 +37,8 @@ class ThreadedFrameSource : public FrameSource {
   // inner source is not touched from this thread afterwards).
   const VideoInfo& info() const override { return info_; }
   bool Next(Frame* frame) override;
+  // The inner source's, once Next() returned false (the producer is done).
+  std::vector<double> SkippedAtEnd() const override;
 
  private:
   void Produce();
@@ -44,7 +46,7 @@ class ThreadedFrameSource : public FrameSource {
   std::unique_ptr<FrameSource> inner_;
   VideoInfo info_;
   const size_t capacity_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable ready_cv_;  // a frame was queued, or the producer ended
   std::condition_variable room_cv_;   // a frame was taken, or the consumer left
   std::deque<Frame> ready_;           // decoded, waiting for the consumer
