@@ -11,6 +11,8 @@
 #include "extract/feature_tracker.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
@@ -105,7 +107,11 @@ struct FeatureTracker::Impl {
   std::vector<long> prev_ids;
   // Each previous point's displacement over its last frame (x NaN: none, as
   // for new detections and re-links); seeds the next KLT (klt_predict).
+  // Per frame of the video: a decoder that skipped frames (--skip-nonref)
+  // leaves index gaps, and a displacement over k frames counts 1/k.
   std::vector<cv::Point2f> prev_velocity;
+  int prev_index = -1;  // the last frame's index
+  int step = 1;         // frames from the last frame to this one (index gap)
   // Median of prev_velocity, and the same a frame earlier (x NaN: none).
   cv::Point2f motion_last{kNoMotion, kNoMotion}, motion_before{kNoMotion, kNoMotion};
   // The current run of transition-flagged frames, as the tracker saw it.
@@ -298,18 +304,44 @@ struct FeatureTracker::Impl {
   // last two frames' median motions differ by more than half the last (a
   // shake back and forth: the last motion is no guide to the next), or when
   // either is unknown (a shot's first frames, after a collapse).
+  // Over `step` frames (skipped frames in between) the motion is `step`
+  // times a frame's.
   bool PredictMotion(std::vector<cv::Point2f>* predicted) const {
     if (!std::isfinite(motion_last.x) || !std::isfinite(motion_before.x) ||
         prev_velocity.size() != prev_points.size())
       return false;
     const double last = std::hypot(motion_last.x, motion_last.y);
-    if (last < options.klt_window) return false;
+    if (last * step < options.klt_window) return false;
     const cv::Point2f change = motion_last - motion_before;
     if (std::hypot(change.x, change.y) > 0.5 * last) return false;
-    predicted->resize(prev_points.size());
-    for (size_t i = 0; i < prev_points.size(); ++i)
-      (*predicted)[i] = std::isfinite(prev_velocity[i].x) ? prev_velocity[i] : motion_last;
+    FillPredicted(predicted);
     return true;
+  }
+
+  // Each point's last velocity (or the median) times `step`; with
+  // `accelerating`, plus the change of the median velocity over the last
+  // frame kept up over the `step` frames: sum_{j=1..step} j = step (step + 1) / 2.
+  void FillPredicted(std::vector<cv::Point2f>* predicted, bool accelerating = false) const {
+    predicted->resize(prev_points.size());
+    const float k = static_cast<float>(step);
+    cv::Point2f extra(0, 0);
+    if (accelerating && std::isfinite(motion_before.x))
+      extra = (motion_last - motion_before) * (0.5f * k * (k + 1));
+    for (size_t i = 0; i < prev_points.size(); ++i)
+      (*predicted)[i] = k * (std::isfinite(prev_velocity[i].x) ? prev_velocity[i] : motion_last) + extra;
+  }
+
+  // KLT from zero motion lost most tracks (a collapse) although the picture
+  // moved a KLT window or more last frame: the motion changed too much for
+  // PredictMotion to trust it (a whip pan speeding up), but the last motion
+  // is still a far closer start than zero for the tracks lost.
+  bool RetryWithLastMotion(const std::vector<char>& ok) const {
+    if (!std::isfinite(motion_last.x) || prev_velocity.size() != prev_points.size() ||
+        prev_points.size() < kMinTracksForCollapse)
+      return false;
+    if (std::hypot(motion_last.x, motion_last.y) * step < options.klt_window) return false;
+    const size_t kept = static_cast<size_t>(std::count(ok.begin(), ok.end(), 1));
+    return kept < kCollapseFraction * static_cast<double>(prev_points.size());
   }
 
   // The median of the known velocities (x NaN when none is known).
@@ -338,17 +370,22 @@ struct FeatureTracker::Impl {
     const bool predict = options.klt_predict && PredictMotion(&predicted);
     std::vector<cv::Point2f> tracked;
     std::vector<char> ok = TrackFrom(pyramid, size, prev_points, predict ? &predicted : nullptr, &tracked);
-    if (predict) {
-      // A track the prediction lost (the motion changed: a stop, a jolt)
-      // gets the search from zero motion too.
+    // A track the prediction lost (the motion changed: a stop, a jolt) gets
+    // the search from zero motion too; after a collapse from zero motion,
+    // the lost ones get the prediction.
+    const bool retry_predicted = options.klt_predict && !predict && RetryWithLastMotion(ok);
+    if (predict || retry_predicted) {
+      if (retry_predicted) FillPredicted(&predicted, /*accelerating=*/true);
       std::vector<size_t> lost;
-      std::vector<cv::Point2f> lost_points, retried;
+      std::vector<cv::Point2f> lost_points, lost_predicted, retried;
       for (size_t i = 0; i < ok.size(); ++i)
         if (!ok[i]) {
           lost.push_back(i);
           lost_points.push_back(prev_points[i]);
+          if (retry_predicted) lost_predicted.push_back(predicted[i]);
         }
-      const std::vector<char> ok_retried = TrackFrom(pyramid, size, lost_points, nullptr, &retried);
+      const std::vector<char> ok_retried =
+          TrackFrom(pyramid, size, lost_points, retry_predicted ? &lost_predicted : nullptr, &retried);
       for (size_t k = 0; k < lost.size(); ++k)
         if (ok_retried[k]) {
           ok[lost[k]] = 1;
@@ -446,10 +483,12 @@ struct FeatureTracker::Impl {
     std::vector<long> ids;
     bool had_tracks = !prev_points.empty();
     const size_t before = prev_points.size();
+    step = prev_index >= 0 ? std::max(frame.index - prev_index, 1) : 1;
+    prev_index = frame.index;
     Track(pyramid, size, &points, &ids, &from);
     std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id (klt_predict)
-    if (options.klt_predict)
-      for (size_t i = 0; i < points.size(); ++i) moved.emplace(ids[i], points[i] - from[i]);
+    if (options.klt_predict)  // per frame (x 1 exactly when no frame was skipped)
+      for (size_t i = 0; i < points.size(); ++i) moved.emplace(ids[i], (points[i] - from[i]) * (1.0f / step));
     size_t survived = points.size();
     std::vector<float> klt_disp;  // for the transition-run statistics
     if (decision.transition)
@@ -501,6 +540,9 @@ struct FeatureTracker::Impl {
       }
       out.recovered = relinked > 0;
     }
+    if (std::getenv("HAPCINE_CUT_DEBUG"))
+      std::fprintf(stderr, "cut_debug %d dist %.3f spike %d trans %d bnd %d before %zu survived %zu collapsed %d relinked %zu relink_empty %d\n",
+                   frame.index, decision.distance, decision.spike, decision.transition, (int)decision.boundary, before, survived, collapsed, relinked, (int)r.current_from_key.empty());
     if (had_tracks && IsLookAlikeCut(decision, collapsed, before, survived, r)) {
       StartShotAtThisFrame(&out, &points, &ids);
       had_tracks = false;  // counts as the shot's first tracked frame
