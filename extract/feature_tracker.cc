@@ -11,9 +11,9 @@
 #include "extract/feature_tracker.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -540,9 +540,14 @@ struct FeatureTracker::Impl {
       }
       out.recovered = relinked > 0;
     }
-    if (std::getenv("HAPCINE_CUT_DEBUG"))
-      std::fprintf(stderr, "cut_debug %d dist %.3f spike %d trans %d bnd %d before %zu survived %zu collapsed %d relinked %zu relink_empty %d\n",
-                   frame.index, decision.distance, decision.spike, decision.transition, (int)decision.boundary, before, survived, collapsed, relinked, (int)r.current_from_key.empty());
+    // HAPCINE_CUT_DEBUG=1: the cues of the look-alike cut test, per frame.
+    static const bool cut_debug = std::getenv("HAPCINE_CUT_DEBUG") != nullptr;
+    if (cut_debug)
+      std::fprintf(stderr,
+                   "cut_debug frame %d distance %.3f spike %d transition %d tracks %zu kept %zu "
+                   "collapsed %d relinked %zu relink_failed %d\n",
+                   frame.index, decision.distance, decision.spike, decision.transition, before, survived,
+                   collapsed, relinked, static_cast<int>(r.current_from_key.empty()));
     if (had_tracks && IsLookAlikeCut(decision, collapsed, before, survived, r)) {
       StartShotAtThisFrame(&out, &points, &ids);
       had_tracks = false;  // counts as the shot's first tracked frame
