@@ -62,6 +62,7 @@ Eigen::Vector2d TrackCameraEstimator::Normalise(const Eigen::Vector2d& px) const
 void TrackCameraEstimator::StartShot(int shot) {
   shot_ = shot;
   shot_frames_ = 0;
+  shot_video_frames_ = 0;
   frames_.clear();
   buffer_start_ = 0;
   keyframes_.clear();
@@ -89,6 +90,10 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
   }
   f.usable = !tracks.blank && static_cast<int>(f.u.size()) >= options_.min_tracks;
   const int pos = shot_frames_++;
+  // The keyframe gap and the window are counted in frames of the video, so a
+  // decoder that skipped frames gives the same spacing in time.
+  f.video_pos = pos == 0 ? 0 : shot_video_frames_ + std::max(tracks.step, 1);
+  shot_video_frames_ = f.video_pos;
   frames_.push_back(std::move(f));
   const BufferedFrame& cur = frames_.back();
   if (!cur.usable) return;
@@ -112,7 +117,7 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
   }
   const double shared = static_cast<double>(disp.size()) / std::max<size_t>(kf.u.size(), 1);
   if (Median(disp) > options_.keyframe_motion || shared < options_.keyframe_min_shared ||
-      pos - last.pos >= options_.keyframe_max_gap) {
+      cur.video_pos - last.video_pos >= options_.keyframe_max_gap) {
     AddKeyframe(pos, false);
   }
 }
@@ -120,6 +125,7 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
 void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
   Keyframe k;
   k.pos = pos;
+  k.video_pos = At(pos).video_pos;
   if (keyframes_.empty()) {
     // Start of the shot's chain: identity at the origin (or the last pose).
     k.cam.log_focal = prior_log_focal_;
@@ -197,7 +203,7 @@ void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
   // The window's own frames start at its last held keyframe (the lead-in before it is decided).
   size_t held = 0;
   while (held + 1 < keyframes_.size() && keyframes_[held + 1].fixed) ++held;
-  if (pos - keyframes_[held > 0 ? held - 1 : 0].pos >= options_.window_frames &&
+  if (k.video_pos - keyframes_[held > 0 ? held - 1 : 0].video_pos >= options_.window_frames &&
       keyframes_.size() >= std::max<size_t>(4, held + 3)) {
     ProcessWindow(false);
   }

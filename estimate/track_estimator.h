@@ -123,11 +123,13 @@ class TrackCameraEstimator {
  private:
   struct BufferedFrame {
     FrameTracks tracks;
+    int video_pos = 0;  // shot-relative frame of the video (FrameTracks::step summed)
     std::map<long, Eigen::Vector2d> u;  // normalised coordinates by track id
     bool usable = false;
   };
   struct Keyframe {
     int pos = 0;                     // shot-relative frame position
+    int video_pos = 0;               // the same in frames of the video (BufferedFrame)
     BaCamera cam;                    // OpenCV world of the shot
     MotionModel model = MotionModel::kStatic;  // of the interval ending here
     double inlier_ratio = 1;
@@ -198,6 +200,7 @@ class TrackCameraEstimator {
   // Current shot.
   int shot_ = -1;
   int shot_frames_ = 0;              // frames seen in the shot
+  int shot_video_frames_ = 0;        // the same in frames of the video (skipped ones too)
   std::deque<BufferedFrame> frames_; // from buffer_start_ on
   int buffer_start_ = 0;
   std::vector<Keyframe> keyframes_;  // of the current window

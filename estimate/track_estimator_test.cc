@@ -430,6 +430,45 @@ TEST(TrackEstimator, ShotCutRestartsAtTheOrigin) {
 // hardest case for false positives): a lead-in of held keyframes makes the
 // next window start earlier (its tracks are judged over a longer baseline);
 // both options keep every frame, emitted once, and the path accurate.
+// A decoder that skipped every other frame (FrameTracks::step 2): the
+// keyframe gap and the window length count frames of the video, so the
+// windows close after as much of the video as without skipping, i.e. after
+// half as many frames given, and keyframes come as often in time.
+TEST(TrackEstimator, WindowAndKeyframeGapCountFramesOfTheVideo) {
+  const auto pts = RandomPoints(1500, 3, 12, 2.5, 5);
+  auto cam_at = [](int i) {  // a slow pan: keyframes by the gap, not by motion
+    SceneCamera c;
+    c.world_from_cam = Eigen::AngleAxisd(0.002 * i, Eigen::Vector3d::UnitY());
+    c.focal_px = 800;
+    return c;
+  };
+  TrackEstimatorOptions o;
+  o.window_frames = 40;
+  auto run = [&](int step, std::vector<WindowReport>* reports) {
+    TrackCameraEstimator est(kW, kH, o);
+    std::mt19937 rng(7);
+    int position = 0;
+    for (int i = 0; i < 160; i += step) {
+      FrameTracks ft = MakeFrameTracks(position++, 25, cam_at(i), pts, kW, kH, 0.3, 0.0, &rng);
+      ft.step = i == 0 ? 1 : step;
+      est.AddFrame(ft);
+    }
+    const CameraPath path = est.Finish();
+    EXPECT_EQ(static_cast<int>(path.frames.size()), position);
+    *reports = est.reports();
+  };
+  std::vector<WindowReport> every, skipped;
+  run(1, &every);
+  run(2, &skipped);
+  ASSERT_GE(every.size(), 3u);
+  ASSERT_EQ(skipped.size(), every.size());
+  for (size_t w = 1; w < every.size(); ++w) {
+    EXPECT_NEAR(2 * skipped[w].first_frame, every[w].first_frame, 2) << w;  // positions
+    // The same keyframes per window, give or take one (a gap of 6 video frames).
+    EXPECT_NEAR(skipped[w].keyframes, every[w].keyframes, 1) << w;
+  }
+}
+
 TEST(TrackEstimator, WindowLeadInAndDepthLayerCutOnALongTraveling) {
   const auto pts = RandomPoints(2500, 3, 12, 2.5, 3);
   auto cam_at = [](int i) {

@@ -314,7 +314,9 @@ struct FeatureTracker::Impl {
     if (last * step < options.klt_window) return false;
     const cv::Point2f change = motion_last - motion_before;
     if (std::hypot(change.x, change.y) > 0.5 * last) return false;
-    FillPredicted(predicted);
+    // Over skipped frames the change of velocity adds up (k (k + 1) / 2 a):
+    // a whip pan slowing down overshoots a constant-velocity start.
+    FillPredicted(predicted, /*accelerating=*/step > 1);
     return true;
   }
 
