@@ -469,6 +469,40 @@ TEST(TrackEstimator, WindowAndKeyframeGapCountFramesOfTheVideo) {
   }
 }
 
+// The smoothing's sigma counts frames of the video too: a pan speeding up
+// (angle ~ i^2, which a Gaussian of sigma s shifts by a s^2) comes out the
+// same on the frames both runs estimated, with every frame or every other.
+TEST(TrackEstimator, SmoothingSigmaCountsFramesOfTheVideo) {
+  const auto pts = RandomPoints(1500, 3, 12, 2.5, 9);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.world_from_cam = Eigen::AngleAxisd(4e-5 * i * i, Eigen::Vector3d::UnitY());
+    c.focal_px = 800;
+    return c;
+  };
+  TrackEstimatorOptions o;
+  o.smooth_sigma_frames = 4;
+  auto run = [&](int step) {
+    TrackCameraEstimator est(kW, kH, o);
+    std::mt19937 rng(3);
+    int position = 0;
+    for (int i = 0; i < 100; i += step) {
+      FrameTracks ft = MakeFrameTracks(position++, 25, cam_at(i), pts, kW, kH, 0.0, 0.0, &rng);
+      ft.step = i == 0 ? 1 : step;
+      est.AddFrame(ft);
+    }
+    return est.Finish();
+  };
+  const CameraPath every = run(1), skipped = run(2);
+  ASSERT_EQ(every.frames.size(), 100u);
+  ASSERT_EQ(skipped.frames.size(), 50u);
+  double worst = 0;
+  for (int k = 5; k < 45; ++k)  // away from the ends, where the window shrinks
+    worst = std::max(worst, AngleBetweenDeg(skipped.frames[k].world_from_cam, every.frames[2 * k].world_from_cam));
+  // A sigma of 4 samples (8 frames) would be 3 x 16 x 4e-5 rad = 0.11 deg off.
+  EXPECT_LT(worst, 0.03);
+}
+
 TEST(TrackEstimator, WindowLeadInAndDepthLayerCutOnALongTraveling) {
   const auto pts = RandomPoints(2500, 3, 12, 2.5, 3);
   auto cam_at = [](int i) {
