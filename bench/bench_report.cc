@@ -367,19 +367,20 @@ int main(int argc, char** argv) {
 
     md << "\n### Decoding floor\n\n| video | frames | ffmpeg decode wall (s) | ffmpeg CPU (s) | "
           "hapcine estimate wall (s) | estimate CPU (s) | wall ratio | CPU ratio |\n|---|---|---|---|---|---|---|---|\n";
-    std::map<std::string, std::pair<const RunRow*, const RunRow*>> floor;
-    std::vector<std::string> floor_order;
+    // ffmpeg's row is the video's ("1080p"); hapcine's settings start with
+    // it ("1080p", "1080p --draft") and are each set against it.
+    std::map<std::string, const RunRow*> decoder_of;
+    for (const auto& r : rows)
+      if (r.group == "decode" && r.tool == "ffmpeg") decoder_of[r.setting] = &r;
     for (const auto& r : rows) {
-      if (r.group != "decode") continue;
-      if (!floor.count(r.setting)) floor_order.push_back(r.setting);
-      (r.tool == "ffmpeg" ? floor[r.setting].first : floor[r.setting].second) = &r;
-    }
-    for (const auto& key : floor_order) {
-      const auto [f, h] = floor[key];
-      if (!f || !h) continue;
+      if (r.group != "decode" || r.tool == "ffmpeg") continue;
+      const auto it = decoder_of.find(r.setting.substr(0, r.setting.find(' ')));
+      if (it == decoder_of.end()) continue;
+      const RunRow* f = it->second;
+      const RunRow* h = &r;
       const double fc = f->user_s + f->sys_s, hc = h->user_s + h->sys_s;
-      md << "| " << key << " (" << h->clip << ") | " << h->frames << " | " << Fmt(f->wall_s) << " | " << Fmt(fc)
-         << " | " << (h->rc ? "fail " : "") << Fmt(h->wall_s) << " | " << Fmt(hc) << " | "
+      md << "| " << h->setting << " (" << h->clip << ") | " << h->frames << " | " << Fmt(f->wall_s) << " | "
+         << Fmt(fc) << " | " << (h->rc ? "fail " : "") << Fmt(h->wall_s) << " | " << Fmt(hc) << " | "
          << Fmt(h->wall_s / f->wall_s) << " | " << Fmt(hc / fc) << " |\n";
     }
 

@@ -173,6 +173,8 @@ floor() {  # label video
   record decode ffmpeg "$1" "$(basename "$2")" "$n" "" "" -- ffmpeg -nostdin -loglevel error -threads 2 -i "$2" -f null -
   record decode hapcine "$1" "$(basename "$2")" "$n" "$OUT/est/floor-$1.camera.csv" "" -- \
     "$HC" estimate "$2" -o "$OUT/est/floor-$1.camera.csv" -q
+  record decode hapcine "$1 --draft" "$(basename "$2")" "$n" "$OUT/est/floor-$1-draft.camera.csv" "" -- \
+    "$HC" estimate "$2" -o "$OUT/est/floor-$1-draft.camera.csv" -q --draft
 }
 floor "${H}p" "$OUT/clips/$FLOOR_CLIP.mp4"
 [ $FLOOR_1080 = 1 ] && floor 1080p "$OUT/clips/1080p/$FLOOR_CLIP.mp4"
