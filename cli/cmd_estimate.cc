@@ -159,8 +159,8 @@ int RunEstimate(int argc, char** argv) {
   app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
                "decode only the frames others are predicted from (about half of H.264/HEVC "
                "with B-frames): faster; the skipped frames' poses are interpolated between "
-               "their neighbours' at lower confidence; fast pans may break into shots "
-               "(docs/estimate.md \"Speed\")");
+               "their neighbours' at lower confidence; ~2.3x decoding time instead of ~3.2x "
+               "(docs/estimate.md \"Status\")");
   app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,
                "skip H.264/HEVC deblocking when decoding: ~10 % cheaper decoding, slightly "
                "blockier analysis images");
@@ -171,7 +171,7 @@ int RunEstimate(int argc, char** argv) {
                "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
                    "; options given beside it win");
   app.add_flag("--draft", draft,
-               "about the decoder's own speed, least accurate (docs/estimate.md \"Speed\"): " +
+               "~1.4x decoding time, least accurate (docs/estimate.md \"Status\"): " +
                    DraftPresetSummary() + "; options given beside it win");
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
       ->capture_default_str();

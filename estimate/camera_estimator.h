@@ -36,8 +36,8 @@ void ApplyFastPreset(EstimatorOptions* options);
 std::string FastPresetSummary();
 // The decoding-speed draft (--draft): the fast preset, and the decoder
 // skips the frames nothing is predicted from (their poses are interpolated)
-// and H.264's deblocking. About the decoder's own wall time on 1080p H.264;
-// fast pans and dolly zooms suffer (docs/estimate.md "Speed").
+// and H.264's deblocking. 1.4x the decoder's own wall time on 1080p H.264,
+// less accurate (docs/estimate.md "Status against the targets").
 void ApplyDraftPreset(EstimatorOptions* options);
 std::string DraftPresetSummary();
 
