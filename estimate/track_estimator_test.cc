@@ -430,6 +430,22 @@ TEST(TrackEstimator, ShotCutRestartsAtTheOrigin) {
 // hardest case for false positives): a lead-in of held keyframes makes the
 // next window start earlier (its tracks are judged over a longer baseline);
 // both options keep every frame, emitted once, and the path accurate.
+// Frames 0, step, 2 step, ... of a `frames`-frame video given to `est` as a
+// decoder that skipped the others would (positions 0, 1, 2, ..., with
+// FrameTracks::step the gap); returns Finish().
+template <typename CameraAt>
+CameraPath FeedEveryNthFrame(TrackCameraEstimator* est, int frames, int step, const CameraAt& cam_at,
+                             const std::vector<Eigen::Vector3d>& pts, double noise_px, unsigned seed) {
+  std::mt19937 rng(seed);
+  int position = 0;
+  for (int i = 0; i < frames; i += step) {
+    FrameTracks ft = MakeFrameTracks(position++, 25, cam_at(i), pts, kW, kH, noise_px, 0.0, &rng);
+    ft.step = i == 0 ? 1 : step;
+    est->AddFrame(ft);
+  }
+  return est->Finish();
+}
+
 // A decoder that skipped every other frame (FrameTracks::step 2): the
 // keyframe gap and the window length count frames of the video, so the
 // windows close after as much of the video as without skipping, i.e. after
@@ -446,15 +462,8 @@ TEST(TrackEstimator, WindowAndKeyframeGapCountFramesOfTheVideo) {
   o.window_frames = 40;
   auto run = [&](int step, std::vector<WindowReport>* reports) {
     TrackCameraEstimator est(kW, kH, o);
-    std::mt19937 rng(7);
-    int position = 0;
-    for (int i = 0; i < 160; i += step) {
-      FrameTracks ft = MakeFrameTracks(position++, 25, cam_at(i), pts, kW, kH, 0.3, 0.0, &rng);
-      ft.step = i == 0 ? 1 : step;
-      est.AddFrame(ft);
-    }
-    const CameraPath path = est.Finish();
-    EXPECT_EQ(static_cast<int>(path.frames.size()), position);
+    const CameraPath path = FeedEveryNthFrame(&est, 160, step, cam_at, pts, 0.3, 7);
+    EXPECT_EQ(static_cast<int>(path.frames.size()), (160 + step - 1) / step);
     *reports = est.reports();
   };
   std::vector<WindowReport> every, skipped;
@@ -484,14 +493,7 @@ TEST(TrackEstimator, SmoothingSigmaCountsFramesOfTheVideo) {
   o.smooth_sigma_frames = 4;
   auto run = [&](int step) {
     TrackCameraEstimator est(kW, kH, o);
-    std::mt19937 rng(3);
-    int position = 0;
-    for (int i = 0; i < 100; i += step) {
-      FrameTracks ft = MakeFrameTracks(position++, 25, cam_at(i), pts, kW, kH, 0.0, 0.0, &rng);
-      ft.step = i == 0 ? 1 : step;
-      est.AddFrame(ft);
-    }
-    return est.Finish();
+    return FeedEveryNthFrame(&est, 100, step, cam_at, pts, 0.0, 3);
   };
   const CameraPath every = run(1), skipped = run(2);
   ASSERT_EQ(every.frames.size(), 100u);

@@ -350,6 +350,18 @@ TEST(FeatureTrackerTest, BlurredWhipPanIsNotACut) {
 
 // With it (the default), the same whip keeps its tracks through the blur,
 // and they move by the true shift (horizontal, up to the blur's own error).
+// For each track in both: how far its motion from `before` to `now` is from
+// a horizontal shift of the picture by -shift decoded px.
+void AppendMotionErrors(const FrameTracks& before, const FrameTracks& now, double shift,
+                        std::vector<double>* error_px) {
+  for (const TrackPoint& p : now.points)
+    for (const TrackPoint& q : before.points)
+      if (q.track_id == p.track_id) {
+        error_px->push_back(std::hypot(p.px.x() - q.px.x() + shift, p.px.y() - q.px.y()));
+        break;
+      }
+}
+
 TEST(FeatureTrackerTest, BlurredWhipPanIsTrackedFromItsLastMotion) {
   const std::vector<FrameTracks> out = TrackBlurredWhip(SmallOptions());
   double min_quality = 1;
@@ -357,13 +369,7 @@ TEST(FeatureTrackerTest, BlurredWhipPanIsTrackedFromItsLastMotion) {
   for (size_t f = 1; f < out.size(); ++f) {
     EXPECT_EQ(out[f].shot, 0) << f;
     min_quality = std::min(min_quality, out[f].quality);
-    const double shift = WhipPosition(f) - WhipPosition(f - 1.0);
-    for (const TrackPoint& now : out[f].points)
-      for (const TrackPoint& before : out[f - 1].points)
-        if (before.track_id == now.track_id) {
-          error_px.push_back(std::hypot(now.px.x() - before.px.x() + shift, now.px.y() - before.px.y()));
-          break;
-        }
+    AppendMotionErrors(out[f - 1], out[f], WhipPosition(f) - WhipPosition(f - 1.0), &error_px);
   }
   EXPECT_GT(min_quality, 0.15) << "tracks survive every frame of the whip";
   ASSERT_GT(error_px.size(), 1000u);
@@ -398,14 +404,7 @@ TEST(FeatureTrackerTest, BlurredWhipPanWithSkippedFramesIsTracked) {
     EXPECT_EQ(now.shot, 0) << i;
     if (i == 0) continue;
     min_quality = std::min(min_quality, now.quality);
-    const FrameTracks& before = out[out.size() - 2];
-    const double shift = position(i) - position(i - 2.0);
-    for (const TrackPoint& p : now.points)
-      for (const TrackPoint& q : before.points)
-        if (q.track_id == p.track_id) {
-          error_px.push_back(std::hypot(p.px.x() - q.px.x() + shift, p.px.y() - q.px.y()));
-          break;
-        }
+    AppendMotionErrors(out[out.size() - 2], now, position(i) - position(i - 2.0), &error_px);
   }
   EXPECT_GT(min_quality, 0.15) << "tracks survive every decoded frame of the whip";
   ASSERT_GT(error_px.size(), 500u);
