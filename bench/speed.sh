@@ -95,6 +95,8 @@ sweep() {
     mapfile -t settings < <(grep -v '^#' "$SETTINGS" | grep .)
   else
     settings+=("--fast|--fast"
+               "--skip-nonref|--skip-nonref"
+               "--draft|--draft"
                "640px|--max-side 640"
                "300 tracks|--tracks 300"
                "KLT window 15|--klt-window 15"
