@@ -134,8 +134,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     FrameTracks tracks;
     while (queue.Pop(&tracks)) {
       if (progress) progress(tracks.index + 1, info.frame_count);  // skipped frames count as done
-      tracks.step = index_of_position.empty() ? 1 : std::max(tracks.index - index_of_position.back(), 1);
-      index_of_position.push_back(tracks.index);
+      index_of_position.push_back(tracks.index);  // tracks.step keeps the gap
       tracks.index = static_cast<int>(index_of_position.size()) - 1;
       estimator.AddFrame(tracks);
     }

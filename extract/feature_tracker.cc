@@ -110,8 +110,8 @@ struct FeatureTracker::Impl {
   // Per frame of the video: a decoder that skipped frames (--skip-nonref)
   // leaves index gaps, and a displacement over k frames counts 1/k.
   std::vector<cv::Point2f> prev_velocity;
-  int prev_index = -1;  // the last frame's index
-  int step = 1;         // frames from the last frame to this one (index gap)
+  int prev_index = -1;  // the last frame's index (blank or not)
+  int step = 1;         // this frame's FrameTracks::step, for the prediction
   // Median of prev_velocity, and the same a frame earlier (x NaN: none).
   cv::Point2f motion_last{kNoMotion, kNoMotion}, motion_before{kNoMotion, kNoMotion};
   // The current run of transition-flagged frames, as the tracker saw it.
@@ -437,6 +437,9 @@ struct FeatureTracker::Impl {
     FrameTracks out;
     out.index = frame.index;
     out.time_s = frame.time_s;
+    // The index gap since the last frame: > 1 where the decoder skipped frames.
+    out.step = prev_index >= 0 ? std::max(frame.index - prev_index, 1) : 1;
+    prev_index = frame.index;
     const ShotDecision decision = shots.Update(frame);
     if (first) {
       out.boundary = ShotBoundary::kStart;
@@ -485,8 +488,7 @@ struct FeatureTracker::Impl {
     std::vector<long> ids;
     bool had_tracks = !prev_points.empty();
     const size_t before = prev_points.size();
-    step = prev_index >= 0 ? std::max(frame.index - prev_index, 1) : 1;
-    prev_index = frame.index;
+    step = out.step;
     Track(pyramid, size, &points, &ids, &from);
     std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id (klt_predict)
     if (options.klt_predict)  // per frame (x 1 exactly when no frame was skipped)

@@ -301,8 +301,7 @@ class FfmpegSource : public FrameSource {
   // are dropped and not counted.
   void IndexAfterSkipped(double previous_time_s, Frame* out) {
     out->skipped_before_s.clear();
-    int64_t pts = frame_->best_effort_timestamp;
-    if (pts == AV_NOPTS_VALUE) pts = frame_->pts;
+    const int64_t pts = FramePts();
     if (pts != AV_NOPTS_VALUE && start_pts_ != AV_NOPTS_VALUE) {
       while (!unseen_pts_.empty() && unseen_pts_.top() < pts) {
         const double t = (unseen_pts_.top() - start_pts_) * time_base_s_;
@@ -317,9 +316,13 @@ class FfmpegSource : public FrameSource {
     out->index = static_cast<int>(presented_++);
   }
 
+  // The decoded frame's timestamp (AV_NOPTS_VALUE: none).
+  int64_t FramePts() const {
+    return frame_->best_effort_timestamp != AV_NOPTS_VALUE ? frame_->best_effort_timestamp : frame_->pts;
+  }
+
   double FrameTime() {
-    int64_t pts = frame_->best_effort_timestamp;
-    if (pts == AV_NOPTS_VALUE) pts = frame_->pts;
+    const int64_t pts = FramePts();
     double t;
     if (pts == AV_NOPTS_VALUE) {
       t = decoded_ == 0 ? 0.0 : last_time_s_ + (info_.fps > 0 ? 1.0 / info_.fps : 1.0 / 24);

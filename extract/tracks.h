@@ -33,9 +33,10 @@ struct TrackPoint {
 struct FrameTracks {
   int index = 0;      // decoded frame index
   double time_s = 0;  // presentation time
-  // Frames of the video from the previous FrameTracks to this one: 1, or
-  // more where the decoder skipped frames (--skip-nonref). The estimator
-  // counts its keyframe gap and window length in these.
+  // Frames of the video from the previous FrameTracks to this one (the
+  // index gap FeatureTracker saw): 1, or more where the decoder skipped
+  // frames (--skip-nonref). The estimator counts its keyframe gap, window
+  // length and smoothing in these.
   int step = 1;
   int shot = 0;       // 0-based shot index
   ShotBoundary boundary = ShotBoundary::kNone;
