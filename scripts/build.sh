@@ -10,5 +10,10 @@ else
   BUILD_DIR=${BUILD_DIR:-build}
   EXTRA=(-DCMAKE_BUILD_TYPE=Release)
 fi
+# ccache, where installed, makes rebuilds of unchanged files (CI after a
+# local run, several work trees) nearly free.
+if command -v ccache >/dev/null 2>&1; then
+  EXTRA+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
 cmake -S . -B "$BUILD_DIR" "${EXTRA[@]}" >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" "$@"

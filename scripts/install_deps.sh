@@ -22,6 +22,8 @@ PACKAGES=(
   xvfb
   # Benchmarks (bench/run.sh): /usr/bin/time for wall time and peak RSS.
   time
+  # Compiler cache: rebuilds of unchanged files are nearly free.
+  ccache
 )
 
 missing=()
