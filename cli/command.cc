@@ -3,6 +3,8 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "core/error_message.h"
+#include "core/input_file.h"
 
 namespace hapcine::cli {
 
@@ -16,17 +18,20 @@ int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& bod
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << app.get_name() << ": " << e.what() << "\n"
+    std::cerr << app.get_name() << ": " << EscapeControlChars(e.what()) << "\n"
               << "Run '" << app.get_name() << " --help' for usage.\n";
     return kExitUsage;
   }
+  ForgetInputOfEscapedException();
   try {
     return body();
   } catch (const UsageError& e) {
-    std::cerr << app.get_name() << ": " << e.what() << "\n";
+    std::cerr << app.get_name() << ": " << EscapeControlChars(e.what()) << "\n";
     return kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << app.get_name() << ": " << e.what() << "\n";
+  } catch (...) {
+    // Anything else, hapcine::Error or not, is one line naming the file.
+    std::cerr << app.get_name() << ": " << EscapedExceptionMessage(std::current_exception())
+              << "\n";
     return kExitFailure;
   }
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/command.h"
+#include "core/error_message.h"
 
 namespace {
 
@@ -62,7 +63,15 @@ int main(int argc, char** argv) {
     if (cmd == c.name) {
       std::string prog = std::string("hapcine ") + c.name;
       argv[1] = prog.data();
-      return c.run(argc - 1, argv + 1);
+      // RunApp reports what the command's work throws; this catches what
+      // escapes before it (setting up the options) as the same one line.
+      try {
+        return c.run(argc - 1, argv + 1);
+      } catch (...) {
+        std::cerr << prog << ": " << hapcine::EscapedExceptionMessage(std::current_exception())
+                  << "\n";
+        return hapcine::cli::kExitFailure;
+      }
     }
   }
   std::cerr << "hapcine: unknown command '" << cmd << "'\n";
