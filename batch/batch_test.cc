@@ -1,6 +1,7 @@
 #include "batch/batch.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -293,7 +294,31 @@ TEST_F(BatchTest, ManifestLibraryIsEquivalentToFolder) {
   ASSERT_EQ(s.films.size(), 3u);
   EXPECT_EQ(Find(s, "a.mp4")->status, FilmStatus::kDone);
   EXPECT_EQ(Find(s, "日本.mkv")->status, FilmStatus::kDone);
-  EXPECT_NE(Find(s, "missing.mp4")->reason.find("cannot stat"), std::string::npos);
+  EXPECT_NE(Find(s, "missing.mp4")->reason.find("no such file"), std::string::npos);
+}
+
+// A FIFO in a manifest would block the batch while hashing, before any film
+// runs; /dev/zero would be hashed for ever. Both are failed films, each with
+// one line, and the good film is done.
+TEST_F(BatchTest, ManifestEntryThatIsNotARegularFileFailsAloneWithoutBlocking) {
+  const std::string fifo = dir_.path() + "/library/pipe.mp4";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  WriteFile(dir_.path() + "/lib.txt", "library/a.mp4\nlibrary/pipe.mp4\n/dev/zero\n");
+  options_.library = dir_.path() + "/lib.txt";
+  const BatchSummary s = RunLocalBatch(options_);
+  ASSERT_EQ(s.films.size(), 3u);
+  EXPECT_EQ(Find(s, "a.mp4")->status, FilmStatus::kDone);
+  EXPECT_EQ(Find(s, "pipe.mp4")->status, FilmStatus::kFailed);
+  EXPECT_EQ(Find(s, "pipe.mp4")->reason, fifo + ": not a regular file");
+  EXPECT_EQ(Find(s, "/dev/zero")->reason, "/dev/zero: not a regular file");
+  // A manifest that is itself a FIFO is refused, not waited on.
+  options_.library = fifo;
+  try {
+    RunLocalBatch(options_);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), fifo + ": not a regular file");
+  }
 }
 
 TEST(BatchOptionsTest, CheckRejectsBadOptions) {
@@ -307,6 +332,12 @@ TEST(BatchOptionsTest, CheckRejectsBadOptions) {
   bad = o;
   bad.models = {"../evil"};
   EXPECT_THROW(bad.Check(), UsageError);
+  bad.models = {"cinematic", "bogus"};  // a usage error before any film is estimated
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad.models = {"cinematic", "cinematic"};
+  EXPECT_THROW(bad.Check(), UsageError);
+  bad.models = {"cinematic", "semantic", "random", "none"};
+  EXPECT_NO_THROW(bad.Check());
   bad = o;
   bad.shard_index = 2;
   bad.shard_count = 2;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine::batch {
 namespace {
@@ -28,12 +29,14 @@ FilePtr OpenOrThrow(const std::string& path) {
   return f;
 }
 
+// Also refuses what is not a regular file: opening a FIFO would block the
+// whole batch before any film runs.
 uint64_t SizeOrThrow(const std::string& path) {
+  CheckRegularFile(path);
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {
     throw Error(path, std::string("cannot stat: ") + std::strerror(errno));
   }
-  if (S_ISDIR(st.st_mode)) throw Error(path, "is a directory, not a file");
   return static_cast<uint64_t>(st.st_size);
 }
 

@@ -8,6 +8,7 @@
 
 #include "batch/content_hash.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine::batch {
 namespace fs = std::filesystem;
@@ -62,8 +63,8 @@ std::vector<std::string> SplitCsvLine(const std::string& line) {
 }
 
 std::vector<std::string> ReadManifest(const fs::path& manifest) {
-  std::ifstream in(manifest);
-  if (!in) throw Error(manifest.string(), "cannot open manifest");
+  InputFile file(manifest.string());
+  std::ifstream& in = file.stream();
   const fs::path base = manifest.parent_path();
   const bool csv = Lower(manifest.extension().string()) == ".csv";
   std::vector<std::string> paths;

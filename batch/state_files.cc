@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine::batch {
 namespace fs = std::filesystem;
@@ -24,7 +26,9 @@ long TempPid(const std::string& name) {
   if (pos == std::string::npos) return -1;
   const std::string digits = name.substr(pos + 5);
   if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) return -1;
-  return std::stol(digits);
+  errno = 0;
+  const long pid = std::strtol(digits.c_str(), nullptr, 10);  // std::stol throws when too long
+  return errno == ERANGE ? -1 : pid;
 }
 
 int RemoveTempFilesIn(const fs::path& dir, bool only_dead) {
@@ -49,6 +53,7 @@ void WriteJsonAtomic(const std::string& path, const nlohmann::json& j) {
 }
 
 std::optional<nlohmann::json> ReadJsonFile(const std::string& path) {
+  if (!IsRegularFile(path)) return std::nullopt;
   std::ifstream in(path);
   if (!in) return std::nullopt;
   nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);

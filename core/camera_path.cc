@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -89,9 +90,8 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
 }
 
 CameraPath ReadCameraPathFile(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw Error(file, "cannot open for reading");
-  return ReadCameraPath(in, file);
+  InputFile in(file);
+  return ReadCameraPath(in.stream(), file);
 }
 
 void WriteCameraPath(const CameraPath& path, std::ostream& out) {

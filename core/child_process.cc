@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/stop_signal.h"
 
 namespace hapcine {
@@ -126,6 +127,7 @@ ChildResult RunChild(const std::vector<std::string>& argv, const std::string& lo
 }
 
 std::string LastNonEmptyLine(const std::string& path, size_t max_bytes) {
+  if (!IsRegularFile(path)) return "";
   std::ifstream in(path, std::ios::binary);
   if (!in) return "";
   // Only the tail matters; logs of a verbose step can be long.

@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine {
 namespace {
@@ -112,9 +113,8 @@ HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
 }
 
 HapticTrack ReadHapticTrackFile(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw Error(file, "cannot open for reading");
-  return ReadHapticTrack(in, file);
+  InputFile in(file);
+  return ReadHapticTrack(in.stream(), file);
 }
 
 void WriteHapticTrack(const HapticTrack& track, std::ostream& out) {

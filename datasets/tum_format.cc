@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -57,9 +58,8 @@ std::vector<TumPose> ReadTumTrajectory(std::istream& in, const std::string& sour
 }
 
 std::vector<TumPose> ReadTumTrajectoryFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open for reading");
-  return ReadTumTrajectory(in, path);
+  InputFile in(path);
+  return ReadTumTrajectory(in.stream(), path);
 }
 
 void WriteTumTrajectory(const CameraPath& path, std::ostream& out) {

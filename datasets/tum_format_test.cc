@@ -86,5 +86,19 @@ TEST(TumFormatTest, BadInputNamesTheLine) {
   expect_error("1 0 0 nan 0 0 0 1\n", "non-finite");
 }
 
+// Not a regular file: refused with one line, never read (/dev/zero never
+// ends; a directory used to read as an empty file).
+TEST(TumFormatTest, RefusesWhatIsNotARegularFile) {
+  const std::string dir = HAPCINE_BINARY_DIR;
+  for (const std::string& bad : {std::string("/dev/zero"), dir}) {
+    try {
+      ReadTumTrajectoryFile(bad);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), bad + (bad == dir ? ": is a directory" : ": not a regular file"));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hapcine

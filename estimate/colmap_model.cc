@@ -3,11 +3,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -28,8 +30,8 @@ struct ColmapImage {
 
 // Data lines of a COLMAP text file (comments and blank lines skipped), with line numbers.
 std::vector<std::pair<int, std::string>> ReadLines(const std::string& path, bool keep_blank) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open");
+  InputFile file(path);
+  std::ifstream& in = file.stream();
   std::vector<std::pair<int, std::string>> lines;
   std::string line;
   int number = 0;
@@ -111,8 +113,9 @@ CameraPath ReadColmapTextModel(const std::string& dir, const ColmapReadOptions& 
 
   std::map<long, Eigen::Vector3d> points;
   {
-    std::ifstream probe(points_path);
-    if (probe) {
+    // Optional: read when present (and then it must be a regular file).
+    std::error_code ec;
+    if (std::filesystem::exists(points_path, ec)) {
       for (const auto& [number, line] : ReadLines(points_path, false)) {
         std::istringstream s(line);
         long id;

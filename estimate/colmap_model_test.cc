@@ -77,5 +77,23 @@ TEST(ColmapModel, MalformedFilesNameFileAndLine) {
   EXPECT_THROW(ReadColmapTextModel((d.path / "missing").string()), Error);
 }
 
+// A model file that is not a regular file is refused with one line (a FIFO
+// would block the reader; a directory used to read as empty).
+TEST(ColmapModel, ModelFileThatIsNotARegularFileIsRefused) {
+  for (const char* name : {"cameras.txt", "images.txt", "points3D.txt"}) {
+    Dir d;
+    WriteModel(d);
+    const fs::path bad = d.path / name;
+    fs::remove(bad);
+    fs::create_directory(bad);
+    try {
+      ReadColmapTextModel(d.path.string());
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), bad.string() + ": is a directory");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hapcine

@@ -8,6 +8,7 @@
 
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -75,6 +76,7 @@ CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
 
 std::vector<int> CsvDataRowLines(const std::string& file) {
   std::vector<int> lines;
+  if (!IsRegularFile(file)) return lines;  // the path's reader said why
   std::ifstream in(file);
   if (!in) return lines;
   try {

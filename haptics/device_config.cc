@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine {
 
@@ -83,10 +84,9 @@ SeatConfig ParseSeatConfig(const std::string& text, const std::string& source) {
 }
 
 SeatConfig ReadSeatConfigFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open seat config");
+  InputFile in(path);
   std::stringstream s;
-  s << in.rdbuf();
+  s << in.stream().rdbuf();
   return ParseSeatConfig(s.str(), path);
 }
 

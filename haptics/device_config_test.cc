@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "core/error.h"
 
 namespace hapcine {
@@ -57,6 +59,20 @@ TEST(DeviceConfig, BadInputIsAOneLineErrorNamingTheFile) {
     }
   }
   EXPECT_THROW(ReadSeatConfigFile("/nonexistent/seat.json"), Error);
+}
+
+// Not a regular file: refused with one line, never read (/dev/zero never
+// ends; a directory used to read as an empty file).
+TEST(DeviceConfig, RefusesWhatIsNotARegularFile) {
+  const std::string dir = HAPCINE_BINARY_DIR;
+  for (const std::string& bad : {std::string("/dev/zero"), dir}) {
+    try {
+      ReadSeatConfigFile(bad);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), bad + (bad == dir ? ": is a directory" : ": not a regular file"));
+    }
+  }
 }
 
 }  // namespace

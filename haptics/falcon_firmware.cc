@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "haptics/falcon_protocol.h"
 
 namespace hapcine {
@@ -22,8 +23,8 @@ std::vector<uint8_t> ReadFirmwareFile(const std::string& path) {
     throw Error("firmware",
                 "no firmware file given: pass --firmware PATH to your copy of Novint's image "
                 "(e.g. nVent_firmware.bin; it cannot be distributed with hapcine)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open firmware file");
+  InputFile file(path, std::ios::binary);
+  std::ifstream& in = file.stream();
   std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (data.empty()) throw Error(path, "firmware file is empty");
   if (data.size() > 65536)

@@ -131,5 +131,19 @@ TEST(FalconFirmware, FirmwareFileErrorsAreClear) {
   std::remove(ok.c_str());
 }
 
+// Not a regular file: refused with one line, never read (/dev/zero never
+// ends; a directory used to read as an empty file).
+TEST(FalconFirmware, RefusesWhatIsNotARegularFile) {
+  const std::string dir = HAPCINE_BINARY_DIR;
+  for (const std::string& bad : {std::string("/dev/zero"), dir}) {
+    try {
+      ReadFirmwareFile(bad);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), bad + (bad == dir ? ": is a directory" : ": not a regular file"));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hapcine

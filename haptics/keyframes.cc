@@ -6,6 +6,7 @@
 
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine {
 namespace {
@@ -74,9 +75,8 @@ std::vector<EffectSegment> ReadKeyframes(std::istream& in, const std::string& sr
 }
 
 std::vector<EffectSegment> ReadKeyframesFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open for reading");
-  return ReadKeyframes(in, path);
+  InputFile in(path);
+  return ReadKeyframes(in.stream(), path);
 }
 
 void WriteKeyframes(const std::vector<EffectSegment>& segs, std::ostream& out) {

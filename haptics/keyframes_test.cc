@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
 
 #include "core/error.h"
 
@@ -60,6 +61,20 @@ TEST(Keyframes, RejectsBadInputWithLineNumbers) {
   EXPECT_NE(ErrorOf(h + "# c\n1,3,tilting,1\n2,4,vertigo,1\n").find("fx.csv:4:"),
             std::string::npos);
   EXPECT_THROW(ReadKeyframesFile("/nonexistent/fx.csv"), Error);
+}
+
+// Not a regular file: refused with one line, never read (/dev/zero never
+// ends; a directory used to read as an empty file).
+TEST(Keyframes, RefusesWhatIsNotARegularFile) {
+  const std::string dir = HAPCINE_BINARY_DIR;
+  for (const std::string& bad : {std::string("/dev/zero"), dir}) {
+    try {
+      ReadKeyframesFile(bad);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), bad + (bad == dir ? ": is a directory" : ": not a regular file"));
+    }
+  }
 }
 
 }  // namespace

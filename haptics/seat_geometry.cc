@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine {
 namespace {
@@ -93,10 +94,9 @@ SeatGeometry ParseSeatGeometryJson(const std::string& text, const std::string& s
 }
 
 SeatGeometry LoadSeatGeometryFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open for reading");
+  InputFile in(path);
   std::stringstream ss;
-  ss << in.rdbuf();
+  ss << in.stream().rdbuf();
   return ParseSeatGeometryJson(ss.str(), path);
 }
 

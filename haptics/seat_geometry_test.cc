@@ -76,5 +76,19 @@ TEST(SeatGeometry, LoadsFile) {
   std::remove(path.c_str());
 }
 
+// Not a regular file: refused with one line, never read (/dev/zero never
+// ends; a directory used to read as an empty file).
+TEST(SeatGeometry, RefusesWhatIsNotARegularFile) {
+  const std::string dir = HAPCINE_BINARY_DIR;
+  for (const std::string& bad : {std::string("/dev/zero"), dir}) {
+    try {
+      LoadSeatGeometryFile(bad);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), bad + (bad == dir ? ": is a directory" : ": not a regular file"));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hapcine

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine::study {
 
@@ -24,8 +25,8 @@ std::string HexDigest(uint64_t h) {
 std::string HashString(const std::string& bytes) { return HexDigest(Fnv1a64(bytes)); }
 
 std::string HashFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open for hashing");
+  InputFile file(path, std::ios::binary);
+  std::ifstream& in = file.stream();
   uint64_t h = 0xcbf29ce484222325ULL;
   std::string buf(1 << 16, '\0');
   while (in) {

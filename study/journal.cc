@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "study/json_util.h"
 
 namespace hapcine::study {
@@ -36,6 +37,10 @@ Journal::Journal(const std::string& path, const std::string& plan_id,
   std::string content;
   bool existed = false;
   {
+    // A journal not yet written is created below; one that exists must be a
+    // regular file (a FIFO would block, a device never end).
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec)) CheckRegularFile(path);
     std::ifstream in(path, std::ios::binary);
     if (in) {
       existed = true;

@@ -6,16 +6,16 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace hapcine::study {
 
 using nlohmann::json;
 
 json ReadJsonFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open");
+  InputFile in(path, std::ios::binary);
   std::stringstream ss;
-  ss << in.rdbuf();
+  ss << in.stream().rdbuf();
   try {
     return json::parse(ss.str());
   } catch (const json::exception& e) {
