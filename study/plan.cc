@@ -248,6 +248,84 @@ json PlanToJson(const StudyPlan& plan) {
   return j;
 }
 
+namespace {
+
+// Whether `group` is one of the clip's groups.
+bool IsGroupOf(const StudyClip& clip, const std::vector<std::string>& group) {
+  return std::find(clip.groups.begin(), clip.groups.end(), group) != clip.groups.end();
+}
+
+// The conditions and each clip's groups: every condition named once, in
+// exactly one group of every clip, at least two groups to compare.
+void ValidateClips(const StudyPlan& plan, const std::string& src) {
+  const std::set<std::string> conds(plan.conditions.begin(), plan.conditions.end());
+  if (conds.size() != plan.conditions.size() || conds.size() < 2 || conds.count(""))
+    throw Error(src, "conditions must be at least two distinct names");
+  if (!(plan.identical_tolerance_m >= 0))
+    throw Error(src, "identical_tolerance_m must be >= 0");
+  if (plan.clips.empty()) throw Error(src, "no clips");
+  std::set<std::string> names;
+  for (const StudyClip& c : plan.clips) {
+    const std::string where = "clip '" + c.name + "'";
+    if (!names.insert(c.name).second) throw Error(src, where + " listed twice");
+    std::set<std::string> covered;
+    for (const auto& g : c.groups) {
+      if (g.empty()) throw Error(src, where + ": empty group");
+      for (const auto& cond : g)
+        if (!covered.insert(cond).second)
+          throw Error(src, where + ": condition '" + cond + "' in two groups");
+    }
+    if (covered.size() != conds.size())
+      throw Error(src, where + ": groups do not cover every condition");
+    if (c.groups.size() < 2) throw Error(src, where + ": fewer than two groups to compare");
+  }
+}
+
+// One trial: a known clip, two different groups of that clip.
+void ValidateTrial(const StudyPlan& plan, const Trial& t, const std::string& src,
+                   const std::string& where) {
+  const auto clip = std::find_if(plan.clips.begin(), plan.clips.end(),
+                                 [&](const StudyClip& c) { return c.name == t.clip; });
+  if (clip == plan.clips.end()) throw Error(src, where + ": unknown clip '" + t.clip + "'");
+  for (const auto* group : {&t.first, &t.second}) {
+    const char* which = group == &t.first ? "first" : "second";
+    if (group->empty()) throw Error(src, where + ": " + which + " group is empty");
+    for (const auto& cond : *group)
+      if (!clip->tracks.count(cond))
+        throw Error(src, where + ": unknown condition '" + cond + "' in " + which + " group");
+    if (!IsGroupOf(*clip, *group))
+      throw Error(src, where + ": " + which + " group is not a group of clip '" + t.clip + "'");
+  }
+  if (t.first == t.second) throw Error(src, where + ": both groups are the same");
+}
+
+// Everything a session relies on, so that a plan edited by hand fails here
+// with its file and trial instead of crashing `study run`.
+void ValidatePlan(const StudyPlan& plan, const std::string& src) {
+  ValidateClips(plan, src);
+  const std::set<std::string> conds(plan.conditions.begin(), plan.conditions.end());
+  std::set<std::string> ids;
+  for (const ParticipantPlan& p : plan.participants) {
+    const std::string who = "participant " + p.id;
+    if (p.id.empty() || !ids.insert(p.id).second)
+      throw Error(src, who + ": empty or repeated participant id");
+    if (!conds.count(p.training_condition))
+      throw Error(src, who + ": unknown training condition '" + p.training_condition + "'");
+    for (const TrainingItem& t : p.training) {
+      if (!conds.count(t.condition))
+        throw Error(src, who + " training: unknown condition '" + t.condition + "'");
+      if (std::none_of(plan.clips.begin(), plan.clips.end(),
+                       [&](const StudyClip& c) { return c.name == t.clip; }))
+        throw Error(src, who + " training: unknown clip '" + t.clip + "'");
+    }
+    for (const Trial& t : p.trials)
+      ValidateTrial(plan, t, src, who + " trial " + std::to_string(t.index));
+  }
+  if (plan.participants.empty()) throw Error(src, "no participants");
+}
+
+}  // namespace
+
 StudyPlan PlanFromJson(const json& j, const std::string& src) {
   if (!j.is_object() || !j.contains("format") || j["format"] != kFormat)
     throw Error(src,
@@ -300,6 +378,7 @@ StudyPlan PlanFromJson(const json& j, const std::string& src) {
     }
     plan.participants.push_back(std::move(p));
   }
+  ValidatePlan(plan, src);
   const std::string id = ComputePlanId(plan);
   if (id != plan.plan_id)
     throw Error(src, "plan content does not match its plan_id (" + plan.plan_id + " recorded, " +

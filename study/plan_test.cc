@@ -4,11 +4,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 
 #include "core/error.h"
 #include "study/json_util.h"
+#include "study/results.h"
 #include "study/test_fixtures.h"
 
 namespace hapcine::study {
@@ -159,6 +161,83 @@ TEST(PlanTest, FileRoundTripAndTamperDetection) {
   EXPECT_THROW(ReadPlanFile(dir + "/foreign.json"), Error);
   std::ofstream(dir + "/broken.json") << R"({"format":"hapcine-study-plan", "version": 1, "pla)";
   EXPECT_THROW(ReadPlanFile(dir + "/broken.json"), Error);
+}
+
+// A plan edited by hand, with its plan_id recomputed so only the content is
+// wrong: the message read back, or "" if it loaded.
+std::string LoadError(const StudyPlan& edited, const std::string& path) {
+  StudyPlan p = edited;
+  p.plan_id = ComputePlanId(p);
+  WritePlanFile(p, path);
+  try {
+    ReadPlanFile(path);
+    return "";
+  } catch (const Error& e) {
+    return e.what();
+  }
+}
+
+TEST(PlanTest, LoadingValidatesEveryTrialAndGroup) {
+  const std::string dir = MakeTempDir("validate");
+  PlanOptions o;
+  o.clips = {MakeClip(dir, "crane"), MakeClip(dir, "vertigo", true)};
+  o.participants = 2;
+  const StudyPlan plan = MakePlan(o, nullptr);
+  const std::string path = dir + "/edited.json";
+  ASSERT_EQ(LoadError(plan, path), "");
+  const std::string at = path + ": participant P02 trial 3: ";
+  struct Case {
+    std::function<void(StudyPlan*)> edit;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {[](StudyPlan* p) { p->participants[1].trials[3].first.clear(); },
+       at + "first group is empty"},
+      {[](StudyPlan* p) { p->participants[1].trials[3].second = {"bogus"}; },
+       at + "unknown condition 'bogus' in second group"},
+      {[](StudyPlan* p) { p->participants[1].trials[3].clip = "nosuch"; },
+       at + "unknown clip 'nosuch'"},
+      {[](StudyPlan* p) { p->participants[1].trials[3].second = p->participants[1].trials[3].first; },
+       at + "both groups are the same"},
+      {[](StudyPlan* p) {
+         Trial& t = p->participants[1].trials[3];
+         t.first = {"cinematic", "semantic"};  // not one of the clip's groups
+       },
+       at + "first group is not a group of clip"},
+      {[](StudyPlan* p) { p->participants[0].training_condition = "bogus"; },
+       path + ": participant P01: unknown training condition 'bogus'"},
+      {[](StudyPlan* p) { p->participants[0].training[0].clip = "nosuch"; },
+       path + ": participant P01 training: unknown clip 'nosuch'"},
+      {[](StudyPlan* p) { p->clips[0].groups.push_back({}); },
+       path + ": clip 'crane': empty group"},
+      {[](StudyPlan* p) { p->clips[0].groups.pop_back(); },
+       path + ": clip 'crane': groups do not cover every condition"},
+      {[](StudyPlan* p) { p->participants.clear(); }, path + ": no participants"},
+  };
+  for (const Case& c : cases) {
+    StudyPlan edited = plan;
+    c.edit(&edited);
+    const std::string message = LoadError(edited, path);
+    EXPECT_EQ(message.substr(0, c.message.size()), c.message) << message;
+  }
+}
+
+// Plans and results that are not regular files: one line, never read
+// (/dev/zero never ends; a directory used to be "not valid JSON").
+TEST(PlanTest, PlanAndResultsThatAreNotRegularFilesAreRefused) {
+  const std::string dir = MakeTempDir("devices");
+  for (const std::string& bad : {std::string("/dev/zero"), dir}) {
+    const std::string reason = bad == dir ? ": is a directory" : ": not a regular file";
+    for (int which = 0; which < 2; ++which) {
+      try {
+        if (which == 0) ReadPlanFile(bad);
+        if (which == 1) ReadResultsFile(bad);
+        ADD_FAILURE() << "no error for " << bad;
+      } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), bad + reason);
+      }
+    }
+  }
 }
 
 TEST(PlanTest, DirectoryLayoutAndBadInput) {

@@ -70,6 +70,8 @@ ParticipantResults ResultsFromJson(const json& j, const std::string& src) {
   const std::set<std::string> conds(r.conditions.begin(), r.conditions.end());
   if (conds.size() != r.conditions.size() || conds.size() < 2)
     throw Error(src, "conditions must be at least two distinct names");
+  if (!conds.count(r.training_condition))
+    throw Error(src, "unknown training condition '" + r.training_condition + "'");
 
   // The design: every ordered pair of distinct groups of every clip, once.
   std::map<std::string, int> expected;  // key -> times seen

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "study/hash.h"
 #include "study/journal.h"
 #include "study/json_util.h"
@@ -51,8 +52,8 @@ class AnswerSource {
         key_press_(!scripted_ && &in == &std::cin && IsTerminal(STDIN_FILENO)),
         path_(responses_path) {
     if (scripted_) {
-      std::ifstream f(responses_path);
-      if (!f) throw Error(responses_path, "cannot open responses file");
+      InputFile file(responses_path);
+      std::ifstream& f = file.stream();
       std::string line;
       int n = 0;
       while (std::getline(f, line)) {
@@ -129,6 +130,12 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
   }
   summary.journal_path = JournalPathFor(summary.results_path);
 
+  // Every file the session plays, before the first clip: a track that is a
+  // FIFO or a device would hang or fail the player in the middle of a sitting.
+  for (const auto& c : plan.clips) {
+    CheckRegularFile(c.video);
+    for (const auto& [cond, t] : c.tracks) CheckRegularFile(t.path);
+  }
   if (options.verify_hashes) {
     for (const auto& c : plan.clips) {
       if (HashFile(c.video) != c.video_hash)

@@ -192,5 +192,56 @@ TEST(SessionTest, FailuresKeepTheJournalAndRefuseForeignState) {
   EXPECT_THROW(RunSession(bad, in, out), Error);
 }
 
+// A plan edited by hand (its id recomputed) that `study run` must refuse with
+// one Error naming the plan, before playing anything.
+TEST(SessionTest, EditedPlanIsRefusedWhenLoaded) {
+  Fixture f = MakeStudy("edited");
+  RunOptions o;
+  o.plan_path = f.dir + "/edited.json";
+  o.participant = "P01";
+  o.player_cmd = "/bin/true";
+  o.responses_path = WriteResponses(f.dir + "/r.txt", std::vector<int>(18, 1));
+  std::istringstream in;
+  std::ostringstream out;
+  for (const std::vector<std::string>& first :
+       {std::vector<std::string>{}, std::vector<std::string>{"bogus"}}) {
+    StudyPlan p = f.plan;
+    p.participants[0].trials[0].first = first;  // an empty group; an unknown condition
+    p.plan_id = ComputePlanId(p);
+    WritePlanFile(p, o.plan_path);
+    try {
+      RunSession(o, in, out);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), o.plan_path);
+      EXPECT_EQ(e.reason().rfind("participant P01 trial 0: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+// A track that is not a regular file (/dev/zero, a FIFO) is refused before
+// the first clip plays, instead of hanging the player.
+TEST(SessionTest, TrackThatIsNotARegularFileIsRefused) {
+  Fixture f = MakeStudy("devzero");
+  RunOptions o;
+  o.plan_path = f.dir + "/devzero.json";
+  o.participant = "P01";
+  o.player_cmd = "/bin/true";
+  o.responses_path = WriteResponses(f.dir + "/r.txt", std::vector<int>(18, 1));
+  StudyPlan p = f.plan;
+  p.clips[0].tracks["semantic"].path = "/dev/zero";
+  p.plan_id = ComputePlanId(p);
+  WritePlanFile(p, o.plan_path);
+  std::istringstream in;
+  std::ostringstream out;
+  try {
+    RunSession(o, in, out);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero: not a regular file");
+  }
+  EXPECT_EQ(out.str().find("Training"), std::string::npos) << out.str();
+}
+
 }  // namespace
 }  // namespace hapcine::study
