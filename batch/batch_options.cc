@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <climits>
+#include <set>
 #include <filesystem>
 #include <thread>
 
@@ -29,10 +30,16 @@ void BatchOptions::Check() const {
   if (out_dir.empty()) throw UsageError("-o OUT_DIR is required");
   if (jobs < 0) throw UsageError("--jobs must be >= 0 (0 = number of CPUs)");
   if (models.empty()) throw UsageError("--models needs at least one model");
+  // The models of `hapcine haptics --model`: a misspelt one would otherwise
+  // fail every film after its estimate.
+  static const std::set<std::string> kModels = {"cinematic", "semantic", "random", "none"};
+  std::set<std::string> seen;
   for (const std::string& m : models) {
-    if (m.empty() || m.find_first_of("/ \t.") != std::string::npos) {
-      throw UsageError("bad model name '" + m + "'");
+    if (!kModels.count(m)) {
+      throw UsageError("unknown model '" + m +
+                       "' in --models (expected cinematic, semantic, random or none)");
     }
+    if (!seen.insert(m).second) throw UsageError("model '" + m + "' given twice in --models");
   }
   if (shard_count < 1 || shard_index < 0 || shard_index >= shard_count) {
     throw UsageError("--shard must be i/K with 0 <= i < K");
