@@ -40,6 +40,28 @@ std::vector<ActuatorFrame> ResampleFrames(const CameraPath& path,
   return out;
 }
 
+// A media clock this far from zero cannot be sampled at a haptic rate in
+// double precision (at 1e15 s neighbouring doubles are 0.125 s apart), nor
+// written with the track's six decimals; 1e8 s is over three years.
+constexpr double kMaxMediaClockS = 1e8;
+
+// Output sample times from the path's first frame to its last at `rate`.
+// Throws Error(source) if neighbouring times cannot be told apart.
+std::vector<double> SampleTimes(const CameraPath& path, double rate, const std::string& source) {
+  const double t0 = path.frames.front().time_s;
+  const double t1 = path.frames.back().time_s;
+  const size_t n = static_cast<size_t>(std::floor((t1 - t0) * rate + 1e-9)) + 1;
+  std::vector<double> time_s(n);
+  for (size_t i = 0; i < n; ++i) {
+    time_s[i] = t0 + static_cast<double>(i) / rate;
+    if (i > 0 && !(time_s[i] > time_s[i - 1])) {
+      throw Error(source, "time_s " + FormatDouble(time_s[i]) + " is too large to sample at " +
+                              FormatDouble(rate) + " Hz");
+    }
+  }
+  return time_s;
+}
+
 std::string JoinScales(const CinematicScaling& s, bool rotation) {
   std::ostringstream out;
   for (size_t i = 0; i < s.per_shot.size(); ++i) {
@@ -94,13 +116,19 @@ void HapticOptions::Check() const {
 
 HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
   o.Check();
-  ValidatePathForHaptics(path, o.source.empty() ? "camera path" : o.source, o.max_gap_s);
+  const std::string source = o.source.empty() ? "camera path" : o.source;
+  ValidatePathForHaptics(path, source, o.max_gap_s);
+  if (std::abs(path.frames.front().time_s) > kMaxMediaClockS) {
+    // Times counted from the first frame instead; the offset is kept.
+    CameraPath from_first = path;
+    for (CameraFrame& f : from_first.frames) f.time_s -= path.frames.front().time_s;
+    HapticTrack track = MakeHapticTrack(from_first, o);
+    track.metadata["time_origin_s"] = FormatDouble(path.frames.front().time_s);
+    return track;
+  }
   const double rate = o.OutputRateHz();
-  const double t0 = path.frames.front().time_s;
-  const double t1 = path.frames.back().time_s;
-  const size_t n = static_cast<size_t>(std::floor((t1 - t0) * rate + 1e-9)) + 1;
-  std::vector<double> time_s(n);
-  for (size_t i = 0; i < n; ++i) time_s[i] = t0 + static_cast<double>(i) / rate;
+  const std::vector<double> time_s = SampleTimes(path, rate, source);
+  const size_t n = time_s.size();
 
   const std::vector<ShotRange> shots = SplitShots(path);
   std::vector<double> cut_times;

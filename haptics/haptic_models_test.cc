@@ -243,6 +243,32 @@ TEST(HapticModels, NoAcceptedPathLeavesTheWorkspace) {
   }
 }
 
+// A media clock near 1e15 s is valid input, but there neighbouring doubles
+// are 0.125 s apart: the track counts from the first frame, keeps the origin
+// in its metadata, and is the track of the same path starting at 0.
+TEST(HapticModels, HugeMediaClockCountsFromTheFirstFrame) {
+  CameraPath at_zero = MakeEffectPath(CameraEffect::kTraveling);
+  CameraPath far = at_zero;
+  for (size_t i = 0; i < at_zero.frames.size(); ++i) {
+    at_zero.frames[i].time_s = 0.125 * static_cast<double>(i);
+    far.frames[i].time_s = 1e15 + 0.125 * static_cast<double>(i);
+  }
+  HapticOptions o;
+  o.source = "far.camera.csv";
+  const HapticTrack a = MakeHapticTrack(at_zero, o);
+  const HapticTrack b = MakeHapticTrack(far, o);
+  EXPECT_EQ(b.metadata.at("time_origin_s"), "1e+15");
+  EXPECT_EQ(a.metadata.count("time_origin_s"), 0u);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  for (size_t i = 0; i < a.samples.size(); ++i) {
+    ASSERT_EQ(a.samples[i].time_s, b.samples[i].time_s) << i;
+    for (int k = 0; k < kNumActuators; ++k) ASSERT_EQ(a.samples[i].pos_m[k], b.samples[i].pos_m[k]);
+  }
+  std::stringstream written;
+  WriteHapticTrack(b, written);  // threw "time not increasing at sample 1"
+  EXPECT_EQ(ReadHapticTrack(written, "far.haptic.csv").samples.size(), b.samples.size());
+}
+
 TEST(HapticModels, DifferenceOfTracks) {
   HapticOptions o;
   const CameraPath path = MakeEffectPath(CameraEffect::kTraveling);
