@@ -7,10 +7,12 @@
 #include <ceres/product_manifold.h>
 #include <ceres/sphere_manifold.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <thread>
 
 #include "estimate/depth_cost.h"
 
@@ -375,7 +377,9 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   ceres::Solver::Options so;
   so.linear_solver_type = n <= 80 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
   so.max_num_iterations = options.max_iterations;
-  so.num_threads = options.num_threads;
+  // Ceres bounds the threads to the cores itself, with a warning per solve.
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  so.num_threads = cores > 0 ? std::min(options.num_threads, cores) : options.num_threads;
   so.function_tolerance = options.function_tolerance;
   so.parameter_tolerance = 1e-9;
   // The cheirality bound makes the problem bounds-constrained, and Ceres then

@@ -428,6 +428,35 @@ TEST_F(FrameSourceTest, TruncatedImageInASequence) {
   }
 }
 
+// A bit flipped inside a PNG of a sequence: one error naming that image, and
+// not a line of libpng's (or OpenCV's) own on stderr before it.
+TEST_F(FrameSourceTest, CorruptImageIsOneLineWithoutCodecOutput) {
+  cv::Mat img(120, 160, CV_8UC3);
+  cv::randu(img, 0, 255);
+  const fs::path folder = *dir_ / "flipped";
+  fs::create_directories(folder);
+  for (int i = 0; i < 3; ++i) cv::imwrite((folder / ("f" + std::to_string(i) + ".png")).string(), img);
+  const fs::path bad = folder / "f1.png";
+  std::string bytes;
+  {
+    std::ifstream in(bad, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  bytes[bytes.size() / 2] ^= 0x10;  // inside the image data; IEND still ends the file
+  std::ofstream(bad, std::ios::binary | std::ios::trunc) << bytes;
+  std::string message;
+  ::testing::internal::CaptureStderr();
+  try {
+    ReadAll(folder.string());
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(printed, "");
+  EXPECT_EQ(message.rfind(bad.string() + ": not an image OpenCV can read", 0), 0u) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
 TEST(FrameSourceOptionsTest, Check) {
   FrameSourceOptions o;
   EXPECT_NO_THROW(o.Check());

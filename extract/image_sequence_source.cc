@@ -3,17 +3,21 @@
 // ffmpeg's image2 demuxer would find it, up to 4). Image files carry no
 // timestamps: frame i is at i / image_sequence_fps seconds.
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "extract/video_sources.h"
 
 namespace hapcine {
@@ -51,6 +55,90 @@ std::string TruncatedImageReason(const std::string& path) {
   }
   return tail.find("\xff\xd9") != std::string::npos ? std::string()
                                                       : "truncated JPEG (no end-of-image marker)";
+}
+
+// While alive, whatever is written to the process's stderr (fd 2) goes to a
+// private file instead; Take() returns it. One at a time (a mutex): fd 2 is
+// shared by every thread.
+class StderrCapture {
+ public:
+  StderrCapture() : lock_(Mutex()) {
+    std::fflush(stderr);
+    if (File() < 0 || ::ftruncate(File(), 0) != 0 || ::lseek(File(), 0, SEEK_SET) != 0) return;
+    saved_ = ::dup(STDERR_FILENO);
+    if (saved_ >= 0 && ::dup2(File(), STDERR_FILENO) < 0) {
+      ::close(saved_);
+      saved_ = -1;
+    }
+  }
+  ~StderrCapture() { Restore(); }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+
+  // Ends the capture; returns what was written (at most 64 KiB).
+  std::string Take() {
+    Restore();
+    std::string text;
+    if (File() < 0 || ::lseek(File(), 0, SEEK_SET) != 0) return text;
+    char buf[4096];
+    ssize_t n;
+    while (text.size() < 65536 && (n = ::read(File(), buf, sizeof buf)) > 0) text.append(buf, n);
+    return text;
+  }
+
+ private:
+  static std::mutex& Mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int File() {
+    static FILE* const f = std::tmpfile();  // kept open for the process's lifetime
+    return f ? fileno(f) : -1;
+  }
+  void Restore() {
+    if (saved_ < 0) return;
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    saved_ = -1;
+  }
+
+  std::lock_guard<std::mutex> lock_;
+  int saved_ = -1;
+};
+
+// The first line a codec printed that is not an OpenCV log line ("[ WARN..."),
+// e.g. libpng's "libpng error: IDAT: CRC error"; "" if none.
+std::string CodecReason(const std::string& printed) {
+  size_t pos = 0;
+  while (pos < printed.size()) {
+    size_t end = printed.find('\n', pos);
+    if (end == std::string::npos) end = printed.size();
+    std::string line = printed.substr(pos, end - pos);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty() && line[0] != '[') return line;
+    pos = end + 1;
+  }
+  return {};
+}
+
+// cv::imread without the codec libraries' own lines on stderr: a bad image
+// becomes one hapcine line naming it, with the codec's reason in it. What a
+// codec prints about an image it did decode (a libjpeg warning) is passed on.
+cv::Mat ReadImageQuietly(const std::string& path) {
+  cv::Mat image;
+  std::string printed;
+  {
+    StderrCapture capture;
+    image = cv::imread(path, cv::IMREAD_COLOR);
+    printed = capture.Take();
+  }
+  if (image.empty()) {
+    const std::string reason = CodecReason(printed);
+    throw Error(path, "not an image OpenCV can read" + (reason.empty() ? "" : " (" + reason + ")"));
+  }
+  if (!printed.empty()) std::fwrite(printed.data(), 1, printed.size(), stderr);
+  return image;
 }
 
 bool HasImageExtension(const fs::path& p) {
@@ -173,12 +261,12 @@ class ImageSequenceSource : public FrameSource {
   bool ReadNext(cv::Mat* image) {
     const std::string p = NextPath();
     if (p.empty()) return false;
+    CheckRegularFile(p);  // a FIFO matching a pattern would block the read
     std::error_code ec;
     if (fs::file_size(p, ec) == 0) throw Error(p, "empty image file (0 bytes)");
     const std::string truncated = TruncatedImageReason(p);
     if (!truncated.empty()) throw Error(p, truncated);
-    *image = cv::imread(p, cv::IMREAD_COLOR);
-    if (image->empty()) throw Error(p, "not an image OpenCV can read");
+    *image = ReadImageQuietly(p);
     if (image->cols > kMaxFrameSidePx || image->rows > kMaxFrameSidePx)
       throw Error(p, "absurd image size");
     if (emitted_ + (have_first_ ? 1 : 0) > 0 && info_.width > 0 &&
