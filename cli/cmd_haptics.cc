@@ -11,6 +11,7 @@
 #include "core/camera_path.h"
 #include "core/error.h"
 #include "core/haptic_track.h"
+#include "core/input_file.h"
 #include "estimate/camera_estimator.h"
 #include "haptics/haptic_models.h"
 #include "haptics/camera_signals.h"
@@ -141,6 +142,7 @@ int RunHaptics(int argc, char** argv) {
       });
       if (tty) std::cerr << "\n";
     }
+    const InputScope making(input);  // "INPUT: out of memory" if it comes to that
     const HapticTrack track = MakeHapticTrack(path, opt);
     // Both outputs go to temporary files first; nothing is renamed into place
     // until both are complete.
