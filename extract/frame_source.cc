@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "extract/video_sources.h"
 
 namespace hapcine {
@@ -47,8 +48,7 @@ std::unique_ptr<FrameSource> OpenFrameSource(const std::string& path,
   // An existing file named "50%.mp4" is a video, not a pattern.
   const bool is_file = !ec && std::filesystem::is_regular_file(status);
   if (!is_file && IsImageSequencePath(path)) return OpenImageSequence(path, options);
-  if (ec || !std::filesystem::exists(status)) throw Error(path, "no such file");
-  if (!std::filesystem::is_regular_file(status)) throw Error(path, "not a regular file");
+  CheckRegularFile(path);  // "no such file", "not a regular file" (a FIFO, a device)
   // Before FFmpeg, which would call it "not a media file ... (Permission denied)".
   if (::access(path.c_str(), R_OK) != 0)
     throw Error(path, std::string("cannot read the file (") + std::strerror(errno) + ")");
