@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/command.h"
+#include "core/output_files.h"
 
 namespace {
 
@@ -45,6 +46,8 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished outputs.
+  hapcine::InstallTempCleanupOnSignals();
   if (argc < 2) {
     PrintUsage(std::cerr);
     return hapcine::cli::kExitUsage;
