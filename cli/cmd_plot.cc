@@ -103,7 +103,8 @@ int RunPlot(int argc, char** argv) {
     } else {
       for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
     }
-    OutputSet outputs(inputs, {{png ? prefix + ".png" : "", "-o"}, {svg ? prefix + ".svg" : "", "-o"}});
+    OutputSet outputs(inputs,
+                      {{png ? prefix + ".png" : "", "-o"}, {svg ? prefix + ".svg" : "", "-o"}});
     Figure fig;
     if (camera->parsed()) {
       const CameraPath gt = ReadCameraPathFile(gt_file);
