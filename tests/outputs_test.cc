@@ -23,17 +23,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
+struct CommandRun {
   int exit_code = -1;
   std::string err;
 };
 
-Run Hapcine(const std::string& args, const fs::path& dir) {
+CommandRun Hapcine(const std::string& args, const fs::path& dir) {
   const fs::path err_file = dir / "stderr.txt";
   const std::string cmd = std::string("'") + HAPCINE_EXE + "' " + args + " >/dev/null 2>'" +
                           err_file.string() + "'";
   const int status = std::system(cmd.c_str());
-  Run r;
+  CommandRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream e(err_file);
   std::stringstream ss;
@@ -95,7 +95,7 @@ class OutputsTest : public ::testing::Test {
   }
   // Runs a command that must be refused as usage (exit 2) naming `names`.
   void ExpectUsage(const std::string& args, const std::vector<std::string>& names) {
-    const Run r = Hapcine(args, work_);
+    const CommandRun r = Hapcine(args, work_);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     for (const std::string& n : names) EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
   }
@@ -164,7 +164,7 @@ TEST_F(OutputsTest, TwoOutputsOnOnePathAreRefused) {
 TEST_F(OutputsTest, AFailingOutputLeavesNoneOfTheOthers) {
   fs::create_directories(work_ / "dir");
   // A directory as output: refused before any work, naming it; no z.csv.
-  Run r = Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "z.csv") + " --hjif " +
+  CommandRun r = Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "z.csv") + " --hjif " +
                       Q(work_ / "dir"),
                   work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -229,7 +229,7 @@ TEST_F(OutputsTest, DeviceOutputsAreWrittenDirectly) {
         "convert " + Q(Camera()) + " --to-tum " + Q(null),
         "preview " + Q(Video()) + " --max-side 96 -o " + Q(null),
         "plot haptic " + Q(Track()) + " --format png -o " + Q(work_ / "null")}) {
-    const Run r = Hapcine(args, work_);
+    const CommandRun r = Hapcine(args, work_);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_TRUE(IsCharDevice(null)) << args;
   }
@@ -246,7 +246,7 @@ TEST_F(OutputsTest, LongOutputNamesAreWritten) {
         "eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(base.string() + ".json"),
         "convert " + Q(Camera()) + " --to-tum " + Q(base.string() + ".tum.txt"),
         "plot haptic " + Q(Track()) + " -o " + Q(base)}) {
-    const Run r = Hapcine(args, work_);
+    const CommandRun r = Hapcine(args, work_);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
   }
   for (const std::string& suffix : {".camera.csv", ".haptic.c", ".hjif", ".json", ".tum.txt",
@@ -261,7 +261,7 @@ TEST_F(OutputsTest, BatchRunsAFilmWithA240ByteStem) {
   fs::create_directories(lib);
   const std::string stem(240, 'f');
   fs::copy_file(Video(), lib / (stem + ".mp4"));
-  const Run r = Hapcine("batch " + Q(lib) + " -o " + Q(work_ / "out") +
+  const CommandRun r = Hapcine("batch " + Q(lib) + " -o " + Q(work_ / "out") +
                             " --models cinematic --jobs 1 --progress quiet",
                         work_);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -276,7 +276,7 @@ TEST_F(OutputsTest, BatchRunsAFilmWithA240ByteStem) {
 // synth: a directory in the way of a clip is an error before any rendering.
 TEST_F(OutputsTest, SynthRefusesADirectoryInTheWay) {
   fs::create_directories(work_ / "tilting.mp4");
-  const Run r = Hapcine("synth tilting --width 64 --height 36 --duration-s 0.5 -o " + Q(work_),
+  const CommandRun r = Hapcine("synth tilting --width 64 --height 36 --duration-s 0.5 -o " + Q(work_),
                         work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("tilting.mp4"), std::string::npos) << r.err;
