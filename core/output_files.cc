@@ -220,9 +220,14 @@ struct Identity {
 
 Identity IdentityOf(const std::string& path) {
   Identity id;
+  fs::path followed = path;
+  try {
+    followed = FollowSymlinks(path);  // a dangling link names the file it would create
+  } catch (const Error&) {
+  }
   std::error_code ec;
-  id.canonical = fs::weakly_canonical(path, ec);
-  if (ec) id.canonical = fs::absolute(path, ec).lexically_normal();
+  id.canonical = fs::weakly_canonical(followed, ec);
+  if (ec) id.canonical = fs::absolute(followed, ec).lexically_normal();
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) {
     id.exists = true;

@@ -176,6 +176,10 @@ TEST_F(OutputFilesTest, TwoOutputsOnOnePathAreAUsageError) {
     EXPECT_NE(m.find("-o"), std::string::npos) << m;
     EXPECT_NE(m.find("--hjif"), std::string::npos) << m;
   }
+  // Through a link whose target does not exist yet.
+  fs::create_symlink("new.csv", dir_ / "link.csv");
+  EXPECT_THROW(CheckOutputPaths({}, {{P("link.csv"), "-o"}, {P("new.csv"), "--hjif"}}), UsageError);
+  EXPECT_NO_THROW(CheckOutputPaths({}, {{P("a.csv"), "-o"}, {P("b.csv"), "--hjif"}}));
 }
 
 TEST_F(OutputFilesTest, SetCommitsNothingUntilCommitAll) {
