@@ -102,10 +102,11 @@ class OutputsTest : public ::testing::Test {
   fs::path Video() const { return dir_ / "tilting.mp4"; }
   fs::path Camera() const { return dir_ / "tilting.camera.csv"; }
   fs::path Track() const { return dir_ / "tilting.haptic.csv"; }
-  // A copy of /dev/null in the work folder (needs root), else empty.
-  fs::path DevNullCopy(const std::string& name = "null") const {
+  // A copy of /dev/null (or, minor 7, /dev/full) in the work folder (needs
+  // root), else empty: a regression then replaces the copy, not the system's.
+  fs::path DevNullCopy(const std::string& name = "null", unsigned minor = 3) const {
     const fs::path p = work_ / name;
-    if (::geteuid() != 0 || ::mknod(p.c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0) return {};
+    if (::geteuid() != 0 || ::mknod(p.c_str(), S_IFCHR | 0666, makedev(1, minor)) != 0) return {};
     return p;
   }
 
@@ -175,15 +176,16 @@ TEST_F(OutputsTest, AFailingOutputLeavesNoneOfTheOthers) {
               work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "e.json"));
-  // A write that fails after the work (/dev/full: no space left): the other
+  // A write that fails after the work (a /dev/full: no space left): the other
   // outputs, complete by then, are not committed either.
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
-  r = Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "z.csv") + " --hjif /dev/full",
+  const fs::path full = DevNullCopy("full", 7);
+  if (full.empty()) GTEST_SKIP() << "making a device node needs root";
+  r = Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "z.csv") + " --hjif " + Q(full),
               work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "z.csv"));
   r = Hapcine("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(work_ / "e.json") +
-                  " --per-frame /dev/full",
+                  " --per-frame " + Q(full),
               work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "e.json"));
