@@ -11,7 +11,9 @@
 #include "batch/fake_step_for_test.h"
 #include "batch/library.h"
 #include "batch/state_files.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/output_files.h"
 
 namespace hapcine::batch {
 namespace {
@@ -227,6 +229,17 @@ TEST_F(BatchTest, StaleTemporariesAreCleanedAndLockedFilmsLeftAlone) {
   WriteFile(a + "/done.json.tmp-999999", "{");
   WriteFile(a + "/.steps/estimate.json.tmp-999999", "{");
   WriteFile(options_.out_dir + "/summary.json.tmp-999999", "{");
+  // Temporaries of the output helper: any in a film folder, dead ones at the top.
+  WriteFile(a + "/.1-0-00000000.hapcine-tmp", "{");
+  long pid = 0;
+  bool here = false;
+  {
+    AtomicFile probe(options_.out_dir + "/probe.txt");  // a name of this host's pattern
+    ASSERT_TRUE(ParseTempName(fs::path(probe.temp_path()).filename().string(), &pid, &here));
+    const std::string name = fs::path(probe.temp_path()).filename().string();
+    const std::string dead = ".999999" + name.substr(name.find('-'));
+    WriteFile(options_.out_dir + "/" + dead, "{");
+  }
   {
     FilmLock held(FilmDir("b.mov"));  // as if another batch were working on it
     ASSERT_TRUE(held.locked());

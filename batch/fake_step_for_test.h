@@ -124,12 +124,15 @@ inline std::vector<std::string> LogLines(const std::string& log, const std::stri
   return lines;
 }
 
-// Every leftover temporary (".tmp" folders, "*.tmp-<pid>" files) under dir.
+// Every leftover temporary (".tmp" folders, "*.hapcine-tmp" and "*.tmp-<pid>"
+// files) under dir.
 inline std::vector<std::string> TempLeftovers(const std::string& dir) {
   std::vector<std::string> found;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
-    if (name == ".tmp" || name.find(".tmp-") != std::string::npos) found.push_back(e.path());
+    if (name == ".tmp" || name.find(".tmp-") != std::string::npos ||
+        name.find(".hapcine-tmp") != std::string::npos)
+      found.push_back(e.path());
   }
   return found;
 }

@@ -144,6 +144,27 @@ std::vector<std::string> ListLibrary(const std::string& library) {
 
 std::string FileStem(const std::string& path) { return fs::path(path).stem().string(); }
 
+namespace {
+// Cuts `s` to at most `bytes` bytes without splitting a UTF-8 character.
+void CutUtf8(std::string& s, size_t bytes) {
+  if (s.size() <= bytes) return;
+  size_t cut = bytes;
+  while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+  s.resize(cut);
+}
+}  // namespace
+
+std::string OutputStem(const std::string& file_stem, const std::vector<std::string>& models) {
+  constexpr size_t kNameMax = 255;
+  size_t longest_suffix = std::string(".camera.csv").size();
+  for (const std::string& m : models) {
+    longest_suffix = std::max(longest_suffix, ("." + m + ".haptic.csv").size());
+  }
+  std::string stem = file_stem;
+  CutUtf8(stem, kNameMax > longest_suffix + 1 ? kNameMax - longest_suffix : 1);
+  return stem.empty() ? "film" : stem;
+}
+
 std::string FilmId(const std::string& absolute_path) {
   std::string stem = FileStem(absolute_path);
   std::string safe;

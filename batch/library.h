@@ -32,6 +32,11 @@ bool IsVideoExtension(const std::string& extension);
 // does not exist or a manifest is malformed (e.g. a CSV without "path").
 std::vector<std::string> ListLibrary(const std::string& library);
 
+// The stem of a film's output files: the file stem, cut (on a UTF-8
+// character boundary) so that the longest output name,
+// "<stem>.<model>.haptic.csv", fits in 255 bytes.
+std::string OutputStem(const std::string& file_stem, const std::vector<std::string>& models);
+
 // Output folder name of an input: "<stem>-<8 hex of FNV-1a of the absolute
 // path>". Unique per path, stable across runs, keeps spaces and non-ASCII
 // letters of the stem (UTF-8 is kept intact, control characters become '_',

@@ -106,6 +106,21 @@ TEST(LibraryTest, FilmIdCutsLongNamesOnCharacterBoundary) {
   EXPECT_EQ(stem.size() % 2, 0u);  // whole two-byte characters only
 }
 
+TEST(LibraryTest, OutputStemFitsTheLongestOutputNameIn255Bytes) {
+  const std::vector<std::string> models = {"cinematic", "semantic"};
+  EXPECT_EQ(OutputStem("film", models), "film");
+  const std::string stem(240, 'f');
+  const std::string cut = OutputStem(stem, models);
+  EXPECT_EQ((cut + ".cinematic.haptic.csv").size(), 255u);
+  EXPECT_EQ(stem.compare(0, cut.size(), cut), 0);
+  // Two-byte characters: never split.
+  std::string wide;
+  while (wide.size() < 240) wide += "é";
+  const std::string wide_cut = OutputStem(wide, models);
+  EXPECT_LE((wide_cut + ".cinematic.haptic.csv").size(), 255u);
+  EXPECT_EQ(wide_cut.size() % 2, 0u);
+}
+
 TEST(LibraryTest, SplitArgsHonoursQuotes) {
   EXPECT_EQ(SplitArgs(""), std::vector<std::string>{});
   EXPECT_EQ(SplitArgs("  --a 1  --b 'x y' \"z \\\"w\\\"\" c\\ d"),

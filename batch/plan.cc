@@ -17,7 +17,7 @@ BatchPlan MakePlan(const BatchOptions& options) {
     FilmPlan f;
     f.path = path;
     f.id = FilmId(path);
-    f.stem = FileStem(path);
+    f.stem = OutputStem(FileStem(path), options.models);
     try {
       const ContentId cid = SampledContentId(path);
       f.size_bytes = cid.size_bytes;

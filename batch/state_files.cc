@@ -15,12 +15,14 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/output_files.h"
 
 namespace hapcine::batch {
 namespace fs = std::filesystem;
 namespace {
 
-// "name.tmp-1234" -> 1234, or -1 if the name is not a temp file name.
+// "name.tmp-1234" (the temporary names of earlier versions) -> 1234, or -1
+// if the name is not such a temp file name.
 long TempPid(const std::string& name) {
   const size_t pos = name.rfind(".tmp-");
   if (pos == std::string::npos) return -1;
@@ -90,12 +92,16 @@ int CleanFilmTemp(const std::string& film_dir) {
     fs::remove_all(dir / kTempDir, ec);
     ++removed;
   }
-  removed += RemoveTempFilesIn(dir, /*only_dead=*/false);
-  removed += RemoveTempFilesIn(dir / kStepsDir, /*only_dead=*/false);
+  for (const fs::path& d : {dir, dir / kStepsDir}) {
+    removed += RemoveTempFilesIn(d, /*only_dead=*/false);
+    removed += RemoveAllTemps(d.string());
+  }
   return removed;
 }
 
-int CleanDeadTempFiles(const std::string& dir) { return RemoveTempFilesIn(dir, true); }
+int CleanDeadTempFiles(const std::string& dir) {
+  return RemoveTempFilesIn(dir, true) + SweepStaleTemps(dir);
+}
 
 std::string UtcNow() {
   const std::time_t t = std::time(nullptr);

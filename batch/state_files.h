@@ -59,13 +59,14 @@ class FilmLock {
 // True if another process holds the film's lock right now.
 bool FilmIsLocked(const std::string& film_dir);
 
-// Removes what an interrupted run left: <dir>/.tmp/ and "*.tmp-<pid>" files
+// Removes what an interrupted run left: <dir>/.tmp/ and the output
+// temporaries (core/output_files.h; also "*.tmp-<pid>" of earlier versions)
 // in <dir> and <dir>/.steps. Call only while holding the film's lock.
 // Returns the number of entries removed.
 int CleanFilmTemp(const std::string& film_dir);
 
-// Removes "*.tmp-<pid>" files directly in `dir` whose writer pid is not
-// alive on this host (safe while other batches run).
+// Removes output temporaries (and "*.tmp-<pid>" files) directly in `dir`
+// whose writer pid is not alive on this host (safe while other batches run).
 int CleanDeadTempFiles(const std::string& dir);
 
 // UTC time as "2026-11-22T07:30:00Z".

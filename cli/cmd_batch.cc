@@ -10,6 +10,7 @@
 #include "batch/slurm.h"
 #include "cli/command.h"
 #include "core/error.h"
+#include "core/output_files.h"
 
 namespace hapcine::cli {
 
@@ -74,6 +75,8 @@ int RunBatch(int argc, char** argv) {
       return kExitOk;
     }
     opt.library = positional;
+    // Outputs are committed as each film finishes; only the names are checked.
+    CheckOutputPaths({{opt.library, "LIBRARY"}}, {{opt.out_dir, "-o", /*folder=*/true}});
     opt.models.clear();
     std::stringstream ms(models);
     for (std::string m; std::getline(ms, m, ',');) {

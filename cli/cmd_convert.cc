@@ -14,6 +14,7 @@
 #include "core/camera_path.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "datasets/tum_format.h"
 #include "estimate/colmap_model.h"
 #include "extract/frame_source.h"
@@ -110,9 +111,17 @@ int RunConvert(int argc, char** argv) {
     if (modes != 1) {
       throw UsageError("choose exactly one of --to-tum, --from-tum, --from-colmap");
     }
+    std::vector<NamedPath> inputs = {
+        {input, "INPUT"}, {from_tum, "--from-tum"}, {times_from, "--times-from"}};
+    if (!from_colmap.empty()) {
+      for (const char* f : {"cameras.txt", "images.txt", "points3D.txt"})
+        inputs.push_back({from_colmap + "/" + f, "--from-colmap"});
+    }
+    OutputSet outputs(inputs, {{to_tum, "--to-tum"}, {output, "-o"}});
     if (!to_tum.empty()) {
       if (input.empty()) throw UsageError("--to-tum needs an input camera path");
       WriteTumTrajectoryFile(ReadCameraPathFile(input), to_tum);
+      outputs.CommitAll();
       std::cerr << "wrote " << to_tum << "\n";
       return kExitOk;
     }
@@ -123,6 +132,7 @@ int RunConvert(int argc, char** argv) {
       CameraPath path = CameraPathFromTum(ReadTumTrajectoryFile(from_tum), fov_deg);
       path.metadata["source"] = from_tum;
       WriteCameraPathFile(path, output);
+      outputs.CommitAll();
     } else {
       if (times_from.empty()) throw UsageError("--from-colmap needs --times-from");
       const FrameTimes times = ReadFrameTimes(times_from);
@@ -136,6 +146,7 @@ int RunConvert(int argc, char** argv) {
       if (times.fps > 0) path.metadata["fps"] = FormatDouble(times.fps);
       path.metadata["source"] = from_colmap;
       WriteCameraPathFile(path, output);
+      outputs.CommitAll();
       int registered = 0;
       for (const auto& f : path.frames) registered += f.confidence.value_or(1) > 0;
       std::cerr << "converted " << registered << " registered frames of " << path.frames.size()

@@ -13,6 +13,7 @@
 #include "cli/command.h"
 #include "core/camera_path.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "estimate/camera_estimator.h"
 
 namespace hapcine::cli {
@@ -206,10 +207,7 @@ int RunEstimate(int argc, char** argv) {
     if (no_plane_prior) opt.estimator.motion_plane_prior = false;
     if (no_klt_predict) opt.tracker.klt_predict = false;
     opt.Check();
-    const std::filesystem::path out_path(output);
-    const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(parent))
-      throw Error(output, "output folder does not exist");
+    OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}});
     EstimateProgress progress(quiet);
     const CameraPath path = EstimateCameraPathFromFile(
         video, opt, [&](long done, long total) { progress.Update(done, total); });
@@ -217,6 +215,7 @@ int RunEstimate(int argc, char** argv) {
       throw Error(video, std::to_string(path.frames.size()) +
                              " video frame(s): camera motion needs at least two");
     WriteCameraPathFile(path, output);
+    outputs.CommitAll();
     progress.Done(static_cast<long>(path.frames.size()));
     return kExitOk;
   });

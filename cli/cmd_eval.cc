@@ -11,6 +11,7 @@
 #include "cli/command.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
+#include "core/output_files.h"
 #include "datasets/eval.h"
 #include "datasets/eval_haptics.h"
 #include "haptics/camera_signals.h"
@@ -72,6 +73,8 @@ int RunEval(int argc, char** argv) {
     opt.matching = ParseFrameMatching(matching);
     opt.per_shot = !no_per_shot;
     opt.Check();
+    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}},
+                      {{json_out, "-o"}, {per_frame_out, "--per-frame"}});
     const CameraPath gt = ReadCameraPathFile(gt_file);
     const CameraPath est = ReadCameraPathFile(est_file);
     EvalReport report = EvaluateCameraPaths(gt, est, opt);
@@ -100,6 +103,7 @@ int RunEval(int argc, char** argv) {
       out.Commit();
     }
     if (!per_frame_out.empty()) WritePerFrameErrorsFile(report, per_frame_out);
+    outputs.CommitAll();
     if (json) {
       std::cout << j.dump(2) << "\n";
     } else {

@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "core/haptic_track.h"
 #include "core/input_file.h"
 #include "estimate/camera_estimator.h"
@@ -110,6 +111,8 @@ int RunHaptics(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("INPUT is required");
     if (output.empty()) throw UsageError("-o OUT.haptic.csv is required");
+    OutputSet outputs({{input, "INPUT"}, {seat_file, "--seat"}, {keyframes, "--keyframes"}},
+                      {{output, "-o"}, {hjif, "--hjif"}, {effects_out, "--effects-out"}});
     opt.model = HapticModelFromName(model);
     opt.rate_hz = rate;
     opt.keyframes_file = keyframes;
@@ -144,8 +147,8 @@ int RunHaptics(int argc, char** argv) {
     }
     const InputScope making(input);  // "INPUT: out of memory" if it comes to that
     const HapticTrack track = MakeHapticTrack(path, opt);
-    // Both outputs go to temporary files first; nothing is renamed into place
-    // until both are complete.
+    // The outputs go to temporary files first; nothing is renamed into place
+    // until all are complete (OutputSet).
     AtomicFile csv(output);
     WriteHapticTrack(track, csv.stream());
     std::unique_ptr<AtomicFile> hj;
@@ -163,6 +166,7 @@ int RunHaptics(int argc, char** argv) {
     csv.Commit();
     if (hj) hj->Commit();
     if (fx) fx->Commit();
+    outputs.CommitAll();
     std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
               << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
               << (hjif.empty() ? "" : " + " + hjif)

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli/command.h"
+#include "core/output_files.h"
 #include "player/play.h"
 
 namespace hapcine::cli {
@@ -50,6 +51,10 @@ int RunPlay(int argc, char** argv) {
       ->capture_default_str();
   return RunApp(app, argc, argv, [&] {
     o.realtime = !no_rt;
+    // Checked up front; the fault log itself is committed when a fault writes it.
+    CheckOutputPaths({{o.video, "VIDEO"}, {o.track, "--track"}, {o.firmware, "--firmware"},
+                      {o.seat_config, "--seat-config"}},
+                     {{o.fault_log, "--fault-log"}});
     const PlayResult r = Play(o, std::cerr);
     // Stopped by SIGINT/SIGTERM (forces zeroed): the shell's 128 + signal.
     return r.stop_signal > 0 ? 128 + r.stop_signal : kExitOk;

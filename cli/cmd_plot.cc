@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
+#include "core/output_files.h"
 #include "datasets/plot_png.h"
 #include "datasets/plot_tracks.h"
 #include "datasets/svg_writer.h"
@@ -18,7 +19,7 @@ namespace hapcine::cli {
 namespace {
 
 // Both files are complete under temporary names before either is renamed
-// into place: a failure leaves neither.
+// into place (the command's OutputSet): a failure leaves neither.
 void WriteOutputs(const Figure& fig, const std::string& prefix, const std::string& format) {
   std::unique_ptr<AtomicFile> png, svg;
   if (format == "png" || format == "both") {
@@ -34,8 +35,6 @@ void WriteOutputs(const Figure& fig, const std::string& prefix, const std::strin
   for (auto* f : {png.get(), svg.get()}) {
     if (f) f->Commit();
   }
-  if (png) std::cerr << "wrote " << prefix << ".png\n";
-  if (svg) std::cerr << "wrote " << prefix << ".svg\n";
 }
 
 std::string FileStem(const std::string& path) {
@@ -97,6 +96,15 @@ int RunPlot(int argc, char** argv) {
   add_common(haptic);
 
   return RunApp(app, argc, argv, [&]() {
+    const bool png = format != "svg", svg = format != "png";
+    std::vector<NamedPath> inputs;
+    if (camera->parsed()) {
+      inputs = {{gt_file, "GT"}, {est_file, "EST"}};
+    } else {
+      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
+    }
+    OutputSet outputs(inputs,
+                      {{png ? prefix + ".png" : "", "-o"}, {svg ? prefix + ".svg" : "", "-o"}});
     Figure fig;
     if (camera->parsed()) {
       const CameraPath gt = ReadCameraPathFile(gt_file);
@@ -131,6 +139,9 @@ int RunPlot(int argc, char** argv) {
     }
     fig.width_px = width_px;
     WriteOutputs(fig, prefix, format);
+    outputs.CommitAll();
+    if (png) std::cerr << "wrote " << prefix << ".png\n";
+    if (svg) std::cerr << "wrote " << prefix << ".svg\n";
     return kExitOk;
   });
 }

@@ -2,9 +2,11 @@
 // (datasets/preview.h).
 #include <unistd.h>
 
+#include <filesystem>
 #include <iostream>
 
 #include "cli/command.h"
+#include "core/output_files.h"
 #include "datasets/preview.h"
 #include "player/simulate_seat.h"
 
@@ -40,6 +42,12 @@ int RunPreview(int argc, char** argv) {
       loop.Check();
       o.simulate = [&loop](const HapticTrack& t) { return SimulateSeat(t, loop); };
     }
+    // The default track is the video's sibling <stem>.haptic.csv.
+    const std::filesystem::path v(o.video);
+    const std::string track = o.track.empty()
+                                  ? (v.parent_path() / (v.stem().string() + ".haptic.csv")).string()
+                                  : o.track;
+    OutputSet outputs({{o.video, "VIDEO"}, {track, "--track"}}, {{o.output, "-o"}});
     const bool tty = isatty(STDERR_FILENO);
     int last = 0;
     const int n = RenderPreview(o, [&](int done, int total) {
@@ -53,6 +61,7 @@ int RunPreview(int argc, char** argv) {
       }
     });
     if (tty) std::cerr << "\n";
+    outputs.CommitAll();
     std::cerr << "wrote " << o.output << " (" << n << " frames)\n";
     return kExitOk;
   });

@@ -10,6 +10,7 @@
 
 #include "cli/command.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "study/analysis.h"
 #include "study/plan.h"
 #include "study/player_process.h"
@@ -101,8 +102,12 @@ int RunStudy(int argc, char** argv) {
       plan_opt.conditions.clear();
       std::stringstream ss(conditions_csv);
       for (std::string c; std::getline(ss, c, ',');) plan_opt.conditions.push_back(c);
+      std::vector<NamedPath> clips;
+      for (const std::string& c : plan_opt.clips) clips.push_back({c, "CLIP"});
+      OutputSet outputs(clips, {{plan_out, "-o"}});
       const study::StudyPlan p = study::MakePlan(plan_opt, &std::cerr);
       study::WritePlanFile(p, plan_out);
+      outputs.CommitAll();
       std::cerr << "plan " << p.plan_id << ": " << p.clips.size() << " clips, "
                 << study::TrialsPerParticipant(p.clips) << " trials per participant, "
                 << p.participants.size() << " participants -> " << plan_out << "\n";
@@ -110,6 +115,9 @@ int RunStudy(int argc, char** argv) {
     }
     if (run->parsed()) {
       run_opt.verify_hashes = !no_verify;
+      // Answers are journalled as they come; only the names are checked.
+      CheckOutputPaths({{run_opt.plan_path, "PLAN"}, {run_opt.responses_path, "--responses"}},
+                       {{run_opt.results_path, "-o"}});
       const study::RunSummary s = study::RunSession(run_opt, std::cin, std::cout);
       if (!s.complete) {
         std::cerr << "hapcine study run: " << s.journal_path << ": session incomplete ("
@@ -119,12 +127,22 @@ int RunStudy(int argc, char** argv) {
       }
       return kExitOk;
     }
+    std::vector<NamedPath> inputs, outputs;
+    for (const auto& f : result_files) inputs.push_back({f, "RESULTS"});
+    if (!prefix.empty()) {
+      for (const char* suffix : {".txt", ".json", ".overall.svg", ".sequences.svg"})
+        outputs.push_back({prefix + suffix, "-o"});
+    }
+    OutputSet report_files(inputs, outputs);
     std::vector<study::ParticipantResults> results;
     for (const auto& f : result_files) results.push_back(study::ReadResultsFile(f));
     const study::StudyAnalysis a = study::AnalyzeStudy(results);
     std::cout << study::FormatReport(a);
-    if (!prefix.empty())
-      for (const auto& path : study::WriteReport(a, prefix)) std::cerr << "wrote " << path << "\n";
+    if (!prefix.empty()) {
+      const std::vector<std::string> written = study::WriteReport(a, prefix);
+      report_files.CommitAll();
+      for (const auto& path : written) std::cerr << "wrote " << path << "\n";
+    }
     return kExitOk;
   });
 }

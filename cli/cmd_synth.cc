@@ -5,12 +5,14 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <set>
 
 #include "cli/command.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "datasets/synth_clip.h"
 
 namespace hapcine::cli {
@@ -108,6 +110,17 @@ int RunSynth(int argc, char** argv) {
     if (out_dir.empty()) throw UsageError("-o OUT_DIR is required");
     opt.adaptive = !full_ss;
     opt.Check();
+    // Each clip's pair is committed together by SynthClip; the names are
+    // checked (a directory or a device in the way) before any rendering.
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    std::vector<NamedPath> outputs = {{out_dir, "-o", /*folder=*/true}};
+    for (const std::string& name : todo) {
+      const std::filesystem::path stem = std::filesystem::path(out_dir) / name;
+      outputs.push_back({stem.string() + ".mp4", "-o"});
+      outputs.push_back({stem.string() + ".camera.csv", "-o"});
+    }
+    CheckOutputPaths({}, outputs);
     Progress progress(static_cast<int>(todo.size()));
     opt.progress = [&](const std::string& p, int done, int total) {
       progress.Update(p, done, total);

@@ -7,6 +7,7 @@
 
 #include "cli/command.h"
 #include "core/error_message.h"
+#include "core/output_files.h"
 
 namespace {
 
@@ -46,6 +47,8 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished outputs.
+  hapcine::InstallTempCleanupOnSignals();
   if (argc < 2) {
     PrintUsage(std::cerr);
     return hapcine::cli::kExitUsage;

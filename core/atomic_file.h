@@ -1,37 +1,34 @@
 #pragma once
-// Write-then-rename output files. Nothing half-written ever sits under the
-// final name: the data goes to "<path>.tmp-<pid>" and is renamed over the
-// target only by Commit(). If the writer is destroyed without Commit() (an
-// exception, an early return) the temporary file is removed.
+// A text or binary output file written through a stream, on TempOutput
+// (core/output_files.h): the data goes to a short temporary name in the
+// target's folder and is renamed over the target (a symlink's final target)
+// only by Commit(); an existing device or FIFO is written directly. Destroyed
+// without Commit() (an exception, an early return), it removes the temporary.
+// While an OutputSet is alive, Commit() only finishes the file and the set
+// renames it with the command's other outputs.
 
 #include <fstream>
 #include <string>
+
+#include "core/output_files.h"
 
 namespace hapcine {
 
 class AtomicFile {
  public:
   explicit AtomicFile(const std::string& path);  // throws Error if it cannot open
-  ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::ostream& stream() { return out_; }
-  const std::string& temp_path() const { return temp_path_; }
+  // Where the bytes go: the temporary, or the target when written directly.
+  const std::string& temp_path() const { return temp_.write_path(); }
   // Flushes, checks for write errors, fsyncs and renames onto the final path.
   void Commit();
 
  private:
-  std::string path_;
-  std::string temp_path_;
-  std::ofstream out_;
-  bool committed_ = false;
+  TempOutput temp_;
+  std::ofstream out_;  // declared after temp_: closed before the temporary is removed
 };
-
-// Temporary name for an output written by another library (e.g. an encoder
-// that opens the file itself). Pair with CommitTempFile / RemoveTempFile.
-std::string TempPathFor(const std::string& final_path);
-void CommitTempFile(const std::string& temp_path, const std::string& final_path);
-void RemoveTempFile(const std::string& temp_path) noexcept;
 
 }  // namespace hapcine

@@ -3,6 +3,8 @@
 #include <atomic>
 #include <csignal>
 
+#include "core/output_files.h"
+
 namespace hapcine {
 
 namespace {
@@ -14,7 +16,9 @@ bool g_installed = false;
 
 extern "C" void OnStopSignal(int sig) {
   if (g_stop.load(std::memory_order_relaxed) != 0) {
-    // Second signal: the loop did not stop; fall back to the default action.
+    // Second signal: the loop did not stop; fall back to the default action,
+    // without leaving the temporaries of unfinished outputs behind.
+    RemoveLiveTempsForSignal();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
     return;

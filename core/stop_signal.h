@@ -7,7 +7,10 @@
 // InstallStopSignals() replaces the SIGINT/SIGTERM handlers and
 // RestoreStopSignals() puts the previous ones back. A second signal while a
 // stop is already pending falls through to the default action (immediate
-// exit), in case the work that should poll the flag is stuck.
+// exit, after unlinking the live output temporaries: core/output_files.h), in
+// case the work that should poll the flag is stuck. On the first signal the
+// work stops and unwinds, so each output's destructor removes its temporary;
+// RestoreStopSignals() then brings back the program's cleanup handler.
 
 namespace hapcine {
 

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/output_files.h"
 #include "core/rotation.h"
 #include "datasets/video_writer.h"
 
@@ -254,15 +255,11 @@ SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
     writer.Write(frame_8u);
     if (options.progress) options.progress(p.name, i + 1, result.frames);
   }
-  // Ground truth first, then the video; if the video cannot be committed the
-  // CSV goes too, so the pair is either complete or absent.
+  // The pair is committed together: complete, or absent.
+  OutputSet pair({}, {});
   WriteCameraPathFile(truth, result.camera_path);
-  try {
-    writer.Close();
-  } catch (...) {
-    std::remove(result.camera_path.c_str());
-    throw;
-  }
+  writer.Close();
+  pair.CommitAll();
   return result;
 }
 

@@ -10,7 +10,7 @@ extern "C" {
 
 #include <cmath>
 
-#include "core/atomic_file.h"
+#include "core/output_files.h"
 #include "core/error.h"
 
 namespace hapcine {
@@ -44,8 +44,8 @@ void VideoWriter::Abort() noexcept {
     if (format_->pb) avio_closep(&format_->pb);
     avformat_free_context(format_);
     format_ = nullptr;
-    RemoveTempFile(temp_path_);
   }
+  output_.Discard();  // no-op once committed
   header_written_ = false;
 }
 
@@ -62,13 +62,14 @@ void VideoWriter::Open(const std::string& path, int width, int height, double fp
   // terminal for our own progress unless the user asked FFmpeg for more.
   if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_WARNING);
   path_ = path;
-  temp_path_ = TempPathFor(path);
+  output_ = TempOutput(path);
+  const std::string& temp_path = output_.write_path();
   width_ = width;
   height_ = height;
   frames_ = 0;
   try {
     // The temporary name has no .mp4 suffix, so name the muxer explicitly.
-    int rc = avformat_alloc_output_context2(&format_, nullptr, "mp4", temp_path_.c_str());
+    int rc = avformat_alloc_output_context2(&format_, nullptr, "mp4", temp_path.c_str());
     if (rc < 0 || !format_) throw Error(path, "cannot create MP4 muxer: " + AvError(rc));
     const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
     if (!codec) throw Error(path, "FFmpeg has no libx264 encoder");
@@ -99,7 +100,7 @@ void VideoWriter::Open(const std::string& path, int width, int height, double fp
     stream_->time_base = codec_->time_base;
     stream_->avg_frame_rate = rate;
     stream_->r_frame_rate = rate;
-    rc = avio_open(&format_->pb, temp_path_.c_str(), AVIO_FLAG_WRITE);
+    rc = avio_open(&format_->pb, temp_path.c_str(), AVIO_FLAG_WRITE);
     if (rc < 0) throw Error(path, "cannot open for writing: " + AvError(rc));
     rc = avformat_write_header(format_, nullptr);
     if (rc < 0) throw Error(path, "cannot write MP4 header: " + AvError(rc));
@@ -173,11 +174,10 @@ void VideoWriter::Close() {
     throw;
   }
   // Release everything but keep the temporary file, then rename it.
-  const std::string temp = temp_path_;
   avformat_free_context(format_);
   format_ = nullptr;
+  output_.Commit();  // if this throws, the destructor releases the rest
   Abort();
-  CommitTempFile(temp, path_);
 }
 
 }  // namespace hapcine

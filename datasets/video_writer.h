@@ -7,13 +7,15 @@
 // converted with swscale's BT.601 limited-range matrix and the stream is
 // tagged as such (smpte170m), so decoders invert exactly that matrix.
 //
-// The file is written under a temporary name (TempPathFor) and renamed onto
-// the final path only by Close(); a writer destroyed without Close(), or a
-// failing Close(), leaves nothing behind. Errors throw hapcine::Error naming
+// The file is written under a temporary name (TempOutput, core/output_files.h)
+// and renamed onto the final path only by Close(); a writer destroyed without
+// Close(), or a failing Close(), leaves nothing behind. Errors throw hapcine::Error naming
 // the file.
 
 #include <opencv2/core.hpp>
 #include <string>
+
+#include "core/output_files.h"
 
 struct AVFormatContext;
 struct AVCodecContext;
@@ -53,7 +55,8 @@ class VideoWriter {
   void Encode(AVFrame* frame);  // nullptr flushes
   void Abort() noexcept;
 
-  std::string path_, temp_path_;
+  std::string path_;
+  TempOutput output_;
   int width_ = 0, height_ = 0, frames_ = 0;
   AVFormatContext* format_ = nullptr;
   AVCodecContext* codec_ = nullptr;

@@ -223,7 +223,7 @@ cancel_resume_test() {
     || fail "after scancel + re-submission: counts $(counts "$out/summary.json"), expected $((6 - n)) $n 3 1"
   outputs "$out" | diff "$WORK/local.sums" - >&2 || fail "outputs after scancel + re-submission differ from the local run's"
   local left
-  left=$(find "$out" \( -name .tmp -o -name '*.tmp-*' \) | head -n3)
+  left=$(find "$out" \( -name .tmp -o -name '*.tmp-*' -o -name '*.hapcine-tmp' \) | head -n3)
   [ -z "$left" ] || fail "temporaries left: $left"
   log "cancelled with $n of 6 films done; re-submission did the other $((6 - n)), outputs equal the local run's"
 }

@@ -61,11 +61,14 @@ std::string LastLine(const std::string& text) {
   return last;
 }
 
-// Files in `dir` whose name starts with `stem` (atomic writers use stem.tmp-*).
+// Files in `dir` whose name starts with `stem`, and output temporaries
+// (".<pid>-<n>-<host>.hapcine-tmp", core/output_files.h).
 int CountFilesStartingWith(const fs::path& dir, const std::string& stem) {
   int n = 0;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string().rfind(stem, 0) == 0) ++n;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(stem, 0) == 0 || name.find(".hapcine-tmp") != std::string::npos) ++n;
+  }
   return n;
 }
 
