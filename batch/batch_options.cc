@@ -28,7 +28,7 @@ std::string SelfExecutable() {
 void BatchOptions::Check() const {
   if (library.empty()) throw UsageError("LIBRARY (folder or manifest) is required");
   if (out_dir.empty()) throw UsageError("-o OUT_DIR is required");
-  if (jobs < 0) throw UsageError("--jobs must be >= 0 (0 = number of CPUs)");
+  if (jobs < 0 || jobs > 1024) throw UsageError("--jobs must be in [0, 1024] (0 = number of CPUs)");
   if (models.empty()) throw UsageError("--models needs at least one model");
   // The models of `hapcine haptics --model`: a misspelt one would otherwise
   // fail every film after its estimate.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -82,7 +83,7 @@ int TasksInQueue(const std::string& job_id, const std::string& log) {
 void SlurmOptions::Check() const {
   if (shards < 1) throw UsageError("--shards must be >= 1");
   if (!(poll_s > 0)) throw UsageError("poll interval must be > 0");
-  if (wait_timeout_s < 0) throw UsageError("--wait-timeout must be >= 0");
+  if (!(wait_timeout_s >= 0 && std::isfinite(wait_timeout_s))) throw UsageError("--wait-timeout must be >= 0");
 }
 
 std::string ShellQuote(const std::string& word) {

@@ -9,6 +9,7 @@
 #include "batch/progress.h"
 #include "batch/slurm.h"
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/error.h"
 #include "core/output_files.h"
 
@@ -38,7 +39,8 @@ int RunBatch(int argc, char** argv) {
   app.add_option("-j,--jobs", opt.jobs,
                  "films processed in parallel (per Slurm task with --slurm); 0 = number of "
                  "CPUs")
-      ->default_val(0);
+      ->default_val(0)
+      ->check(FiniteRange(0, 1024));
   app.add_option("--models", models, "comma-separated haptic models, one haptics step each")
       ->default_val(models);
   app.add_option("--estimate-args", estimate_args,
@@ -58,11 +60,13 @@ int RunBatch(int argc, char** argv) {
   app.add_flag("--slurm", use_slurm, "submit as a Slurm job array instead of running here");
   app.add_option("--shards", slurm.shards,
                  "with --slurm: array tasks (capped at the number of films)")
-      ->default_val(slurm.shards);
+      ->default_val(slurm.shards)
+      ->check(FiniteRange(1, 100000));
   app.add_flag("--no-wait", no_wait, "with --slurm: return after submitting (then use --status)");
   app.add_option("--wait-timeout", slurm.wait_timeout_s,
                  "with --slurm: stop waiting after this many seconds; 0 = never")
-      ->default_val(0);
+      ->default_val(0)
+      ->check(FiniteRange(0, 1e7));
   app.add_option("--sbatch-args", sbatch_args,
                  "with --slurm: extra sbatch arguments, e.g. \"--partition=x --time=1:00:00\"");
   app.add_option("--shard", shard, "i/K: process only shard i of K (what each Slurm task runs)");

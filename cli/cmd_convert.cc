@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/camera_path.h"
 #include "core/csv.h"
 #include "core/error.h"
@@ -96,7 +97,8 @@ int RunConvert(int argc, char** argv) {
   app.add_option("--from-tum", from_tum, "read a TUM trajectory (needs --fov and -o)");
   app.add_option("--fov", fov_deg,
                  "horizontal field of view (degrees) for every frame of a TUM import "
-                 "(TUM has no intrinsics)");
+                 "(TUM has no intrinsics)")
+      ->check(FiniteRange(1, 179));
   app.add_option("--from-colmap", from_colmap,
                  "COLMAP text model folder (cameras.txt, images.txt, optional points3D.txt); "
                  "export a binary model with `colmap model_converter --output_type TXT`");

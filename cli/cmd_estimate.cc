@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/camera_path.h"
 #include "core/error.h"
 #include "core/output_files.h"
@@ -91,33 +92,41 @@ int RunEstimate(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-side", opt.frames.max_working_side,
                  "longest side of the working images, pixels (0 = decoded size)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 16384));
   app.add_option("--tracks", opt.tracker.max_tracks, "wanted live feature tracks per frame")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(10, 100000));
   app.add_option("--window", opt.estimator.window_frames,
                  "frames per bundle-adjustment window (long shots are solved in overlapping "
                  "windows, so memory is flat)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(10, 10000));
   app.add_option("--points", opt.estimator.max_points,
                  "3-D points per window")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(20, 100000));
   app.add_option("--point-grid", opt.estimator.point_grid_cells,
                  "spread each window's points over N x N image cells, longest tracks first in "
                  "each cell (0: the longest tracks anywhere)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 100));
   app.add_option("--spread-points-factor", opt.estimator.spread_points_factor,
                  "translating windows (those the point grid spreads) take --points x this many "
                  "points, since the whole-track cut drops about half of them near silhouettes")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(1, 10));
   app.add_option("--track-rms-cut", opt.estimator.track_rms_cut_px,
                  "drop a window's track whole when its reprojection RMS exceeds this (pixels at "
                  "960 px width; occlusion-edge tracks)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0.01, 1000));
   app.add_option("--window-lead-in", opt.estimator.window_lead_in_frames,
                  "hold the previous window's last N frames' keyframes constant in the next window "
                  "(0: two keyframes), so tracks are judged over a longer baseline; experimental, no "
                  "gain measured on the synthetic clips (docs/estimate.md)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 10000));
   app.add_option("--depth-layer-cut", opt.estimator.depth_layer_cut,
                  "after the RMS cut, also drop a translating window's tracks whose depth lies "
                  "between the two depth layers of their neighbourhood (occlusion-edge corners); "
@@ -138,7 +147,8 @@ int RunEstimate(int argc, char** argv) {
                  "those window-level tests count tracking noise growing with the image speed "
                  "(motion blur): px of noise per px/frame of motion, added in quadrature "
                  "(0: off; docs/estimate.md, step 4)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 1));
   app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
                "score the two-view models with a track-noise covariance measured from the rough "
                "part of the rotation fit's residuals (blur along a whip pan is then not read as "
@@ -147,16 +157,20 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
                  "horizontal field of view, degrees, assumed where the focal length cannot be "
                  "observed (no rotation)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(1, 179));
   app.add_option("--keyframe-gap", opt.estimator.keyframe_max_gap,
                  "at least one keyframe every this many frames")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(1, 10000));
   app.add_flag("--no-smooth", no_smooth, "skip the zero-phase smoothing of the path");
   app.add_option("--smooth-sigma", opt.estimator.smooth_sigma_frames,
                  "Gaussian sigma of the zero-phase smoothing, frames")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 1000));
   app.add_option("--threads", opt.estimator.num_threads, "Ceres solver threads")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(1, 256));
   app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
                "decode only the frames others are predicted from (about half of H.264/HEVC "
                "with B-frames): faster; the skipped frames' poses are interpolated between "
@@ -167,7 +181,8 @@ int RunEstimate(int argc, char** argv) {
                "blockier analysis images");
   app.add_option("--decode-threads", opt.frames.decode_threads,
                  "FFmpeg decoder threads (0 = FFmpeg's choice); decoding runs beside tracking")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 256));
   app.add_flag("--fast", fast,
                "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
                    "; options given beside it win");
@@ -175,28 +190,36 @@ int RunEstimate(int argc, char** argv) {
                "~1.4x decoding time, least accurate (docs/estimate.md \"Status\"): " +
                    DraftPresetSummary() + "; options given beside it win");
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(5, 101));
   bool no_klt_predict = false;
   app.add_flag("--no-klt-predict", no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
-  // Tuning knobs for bench/speed.sh, not worth a line in --help.
+  // Tuning knobs for bench/speed.sh, apart in --help (CLI11's errors do not name hidden ones).
+  const std::string tuning = "Tuning (bench/speed.sh)";
   app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
-      ->group("");
+      ->group(tuning)
+      ->check(FiniteRange(1, 8));
   app.add_option("--klt-coarse-iterations", opt.tracker.klt_coarse_iterations,
                  "KLT iterations on the coarser pyramid levels")
-      ->group("");
+      ->group(tuning)
+      ->check(FiniteRange(1, 100));
   app.add_option("--klt-coarse-step", opt.tracker.klt_coarse_step_px,
                  "KLT stop step on the coarser pyramid levels, pixels of that level")
-      ->group("");
+      ->group(tuning)
+      ->check(FiniteRange(0, 1));
   app.add_option("--appearance-min-ncc", opt.tracker.appearance_min_ncc,
                  "end tracks whose patch NCC with their earlier patch falls below this (0: off)")
-      ->group("");
+      ->group(tuning)
+      ->check(FiniteRange(0, 1));
   app.add_option("--appearance-lag", opt.tracker.appearance_lag_frames,
                  "frames back to the reference patch of the appearance check (0: birth)")
-      ->group("");
+      ->group(tuning)
+      ->check(FiniteRange(0, 100));
   app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
-      ->group("");
+      ->group(tuning)
+      ->check(FiniteRange(1, 10000));
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress output");

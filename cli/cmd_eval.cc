@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/output_files.h"
@@ -40,7 +41,8 @@ int RunEval(int argc, char** argv) {
                  "like evo -as; for monocular estimates), se3 (rigid, evo -a), none")
       ->capture_default_str()->check(CLI::IsMember({"sim3", "se3", "none"}));
   app.add_option("--rpe-delta", opt.rpe_delta, "RPE frame distance (evo --delta N --delta_unit f)")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(FiniteRange(1, 1e6));
   app.add_option("--match", matching,
                  "frame matching: frame (same frame index), time (nearest time_s within half a "
                  "frame), auto (frame index; time when under half the frames share an index)")
@@ -50,11 +52,13 @@ int RunEval(int argc, char** argv) {
   app.add_option("--static-length", opt.static_path_length,
                  "GT path length below which the GT camera counts as not moving (ATE % n/a, "
                  "estimated path length reported as spurious translation), GT units")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 1e6));
   app.add_option("--shot-tolerance", opt.shot_tolerance_frames,
                  "an estimated shot boundary within this many frames of a ground-truth one is "
                  "found (shot boundaries: precision/recall)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()
+      ->check(FiniteRange(0, 1e6));
   app.add_option("--per-frame", per_frame_out, "write per-frame errors as CSV (atomic)");
   bool haptic = false;
   std::string haptic_model = "cinematic";
@@ -66,7 +70,8 @@ int RunEval(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"cinematic", "semantic", "random", "none"}));
   app.add_option("--haptic-rate", haptic_rate, "rate of the compared tracks, Hz")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(10, 10000));
 
   return RunApp(app, argc, argv, [&]() {
     opt.align = ParseTrajectoryAlignment(align);

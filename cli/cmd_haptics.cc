@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/error.h"
@@ -63,10 +64,13 @@ int RunHaptics(int argc, char** argv) {
                  "HapSeat geometry JSON overriding the built-in defaults (see --print-seat)");
   app.add_flag("--print-seat", print_seat, "print the seat geometry in use as JSON and exit");
   app.add_option("--rate", rate, "output rate in Hz; default: the seat's rate_hz (1000)")
-      ->default_val(0);
-  app.add_option("--seed", opt.seed, "random model: seed of the noise")->default_val(opt.seed);
+      ->default_val(0)
+      ->check(FiniteRange(0, 10000));
+  app.add_option("--seed", opt.seed, "random model: seed of the noise")->default_val(opt.seed)
+      ->check(FiniteRange(0, 4294967295));
   app.add_option("--cutoff", opt.random_cutoff_hz, "random model: low-pass cutoff, Hz")
-      ->default_val(opt.random_cutoff_hz);
+      ->default_val(opt.random_cutoff_hz)
+      ->check(FiniteRange(0, 50));
   app.add_option("--keyframes", keyframes,
                  "semantic model: hand-placed effects, CSV 'start_s,end_s,effect,intensity'\n"
                  "(default: effects found automatically by the classifier)");
@@ -77,31 +81,40 @@ int RunHaptics(int argc, char** argv) {
                "no high-pass on the camera signals (the paper's plain Equations 2-6; cut\n"
                "crossfades, speed limit and clamp still apply)");
   app.add_option("--washout-tau", opt.washout.tau_s, "washout high-pass time constant, s")
-      ->default_val(opt.washout.tau_s);
+      ->default_val(opt.washout.tau_s)
+      ->check(FiniteRange(0.05, 600));
   app.add_option("--washout-order", opt.washout.order, "washout high-pass order (1 or 2)")
-      ->default_val(opt.washout.order);
+      ->default_val(opt.washout.order)
+      ->check(FiniteRange(1, 2));
   app.add_option("--cut-ramp", opt.washout.cut_ramp_s, "crossfade at a shot cut, s")
-      ->default_val(opt.washout.cut_ramp_s);
+      ->default_val(opt.washout.cut_ramp_s)
+      ->check(FiniteRange(0, 10));
   app.add_option("--max-speed", opt.washout.max_speed_m_s,
                  "largest actuator speed per axis, m/s (bounds every step)")
-      ->default_val(opt.washout.max_speed_m_s);
+      ->default_val(opt.washout.max_speed_m_s)
+      ->check(FiniteRange(0, 10));
   app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
                  "distance of the subject defining the zoom's equivalent forward distance,\n"
                  "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
                  "metadata subject_distance_m, else 1 (the median depth of estimated paths)")
-      ->default_val(opt.cinematic.reference_depth_u);
+      ->default_val(opt.cinematic.reference_depth_u)
+      ->check(FiniteRange(0, 1e6));
   app.add_option("--max-translation-gain", opt.cinematic.max_translation_gain,
                  "cinematic: cap on the translation/zoom scale, metres per path unit")
-      ->default_val(opt.cinematic.max_translation_gain);
+      ->default_val(opt.cinematic.max_translation_gain)
+      ->check(FiniteRange(0, 100));
   app.add_option("--max-rotation-gain", opt.cinematic.max_rotation_gain,
                  "cinematic: cap on the rotation scale (1 = the camera's own angles)")
-      ->default_val(opt.cinematic.max_rotation_gain);
+      ->default_val(opt.cinematic.max_rotation_gain)
+      ->check(FiniteRange(0, 10));
   app.add_flag("--per-film-scaling", opt.cinematic.per_film_scaling,
                "cinematic: one scaling for the whole film instead of one per shot");
   app.add_option("--max-gap", opt.max_gap_s, "reject time gaps longer than this inside a shot, s")
-      ->default_val(opt.max_gap_s);
+      ->default_val(opt.max_gap_s)
+      ->check(FiniteRange(0.001, 600));
   app.add_option("--hjif-rate", hjif_opt.keyframe_rate_hz, "keyframes per second in the .hjif")
-      ->default_val(hjif_opt.keyframe_rate_hz);
+      ->default_val(hjif_opt.keyframe_rate_hz)
+      ->check(FiniteRange(0, 10000));
 
   return RunApp(app, argc, argv, [&]() -> int {
     if (!seat_file.empty()) opt.seat = LoadSeatGeometryFile(seat_file);

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/output_files.h"
 #include "player/play.h"
 
@@ -26,12 +27,15 @@ int RunPlay(int argc, char** argv) {
                "Do not run mpv at all: media time is the wall clock from start (needs --track or "
                "VIDEO's sibling track)");
   app.add_flag("--fullscreen", o.fullscreen, "Start mpv full screen");
-  app.add_option("--k", o.loop.k_n_m, "Spring constant k of Eq. 7, N/m")->capture_default_str();
+  app.add_option("--k", o.loop.k_n_m, "Spring constant k of Eq. 7, N/m")->capture_default_str()
+      ->check(FiniteRange(0, 3000));
   app.add_option("--d", o.loop.d_n_s_m, "Damping constant d of Eq. 7, N s/m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 50));
   app.add_option("--max-force", o.loop.safety.max_force_n,
                  "Force limit per actuator, N (at most 9)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 9));
   app.add_option("--firmware", o.firmware,
                  "Falcon firmware image (your copy of Novint's nVent_firmware.bin); loaded if not "
                  "already running");
@@ -42,7 +46,8 @@ int RunPlay(int argc, char** argv) {
                "Print loop statistics at the end (period p50/p99/max, missed ticks, sync)");
   app.add_option("--duration-tolerance", o.duration_tolerance_s,
                  "Warn when the track and video lengths differ by more than this, s")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 3600));
   app.add_flag("--strict-duration", o.strict_duration,
                "Make a track/video length mismatch an error");
   bool no_rt = false;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
@@ -63,7 +64,8 @@ int RunPlot(int argc, char** argv) {
     sub->add_option("--format", format, "png, svg or both")
         ->capture_default_str()->check(CLI::IsMember({"png", "svg", "both"}));
     sub->add_option("--width", width_px, "figure width in pixels")
-        ->capture_default_str()->check(CLI::Range(300, 10000));
+        ->capture_default_str()
+        ->check(FiniteRange(300, 10000));
     sub->add_option("--title", title, "figure title (default: the input file names)");
   };
 

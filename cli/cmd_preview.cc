@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/output_files.h"
 #include "datasets/preview.h"
 #include "player/simulate_seat.h"
@@ -25,18 +26,24 @@ int RunPreview(int argc, char** argv) {
                  "Haptic track (*.haptic.csv). Default: <video stem>.haptic.csv beside the video");
   app.add_option("-o,--output", o.output, "Output MP4 (H.264), written atomically")->required();
   app.add_option("--max-side", o.max_side, "Longest side of the output in pixels (0 = as decoded)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 16384));
   app.add_option("--inset", o.inset_fraction, "Inset width as a fraction of the frame width")
-      ->capture_default_str();
-  app.add_option("--trail", o.trail_s, "Trail length, seconds")->capture_default_str();
-  app.add_option("--crf", o.crf, "x264 quality (0 best .. 51 worst)")->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0.15, 1));
+  app.add_option("--trail", o.trail_s, "Trail length, seconds")->capture_default_str()
+      ->check(FiniteRange(0, 10));
+  app.add_option("--crf", o.crf, "x264 quality (0 best .. 51 worst)")->capture_default_str()
+      ->check(FiniteRange(0, 51));
   bool no_sim = false;
   app.add_flag("--no-sim", no_sim, "Draw the targets only, not the simulated grips");
   LoopOptions loop;
   app.add_option("--k", loop.k_n_m, "Spring constant k of Eq. 7 for the simulation, N/m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 3000));
   app.add_option("--d", loop.d_n_s_m, "Damping constant d of Eq. 7 for the simulation, N s/m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 50));
   return RunApp(app, argc, argv, [&] {
     if (!no_sim) {
       loop.Check();

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/error.h"
 #include "core/output_files.h"
 #include "study/analysis.h"
@@ -43,16 +44,19 @@ int RunStudy(int argc, char** argv) {
   plan->add_option("-o,--output", plan_out, "Plan file to write (JSON)")->required();
   plan->add_option("--participants", plan_opt.participants,
                    "Number of participants to draw orders for (ids P01, P02, ...)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(1, 100000));
   plan->add_option("--seed", plan_opt.seed,
                    "Random seed; recorded in the plan, same seed and inputs -> same plan")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 4294967295));
   plan->add_option("--conditions", conditions_csv,
                    "Comma-separated haptic conditions (track names)")
       ->capture_default_str();
   plan->add_option("--identical-tolerance-m", plan_opt.identical_tolerance_m,
                    "Tracks whose samples all agree within this many metres are the same stimulus")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 1));
 
   // ---- run
   study::RunOptions run_opt;

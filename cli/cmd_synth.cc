@@ -11,6 +11,7 @@
 #include <set>
 
 #include "cli/command.h"
+#include "cli/option_checks.h"
 #include "core/error.h"
 #include "core/output_files.h"
 #include "datasets/synth_clip.h"
@@ -63,29 +64,39 @@ int RunSynth(int argc, char** argv) {
   app.add_flag("--hard", hard, "the hard-case presets");
   app.add_flag("--list", list, "print every preset with a one-line description and exit");
   app.add_option("-o,--output", out_dir, "output directory (created if missing)");
-  app.add_option("--width", opt.width, "frame width, pixels (even)")->capture_default_str();
-  app.add_option("--height", opt.height, "frame height, pixels (even)")->capture_default_str();
-  app.add_option("--fps", opt.fps, "frame rate")->capture_default_str();
+  app.add_option("--width", opt.width, "frame width, pixels (even)")->capture_default_str()
+      ->check(FiniteRange(16, 7680));
+  app.add_option("--height", opt.height, "frame height, pixels (even)")->capture_default_str()
+      ->check(FiniteRange(16, 4320));
+  app.add_option("--fps", opt.fps, "frame rate")->capture_default_str()
+      ->check(FiniteRange(1, 240));
   app.add_option("--duration-s", opt.duration_s,
                  "clip length, seconds; the still/move/still parts keep the 1:5:1 ratio")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 600));
   app.add_option("--supersample", opt.supersample,
                  "N: N x N anti-aliasing sub-samples per pixel at geometry edges (1 = off; "
                  "textures are always prefiltered)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(1, 8));
   app.add_flag("--full-supersample", full_ss,
                "supersample every pixel, not only geometry edges (slower, same look)");
-  app.add_option("-j,--jobs", opt.jobs, "render threads (0 = all cores)")->capture_default_str();
+  app.add_option("-j,--jobs", opt.jobs, "render threads (0 = all cores)")->capture_default_str()
+      ->check(FiniteRange(0, 1024));
   app.add_option("--seed", opt.seed, "seed of the scene textures, handheld jitter and noise")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 4294967295));
   app.add_option("--crf", opt.crf, "x264 CRF of the clean presets (lower = better)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 51));
   app.add_option("--noisy-crf", opt.noisy_crf, "x264 CRF of the noise_compression preset")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 51));
   app.add_option("--x264-preset", opt.x264_preset, "x264 speed preset")->capture_default_str();
   app.add_option("--shutter", opt.shutter,
                  "exposure time / frame interval of motion-blurred presets (0.5 = 180 deg)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteRange(0, 1));
 
   return RunApp(app, argc, argv, [&]() {
     if (list) {

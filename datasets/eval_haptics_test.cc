@@ -90,6 +90,30 @@ TEST(EvalHapticsTest, ErrorsNameThePathAtFault) {
   }
 }
 
+// The estimate's time jumps by 1e7 s at its shot change: the comparison
+// would build a 1 kHz track across it. Refused, naming the estimate's row.
+TEST(EvalHapticsTest, TimeJumpAtAShotChangeIsAnError) {
+  const CameraPath gt = SynthGroundTruth("hard_cut", SynthOptions{});
+  CameraPath est = AsEstimate(gt, 1.0);
+  size_t cut = 0;
+  while (cut < est.frames.size() && *est.frames[cut].shot == *est.frames[0].shot) ++cut;
+  ASSERT_LT(cut, est.frames.size());
+  for (size_t i = cut; i < est.frames.size(); ++i) est.frames[i].time_s += 1e7;
+  EvalOptions eo;
+  eo.matching = FrameMatching::kFrameIndex;
+  EvalReport paths = EvaluateCameraPaths(gt, est, eo);
+  paths.gt_source = "gt.camera.csv";
+  paths.est_source = "est.camera.csv";
+  try {
+    EvaluateHapticDifference(gt, est, paths, HapticOptions{});
+    FAIL();
+  } catch (const Error& e) {
+    const std::string want = "est.camera.csv: frame " + std::to_string(est.frames[cut].frame);
+    EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("shot change"), std::string::npos) << e.what();
+  }
+}
+
 TEST(EvalHapticsTest, TracksThatDoNotOverlapAreAnError) {
   const CameraPath gt = SynthGroundTruth("traveling", SynthOptions{});
   CameraPath est = AsEstimate(gt, 1.0);

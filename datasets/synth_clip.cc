@@ -90,7 +90,7 @@ void SynthOptions::Check() const {
   if (!(duration_s > 0 && duration_s <= 600)) throw UsageError("duration must be in (0, 600] s");
   if (std::lround(duration_s * fps) < 2) throw UsageError("a clip needs at least 2 frames");
   if (supersample < 1 || supersample > 8) throw UsageError("supersample must be in [1, 8]");
-  if (jobs < 0) throw UsageError("jobs must be >= 0");
+  if (jobs < 0 || jobs > 1024) throw UsageError("jobs must be in [0, 1024]");
   if (crf < 0 || crf > 51 || noisy_crf < 0 || noisy_crf > 51) {
     throw UsageError("crf must be in [0, 51]");
   }

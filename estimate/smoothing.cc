@@ -6,10 +6,20 @@
 namespace hapcine {
 namespace {
 
-// Symmetric weights for sample i of n: radius min(3 sigma, i, n - 1 - i).
+// Radius min(3 sigma, i, n - 1 - i), compared in double: 3 sigma can exceed
+// any int (sigma 1e10 or inf), and a sigma whose square underflows is a delta.
+int Radius(int i, int n, double sigma) {
+  const int edge = std::min(i, n - 1 - i);
+  if (!(sigma * sigma > 0)) return 0;
+  const double reach = std::ceil(3 * sigma);
+  return reach < edge ? static_cast<int>(reach) : edge;
+}
+
+// Symmetric weights for sample i of n over Radius(i, n, sigma).
 std::vector<double> Weights(int i, int n, double sigma, int* radius) {
-  const int r = std::min({static_cast<int>(std::ceil(3 * sigma)), i, n - 1 - i});
+  const int r = Radius(i, n, sigma);
   *radius = r;
+  if (r == 0) return {1.0};  // also keeps 0 / 0 out when sigma^2 underflows
   std::vector<double> w(2 * r + 1);
   double sum = 0;
   for (int k = -r; k <= r; ++k) sum += w[k + r] = std::exp(-0.5 * k * k / (sigma * sigma));

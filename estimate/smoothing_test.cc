@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 namespace hapcine {
@@ -57,6 +58,26 @@ TEST(Smoothing, LogExpRoundTrip) {
   const Eigen::Vector3d w(0.3, -0.2, 0.1);
   EXPECT_LT((LogRotation(ExpRotation(w)) - w).norm(), 1e-12);
   EXPECT_EQ(LogRotation(Eigen::Quaterniond::Identity()), Eigen::Vector3d::Zero());
+}
+
+// A sigma past any int's range (--smooth-sigma 1e10) reaches the path's ends:
+// a window as wide as the edges allow, and a ramp still passes through.
+TEST(Smoothing, HugeSigmaIsBoundedByThePathEnds) {
+  std::vector<double> x;
+  for (int i = 0; i < 30; ++i) x.push_back(0.5 * i);
+  for (const double sigma : {7e8, 1e10, 1e300, std::numeric_limits<double>::infinity()}) {
+    const auto y = SmoothScalars(x, sigma);
+    ASSERT_EQ(y.size(), x.size());
+    for (int i = 0; i < 30; ++i) EXPECT_NEAR(y[i], x[i], 1e-9) << sigma << " " << i;
+    const auto q = SmoothRotations(std::vector<Eigen::Quaterniond>(5, Eigen::Quaterniond::Identity()), sigma);
+    for (const auto& v : q) EXPECT_LT(v.angularDistance(Eigen::Quaterniond::Identity()), 1e-12);
+  }
+}
+
+// A sigma whose square underflows is no smoothing, not 0/0.
+TEST(Smoothing, TinySigmaLeavesThePathAlone) {
+  const std::vector<double> x = {0, 3, -1, 2, 5};
+  EXPECT_EQ(SmoothScalars(x, 1e-300), x);
 }
 
 }  // namespace

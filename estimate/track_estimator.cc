@@ -31,9 +31,10 @@ void TrackEstimatorOptions::Check() const {
   if (keyframe_max_gap < 1) throw UsageError("keyframe max gap must be >= 1");
   if (min_tracks < 8) throw UsageError("min tracks must be >= 8");
   if (!(min_rotation_for_focal_deg >= 0)) throw UsageError("min rotation for focal must be >= 0");
-  if (!(smooth_sigma_frames >= 0)) throw UsageError("smoothing sigma must be >= 0");
+  if (!(smooth_sigma_frames >= 0 && smooth_sigma_frames <= 1000))
+    throw UsageError("smoothing sigma must be in [0, 1000] frames");
   if (ba_iterations < 1) throw UsageError("BA iterations must be >= 1");
-  if (num_threads < 1) throw UsageError("threads must be >= 1");
+  if (num_threads < 1 || num_threads > 256) throw UsageError("threads must be in [1, 256]");
   two_view.Check();
 }
 

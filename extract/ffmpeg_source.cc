@@ -199,6 +199,8 @@ class FfmpegSource : public FrameSource {
         continue;
       }
       NoteVideoPacket();
+      // Outside the edit list: decoded for reference, never shown.
+      if (pkt_->flags & AV_PKT_FLAG_DISCARD) ++discarded_packets_;
       const int s = avcodec_send_packet(dec_, pkt_);
       av_packet_unref(pkt_);
       if (s < 0 && s != AVERROR(EAGAIN)) {  // corrupt packet: skip it
@@ -225,7 +227,39 @@ class FfmpegSource : public FrameSource {
       unseen_pts_.pop();
       if (t > last_time_s_) skipped_at_end_s_.push_back(t);
     }
+    CheckFramesDecoded();
     return false;
+  }
+
+  // The frames given out: decoded, or skipped on request and counted.
+  long FramesGiven() const {
+    if (!options_.skip_nonref_frames) return decoded_;
+    return presented_ + static_cast<long>(skipped_at_end_s_.size());
+  }
+
+  // A file whose index is intact but whose data is not (spliced from two
+  // files, overwritten) reads every packet the index lists and decodes only
+  // some: the camera path would lose frames without a word. Against the
+  // frame count the container declares (less the frames its edit list
+  // leaves out), more than max(2 frames, 1 %) missing is an error; fewer,
+  // a warning on stderr.
+  void CheckFramesDecoded() const {
+    const int64_t listed = fmt_->streams[stream_index_]->nb_frames;
+    if (listed <= 0) return;  // no frame count (Matroska): CheckNotTruncated's times
+    const long declared = static_cast<long>(listed) - discarded_packets_;
+    long missing = declared - FramesGiven();
+    // Skipping, a packet that failed to decode left its timestamp behind as
+    // a skipped frame's: count the failures instead.
+    if (options_.skip_nonref_frames) missing = std::max(missing, bad_packets_);
+    if (missing <= 0) return;
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "%ld of the %ld frames declared could not be decoded (corrupt or spliced "
+                  "video data)",
+                  missing, declared);
+    if (missing > std::max(2.0, 0.01 * static_cast<double>(declared)))
+      throw Error(info_.path, buf);
+    std::fprintf(stderr, "%s: warning: %s\n", info_.path.c_str(), buf);
   }
 
   // How far the demuxer got in the video stream (packets, and the end time of
@@ -467,6 +501,7 @@ class FfmpegSource : public FrameSource {
   std::priority_queue<int64_t, std::vector<int64_t>, std::greater<int64_t>> unseen_pts_;
   long bad_packets_ = 0;
   long video_packets_ = 0;  // read from the demuxer
+  long discarded_packets_ = 0;  // of those, outside the edit list (AV_PKT_FLAG_DISCARD)
   double read_end_s_ = 0;   // end of the latest video packet read, from the stream start
   bool draining_ = false;
   bool finished_ = false;

@@ -19,11 +19,13 @@
 namespace hapcine {
 
 void FrameSourceOptions::Check() const {
-  if (max_working_side < 0) throw UsageError("max_working_side must be >= 0 (0 keeps the size)");
+  if (max_working_side < 0 || max_working_side > 16384)
+    throw UsageError("max_working_side must be in [0, 16384] (0 keeps the size)");
   if (max_working_side > 0 && max_working_side < 16)
     throw UsageError("max_working_side must be 0 or at least 16 pixels");
   if (color_max_side < 0) throw UsageError("color_max_side must be >= 0 (0 = working size)");
-  if (decode_threads < 0) throw UsageError("decode_threads must be >= 0 (0 = automatic)");
+  if (decode_threads < 0 || decode_threads > 256)
+    throw UsageError("decode_threads must be in [0, 256] (0 = automatic)");
   if (!(image_sequence_fps > 0) || !std::isfinite(image_sequence_fps))
     throw UsageError("image_sequence_fps must be a positive number");
 }

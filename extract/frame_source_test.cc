@@ -370,6 +370,85 @@ TEST_F(FrameSourceTest, TruncatedFileIsAnErrorAfterItsFrames) {
   ExpectError(stub, "");
 }
 
+// An MP4 with its index first whose data was spliced: the index still lists
+// all 48 frames, every packet is read, but past the splice the bytes are
+// another film's and do not decode. An error saying how many frames are
+// missing, decoding every frame or only the reference frames; one frame
+// missing is a warning only; frames an edit list hides (a stream copy cut
+// mid-GOP) are not missing.
+TEST_F(FrameSourceTest, FramesTheIndexListsButTheDataLacksAreAnError) {
+  const std::string ours = Make("splice_a.mp4",
+                                "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
+                                "-g 12 -pix_fmt yuv420p -movflags +faststart");
+  const std::string theirs = Make("splice_b.mp4",
+                                  "-f lavfi -i mandelbrot=size=320x240:rate=24 -t 2 -c:v libx264 "
+                                  "-g 12 -pix_fmt yuv420p -movflags +faststart");
+  ASSERT_EQ(ReadAll(ours).size(), 48u);
+  auto bytes_of = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string a = bytes_of(ours), b = bytes_of(theirs);
+  ASSERT_GT(b.size(), a.size());
+  const size_t splice = a.size() * 45 / 100;
+  const std::string spliced = Path("spliced.mp4");
+  std::ofstream(spliced, std::ios::binary) << a.substr(0, splice) + b.substr(splice, a.size() - splice);
+  FrameSourceOptions skipping;
+  skipping.skip_nonref_frames = true;
+  for (const FrameSourceOptions& options : {FrameSourceOptions{}, skipping}) {
+    auto source = OpenFrameSource(spliced, options);
+    size_t given = 0;
+    Frame f;
+    try {
+      while (source->Next(&f)) given += 1 + f.skipped_before_s.size();
+      ADD_FAILURE() << "no error for " << spliced;
+    } catch (const Error& e) {
+      given += source->SkippedAtEnd().size();
+      EXPECT_EQ(e.where(), spliced);
+      EXPECT_NE(e.reason().find("of the 48 frames declared could not be decoded"),
+                std::string::npos)
+          << e.what();
+      if (!options.skip_nonref_frames) {
+        EXPECT_NE(e.reason().find(std::to_string(48 - given) + " of the 48"), std::string::npos)
+            << e.what() << " after " << given;
+      }
+    }
+    EXPECT_GT(given, 5u);
+  }
+  // Without B-frames, the last packet is a frame nothing refers to: zeroed,
+  // 47 of 48 frames decode, and a warning names the file.
+  const std::string no_b = Make("splice_no_b.mp4",
+                                "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
+                                "-g 12 -bf 0 -pix_fmt yuv420p -movflags +faststart");
+  const std::string last_packet = Path("last_packet.txt");
+  const std::string probe = "ffprobe -v error -select_streams v -show_entries packet=size,pos "
+                            "-of csv=p=0 '" + no_b + "' | tail -1 > '" + last_packet + "'";
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  long pos = 0, size = 0;
+  char comma = 0;
+  std::ifstream(last_packet) >> size >> comma >> pos;  // ffprobe's order, whatever is asked
+  ASSERT_GT(pos, 0);
+  std::string one_lost = bytes_of(no_b);
+  ASSERT_LE(static_cast<size_t>(pos + size), one_lost.size());
+  one_lost.replace(pos, size, std::string(size, '\0'));
+  const std::string lost = Path("one_lost.mp4");
+  std::ofstream(lost, std::ios::binary) << one_lost;
+  ::testing::internal::CaptureStderr();
+  const size_t frames = ReadAll(lost).size();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(frames, 47u);
+  EXPECT_NE(err.find(lost + ": warning: 1 of the 48 frames declared"), std::string::npos) << err;
+  // Cut mid-GOP by a stream copy: an edit list hides the frames before the
+  // cut, which are decoded (they are references) but never shown.
+  const std::string source = Make("gop48.mp4",
+                                  "-f lavfi -i testsrc=size=160x120:rate=24 -t 4 -c:v libx264 "
+                                  "-g 48 -pix_fmt yuv420p");
+  const std::string trimmed = Make("trimmed.mp4", "-ss 1.3 -i '" + source + "' -t 1.5 -c copy");
+  ::testing::internal::CaptureStderr();
+  EXPECT_NO_THROW(ReadAll(trimmed));
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
 TEST_F(FrameSourceTest, ImageFolderAndPattern) {
   const fs::path folder = *dir_ / "images";
   fs::create_directories(folder);

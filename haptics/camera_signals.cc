@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
+#include <string>
 #include <utility>
 
 #include "core/csv.h"
@@ -133,10 +136,56 @@ double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double 
   return ReferenceDepthFor(path, 1.0);
 }
 
+namespace {
+
+std::string Seconds(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g s", s);
+  return buf;
+}
+
+// Median time between consecutive frames of one shot; 0 when no shot has two.
+double MedianFrameInterval(const CameraPath& path, const std::vector<ShotRange>& shots) {
+  std::vector<double> dt;
+  for (const ShotRange& r : shots) {
+    for (size_t i = r.first + 1; i <= r.last; ++i)
+      dt.push_back(path.frames[i].time_s - path.frames[i - 1].time_s);
+  }
+  if (dt.empty()) return 0;
+  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
+  return dt[dt.size() / 2];
+}
+
+// A shot change may skip time (an interlude cut out, shots of separate clips)
+// and the track spans it, the film's clock being the player's. What a gap
+// skips beyond max_gap_s is bounded by the time the path's own frames cover
+// (rows x median frame interval), summed over all shot changes: the track is
+// then at most about twice the path's length, whatever a time_s says.
+void CheckGapsAtShotChanges(const CameraPath& path, const std::vector<ShotRange>& shots,
+                            double max_gap_s, const std::function<std::string(size_t)>& where) {
+  const double covered_s = path.frames.size() * MedianFrameInterval(path, shots);
+  double skipped_s = 0;
+  for (size_t k = 1; k < shots.size(); ++k) {
+    const size_t i = shots[k].first;
+    const double gap = path.frames[i].time_s - path.frames[i - 1].time_s;
+    skipped_s += std::max(0.0, gap - max_gap_s);
+    if (skipped_s > covered_s) {
+      throw Error(where(i), "time gap of " + Seconds(gap) + " at the change to shot " +
+                                std::to_string(shots[k].shot) + ": shot changes skip " +
+                                Seconds(skipped_s) + " beyond --max-gap, more than the " +
+                                Seconds(covered_s) + " the path's " +
+                                std::to_string(path.frames.size()) +
+                                " frames cover (a jump in time_s?)");
+    }
+  }
+}
+
+}  // namespace
+
 void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s,
                             const std::vector<int>* data_lines) {
   if (path.frames.empty()) throw Error(source, "camera path has no frames");
-  auto where = [&](size_t i) {
+  const std::function<std::string(size_t)> where = [&](size_t i) {
     const std::string frame = "frame " + std::to_string(path.frames[i].frame);
     if (data_lines && i < data_lines->size()) {
       return source + ":" + std::to_string((*data_lines)[i]) + ": " + frame;
@@ -154,7 +203,8 @@ void ValidatePathForHaptics(const CameraPath& path, const std::string& source, d
       throw Error(where(i), "time_s is not increasing");
     }
   }
-  for (const ShotRange& r : SplitShots(path)) {
+  const std::vector<ShotRange> shots = SplitShots(path);
+  for (const ShotRange& r : shots) {
     for (size_t i = r.first + 1; i <= r.last; ++i) {
       const double gap = path.frames[i].time_s - path.frames[i - 1].time_s;
       if (gap > max_gap_s) {
@@ -164,6 +214,7 @@ void ValidatePathForHaptics(const CameraPath& path, const std::string& source, d
       }
     }
   }
+  CheckGapsAtShotChanges(path, shots, max_gap_s, where);
 }
 
 }  // namespace hapcine

@@ -77,7 +77,9 @@ std::optional<double> DollyZoomSubjectDistance(const CameraPath& path, const Sho
 double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double explicit_depth_u);
 
 // Checks beyond ReadCameraPath's: |position| <= 1e6, time gaps inside a shot
-// <= max_gap_s. Throws Error("<source>:<line>: frame N", reason) when
+// <= max_gap_s, and what the gaps at shot changes skip beyond max_gap_s, summed,
+// at most the time the frames cover (rows x median frame interval inside
+// shots), so a track's length is bounded by its input's. Throws Error("<source>:<line>: frame N", reason) when
 // `data_lines` gives the file line of every frame (CsvDataRowLines), else
 // Error("<source>: frame N (data row R)", reason).
 void ValidatePathForHaptics(const CameraPath& path, const std::string& source, double max_gap_s,

@@ -95,5 +95,48 @@ TEST(CameraSignals, ErrorsNameTheFileLine) {
   EXPECT_TRUE(CsvDataRowLines(file).empty());
 }
 
+// 48 frames at 24 fps in four shots of 12, each shot change a jump of `jump_s`.
+CameraPath FourShotsWithJumps(double jump_s) {
+  EffectPathSpec spec;
+  spec.effect = CameraEffect::kTraveling;
+  spec.fps = 24;
+  spec.still_s = 0.5;
+  spec.motion_s = 1.0;
+  CameraPath p = MakeEffectPath(spec);
+  p.frames.resize(48);
+  for (size_t i = 0; i < p.frames.size(); ++i) {
+    p.frames[i].shot = static_cast<int>(i / 12);
+    p.frames[i].time_s += jump_s * static_cast<double>(i / 12);
+  }
+  return p;
+}
+
+// A jump in time at a shot change would make the track span it: 1e7 s are
+// 1e10 samples at 1 kHz. What shot changes skip is bounded by the 2 s the
+// 48 frames cover; the first change past it is named.
+TEST(CameraSignals, TimeJumpAtAShotChangeIsBoundedByThePathsOwnLength) {
+  for (const double jump : {1000.0, 1e7, 2.5}) {
+    try {
+      ValidatePathForHaptics(FourShotsWithJumps(jump), "jump.camera.csv", 1.0);
+      FAIL() << jump;
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      const std::string row = jump > 2 && jump < 3 ? "frame 24 (data row 25)" : "frame 12 (data row 13)";
+      EXPECT_NE(what.find("jump.camera.csv: " + row), std::string::npos) << what;
+      EXPECT_NE(what.find("at the change to shot"), std::string::npos) << what;
+    }
+  }
+  // Gaps of --max-gap or less are missing frames, as inside a shot; what
+  // goes beyond may add up to the frames' own 2 s.
+  EXPECT_NO_THROW(ValidatePathForHaptics(FourShotsWithJumps(1.0), "ok.camera.csv", 1.0));
+  EXPECT_NO_THROW(ValidatePathForHaptics(FourShotsWithJumps(1.6), "ok.camera.csv", 1.0));
+  // A path of one-frame shots has no frame interval: only --max-gap holds.
+  CameraPath single = FourShotsWithJumps(0.5);
+  for (size_t i = 0; i < single.frames.size(); ++i) single.frames[i].shot = static_cast<int>(i);
+  EXPECT_NO_THROW(ValidatePathForHaptics(single, "ok.camera.csv", 1.0));
+  single.frames[47].time_s += 1.0;
+  EXPECT_THROW(ValidatePathForHaptics(single, "bad.camera.csv", 1.0), Error);
+}
+
 }  // namespace
 }  // namespace hapcine

@@ -108,7 +108,7 @@ void HapticOptions::Check() const {
   RandomOptions r;
   r.cutoff_hz = random_cutoff_hz;
   r.Check();
-  if (!(max_gap_s > 0)) throw UsageError("max gap must be > 0 s");
+  if (!(max_gap_s > 0 && max_gap_s <= 600)) throw UsageError("max gap must be in (0, 600] s");
   if (!keyframes_file.empty() && model != HapticModel::kSemantic) {
     throw UsageError("keyframes only apply to the semantic model");
   }

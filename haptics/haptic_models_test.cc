@@ -182,6 +182,16 @@ TEST(HapticModels, RejectsBadPaths) {
   // The same gap at a shot boundary is fine.
   for (size_t i = 0; i < gap.frames.size(); ++i) gap.frames[i].shot = i < 100 ? 0 : 1;
   EXPECT_NO_THROW(MakeHapticTrack(gap, o));
+  // Not a jump of 1000 s there: the track would span it (1e6 samples for a
+  // path of a few seconds).
+  for (size_t i = 100; i < gap.frames.size(); ++i) gap.frames[i].time_s += 1000.0;
+  try {
+    MakeHapticTrack(gap, o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.camera.csv: frame 100"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("at the change to shot 1"), std::string::npos);
+  }
   CameraPath absurd = MakeEffectPath(CameraEffect::kTraveling);
   absurd.frames[5].center.x() = 2e6;
   EXPECT_THROW(MakeHapticTrack(absurd, o), Error);

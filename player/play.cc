@@ -28,7 +28,7 @@ void PlayOptions::Check() const {
     throw UsageError("--device must be falcon, sim or none (got '" + device + "')");
   if (video.empty() && !wall_clock) throw UsageError("give VIDEO (or --no-video with --track)");
   if (wall_clock && video.empty() && track.empty()) throw UsageError("--no-video needs --track");
-  if (!(duration_tolerance_s >= 0)) throw UsageError("--duration-tolerance must be >= 0");
+  if (!(duration_tolerance_s >= 0 && std::isfinite(duration_tolerance_s))) throw UsageError("--duration-tolerance must be >= 0");
   if (!(max_run_s >= 0)) throw UsageError("max_run_s must be >= 0");
   loop.Check();
   sim.Check();

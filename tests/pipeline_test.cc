@@ -231,7 +231,7 @@ TEST_F(PipelineTest, UsageErrorsExitTwo) {
   EXPECT_EQ(RunHapcine("no-such-command", dir_).exit_code, 2);
   const RunResult blur = RunHapcine("estimate --blur-noise -1 x.mp4 -o y.camera.csv", dir_);
   EXPECT_EQ(blur.exit_code, 2);
-  EXPECT_NE(blur.err.find("blur noise must be in [0, 1]"), std::string::npos) << blur.err;
+  EXPECT_NE(blur.err.find("--blur-noise: -1 is outside [0, 1]"), std::string::npos) << blur.err;
   EXPECT_EQ(CountFilesStartingWith(dir_, "y.camera.csv"), 0);
   const RunResult help = RunHapcine("eval --help", dir_);
   EXPECT_EQ(help.exit_code, 0);
