@@ -43,12 +43,12 @@ replay_regressions() {
   [ -d "$dir" ] || return 0
   local inputs=("$dir"/*)
   [ -e "${inputs[0]}" ] || return 0
-  if ! "$bin" "${inputs[@]}" >"$WORK/$target.replay.log" 2>&1; then
+  if ! TMPDIR="$WORK" "$bin" "${inputs[@]}" >"$WORK/$target.replay.log" 2>&1; then
     echo "fuzz: $target: a regression input fails again:" >&2
     tail -n 40 "$WORK/$target.replay.log" | cut -c1-240 >&2
     return 1
   fi
-  echo "fuzz: $target: ${#inputs[@]} regression inputs pass"
+  echo "fuzz: $target: regression inputs pass (${#inputs[@]})"
 }
 
 fuzz_target() {
@@ -57,7 +57,8 @@ fuzz_target() {
   cp fuzz/corpus/"$target"/* "$WORK/$target/"
   local dict=()
   [ -f "fuzz/$target.dict" ] && dict=(-dict="fuzz/$target.dict")
-  if ! "$bin" "$WORK/$target" "${dict[@]}" -max_total_time="$SECONDS_EACH" -timeout=10 \
+  # TMPDIR: the readers that take a path get their scratch files there.
+  if ! TMPDIR="$WORK" "$bin" "$WORK/$target" "${dict[@]}" -max_total_time="$SECONDS_EACH" -timeout=10 \
        -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$FINDINGS/$target/" \
        >"$log" 2>&1; then
     cp "$log" "$FINDINGS/$target/fuzz.log"
