@@ -31,12 +31,15 @@ std::vector<std::string> SplitParts(const std::string& text) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace fs = std::filesystem;
   const fs::path dir = hapcine::fuzz::ScratchDir() / "colmap";
-  fs::remove_all(dir);
-  fs::create_directory(dir);
+  fs::create_directories(dir);
   const char* names[] = {"cameras.txt", "images.txt", "points3D.txt"};
   const auto parts = SplitParts(hapcine::fuzz::AsString(data, size));
-  for (size_t i = 0; i < parts.size(); ++i)
-    hapcine::fuzz::WriteScratchFile(std::string("colmap/") + names[i], parts[i]);
+  for (size_t i = 0; i < 3; ++i) {
+    if (i < parts.size())
+      hapcine::fuzz::WriteScratchFile(std::string("colmap/") + names[i], parts[i]);
+    else
+      fs::remove(dir / names[i]);
+  }
 
   hapcine::fuzz::AcceptOnlyError([&] { hapcine::ReadColmapTextModel(dir.string()); });
   hapcine::ColmapReadOptions decoded;

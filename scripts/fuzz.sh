@@ -53,6 +53,7 @@ replay_regressions() {
 
 fuzz_target() {
   local target=$1 bin=$2 log=$WORK/$1.log
+  rm -rf "$FINDINGS/$target"  # only this run's findings
   mkdir -p "$WORK/$target" "$FINDINGS/$target"
   cp fuzz/corpus/"$target"/* "$WORK/$target/"
   local dict=()
