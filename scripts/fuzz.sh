@@ -6,6 +6,7 @@
 # hapcine::Error; the inputs that did are kept in build-fuzz/findings/.
 #   scripts/fuzz.sh [SECONDS] [TARGET...]    # default: 60 s, every target
 #   scripts/fuzz.sh 3600                     # release run: an hour each
+#   HAPCINE_FUZZ_NO_BUILD=1 scripts/fuzz.sh 3600 tum &   # parallel runs, one build
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,9 +28,12 @@ CMAKE_ARGS=(-DCMAKE_CXX_COMPILER="${CXX_FUZZ:-clang++}" -DHAPCINE_FUZZ=ON
 if command -v ccache >/dev/null 2>&1; then
   CMAKE_ARGS+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
-echo "== Fuzz build ($BUILD_DIR)"
-cmake -S . -B "$BUILD_DIR" "${CMAKE_ARGS[@]}" >/dev/null
-cmake --build "$BUILD_DIR" -j"$(nproc)" --target hapcine_fuzzers
+# HAPCINE_FUZZ_NO_BUILD=1: use the targets as built (several runs in parallel on one build).
+if [ "${HAPCINE_FUZZ_NO_BUILD:-0}" != "1" ]; then
+  echo "== Fuzz build ($BUILD_DIR)"
+  cmake -S . -B "$BUILD_DIR" "${CMAKE_ARGS[@]}" >/dev/null
+  cmake --build "$BUILD_DIR" -j"$(nproc)" --target hapcine_fuzzers
+fi
 
 # The working corpus grows in a temporary folder: the checked-in seeds stay as they are.
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/hapcine-fuzz.XXXXXX")
