@@ -57,7 +57,7 @@ SeatGeometry ParseSeatGeometryJson(const std::string& text, const std::string& s
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // also out_of_range: a number beyond double's range
     throw Error(src, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw Error(src, "seat geometry must be a JSON object");

@@ -58,6 +58,19 @@ TEST(SeatGeometry, RejectsBadInput) {
   EXPECT_THROW(LoadSeatGeometryFile("/nonexistent/seat.json"), Error);
 }
 
+// A number beyond double's range is nlohmann's out_of_range, not a
+// parse_error; it must still be a one-line Error naming the file (found by
+// fuzz/seat_json_fuzzer).
+TEST(SeatGeometry, NumberOverflowIsAnErrorNamingTheFile) {
+  try {
+    ParseSeatGeometryJson(R"({"rate_hz": 1e400})", "my_seat.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), "my_seat.json");
+    EXPECT_NE(e.reason().find("not valid JSON"), std::string::npos) << e.reason();
+  }
+}
+
 // The documented configuration file in the source tree is exactly the
 // built-in defaults (so neither can drift from the other).
 TEST(SeatGeometry, ShippedConfigurationFileIsTheDefaults) {

@@ -24,6 +24,8 @@ PACKAGES=(
   time
   # Compiler cache: rebuilds of unchanged files are nearly free.
   ccache
+  # Fuzzing the readers (scripts/fuzz.sh): clang and its libFuzzer runtime.
+  clang libclang-rt-14-dev
 )
 
 missing=()
