@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/header_value.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -106,7 +107,7 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
     any_model |= fr.model.has_value();
     any_conf |= fr.confidence.has_value();
   }
-  for (const auto& [key, value] : path.metadata) out << "# " << key << "=" << value << "\n";
+  for (const auto& [key, value] : path.metadata) WriteHeaderLine(out, key, value);
   out << "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg";
   if (any_focal) out << ",focal_px";
   out << ",pan_deg,tilt_deg,roll_deg";

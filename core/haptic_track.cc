@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/header_value.h"
 
 namespace hapcine {
 namespace {
@@ -133,11 +134,11 @@ void WriteHapticTrack(const HapticTrack& track, std::ostream& out) {
     any_shot |= s.shot.has_value();
     any_effect |= s.effect.has_value();
   }
-  out << "# rate_hz=" << FormatDouble(track.rate_hz) << "\n";
-  out << "# model=" << track.model << "\n";
-  out << "# source=" << track.source << "\n";
+  WriteHeaderLine(out, "rate_hz", FormatDouble(track.rate_hz));
+  WriteHeaderLine(out, "model", track.model);
+  WriteHeaderLine(out, "source", track.source);
   for (const auto& [key, value] : track.metadata) {
-    if (key != "rate_hz" && key != "model" && key != "source") out << "# " << key << "=" << value << "\n";
+    if (key != "rate_hz" && key != "model" && key != "source") WriteHeaderLine(out, key, value);
   }
   for (size_t i = 0; i < kRequired.size(); ++i) out << (i ? "," : "") << kRequired[i];
   if (any_shot) out << ",shot";
