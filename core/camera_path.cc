@@ -9,6 +9,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/header_value.h"
+#include "core/line_count.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -53,6 +54,8 @@ std::string ValidateCameraFrame(const CameraFrame& f) {
 }
 
 CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
+  // The shortest row: ten one-digit fields.
+  const size_t rows = CountLinesAhead(in, 19);
   CsvReader csv(in, source_name);
   csv.ReadPreamble();
   csv.RequireLeadingColumns(kRequired);
@@ -63,6 +66,8 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
 
   CameraPath path;
   path.metadata = csv.metadata();
+  TryReserve(&path.frames, rows);
+  RecentName models;
   std::vector<std::string> f;
   while (csv.NextRow(&f)) {
     CameraFrame fr;
@@ -74,7 +79,9 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
     fr.fov_deg = csv.Double(f, 9, "fov_deg");
     if (c_focal >= 0 && !f[c_focal].empty()) fr.focal_px = csv.Double(f, c_focal, "focal_px");
     if (c_shot >= 0 && !f[c_shot].empty()) fr.shot = csv.Int(f, c_shot, "shot");
-    if (c_model >= 0 && !f[c_model].empty()) fr.model = f[c_model];
+    if (c_model >= 0 && !f[c_model].empty() && !models.Make(f[c_model], &fr.model)) {
+      csv.Fail("too many distinct values in column 'model'");
+    }
     if (c_conf >= 0 && !f[c_conf].empty()) fr.confidence = csv.Double(f, c_conf, "confidence");
     const std::string bad = ValidateCameraFrame(fr);
     if (!bad.empty()) csv.Fail(bad);

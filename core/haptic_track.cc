@@ -9,6 +9,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/header_value.h"
+#include "core/line_count.h"
 
 namespace hapcine {
 namespace {
@@ -64,6 +65,8 @@ void HapticTrack::Sample(double t, Eigen::Vector3d out[kNumActuators],
 }
 
 HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
+  // The shortest row: ten one-digit fields.
+  const size_t rows = CountLinesAhead(in, 19);
   CsvReader csv(in, source_name);
   csv.ReadPreamble();
   HapticTrack track;
@@ -88,6 +91,8 @@ HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
   const int c_shot = csv.Column("shot");
   const int c_effect = csv.Column("effect");
 
+  TryReserve(&track.samples, rows);
+  RecentName effects;
   std::vector<std::string> f;
   while (csv.NextRow(&f)) {
     HapticSample s;
@@ -102,7 +107,9 @@ HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
       }
     }
     if (c_shot >= 0 && !f[c_shot].empty()) s.shot = csv.Int(f, c_shot, "shot");
-    if (c_effect >= 0 && !f[c_effect].empty()) s.effect = f[c_effect];
+    if (c_effect >= 0 && !f[c_effect].empty() && !effects.Make(f[c_effect], &s.effect)) {
+      csv.Fail("too many distinct values in column 'effect'");
+    }
     if (!track.samples.empty() && s.time_s <= track.samples.back().time_s) {
       csv.Fail("time_s is not increasing");
     }
