@@ -13,7 +13,7 @@ namespace hapcine {
 namespace {
 
 // Per-frame values of the cinematic model resampled at the samples' times
-// (set): linear inside a shot, held from a shot's last frame until the next cut.
+// (already set): linear inside a shot, held from a shot's last frame until the next cut.
 void ResampleFrames(const CameraPath& path, const std::vector<ShotRange>& shots,
                     const std::vector<ActuatorFrame>& per_frame,
                     std::vector<HapticSample>* samples) {
