@@ -95,7 +95,8 @@ json HjifDocument(const HapticTrack& track, const HjifOptions& o, const Keyframe
                                  " (HapSeat actuator positions, seat frame +X right, +Y up, "
                                  "+Z backward)"
                            : o.description;
-  doc["avatars"] = json::array({json{{"id", 0}, {"lod", 0}, {"type", "Custom"}}});
+  // Avatar and reference-device ids start at 1 (the reference software's schema).
+  doc["avatars"] = json::array({json{{"id", 1}, {"lod", 0}, {"type", "Custom"}}});
   json perceptions = json::array();
   const char* axis_names[3] = {"x", "y", "z"};
   for (int a = 0; a < kNumActuators; ++a) {
@@ -104,10 +105,10 @@ json HjifDocument(const HapticTrack& track, const HjifOptions& o, const Keyframe
     p["perception_modality"] = "Position";
     p["description"] = std::string(ActuatorName(static_cast<Actuator>(a))) +
                        " actuator displacement from its workspace centre";
-    p["avatar_id"] = 0;
+    p["avatar_id"] = 1;
     p["effect_library"] = json::array();
     p["reference_devices"] = json::array(
-        {json{{"id", 0}, {"name", "Novint Falcon"}}});
+        {json{{"id", 1}, {"name", "Novint Falcon"}}});
     p["unit_exponent"] = 0;             // metres (10^0)
     p["perception_unit_exponent"] = 0;  // amplitudes times gain are metres
     json channels = json::array();
@@ -129,7 +130,7 @@ json HjifDocument(const HapticTrack& track, const HjifOptions& o, const Keyframe
       ch["mixing_coefficient"] = 1.0;
       ch["body_part_mask"] = 0;  // unspecified; body_part_target names the part
       ch["body_part_target"] = kBodyParts[a];
-      ch["reference_device_id"] = 0;
+      ch["reference_device_id"] = 1;
       // The seat axis this channel moves along.
       ch["direction"] = {{"X", k == 0 ? 1 : 0}, {"Y", k == 1 ? 1 : 0}, {"Z", k == 2 ? 1 : 0}};
       ch["bands"] = json::array({band});
