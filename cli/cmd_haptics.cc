@@ -167,7 +167,7 @@ int RunHaptics(int argc, char** argv) {
     std::unique_ptr<AtomicFile> hj;
     if (!hjif.empty()) {
       hj = std::make_unique<AtomicFile>(hjif);
-      hj->stream() << HapticTrackToHjif(track, hjif_opt).dump(1) << "\n";
+      WriteHjif(track, hjif_opt, hj->stream());
     }
     std::unique_ptr<AtomicFile> fx;
     if (!effects_out.empty()) {

@@ -8,7 +8,9 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/header_value.h"
 #include "core/input_file.h"
+#include "core/line_count.h"
 #include "core/rotation.h"
 
 namespace hapcine {
@@ -53,6 +55,8 @@ std::string ValidateCameraFrame(const CameraFrame& f) {
 }
 
 CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
+  // The shortest row: ten one-digit fields.
+  const size_t rows = CountLinesAhead(in, 19);
   CsvReader csv(in, source_name);
   csv.ReadPreamble();
   csv.RequireLeadingColumns(kRequired);
@@ -63,6 +67,8 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
 
   CameraPath path;
   path.metadata = csv.metadata();
+  TryReserve(&path.frames, rows);
+  RecentName models;
   std::vector<std::string> f;
   while (csv.NextRow(&f)) {
     CameraFrame fr;
@@ -74,7 +80,9 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
     fr.fov_deg = csv.Double(f, 9, "fov_deg");
     if (c_focal >= 0 && !f[c_focal].empty()) fr.focal_px = csv.Double(f, c_focal, "focal_px");
     if (c_shot >= 0 && !f[c_shot].empty()) fr.shot = csv.Int(f, c_shot, "shot");
-    if (c_model >= 0 && !f[c_model].empty()) fr.model = f[c_model];
+    if (c_model >= 0 && !f[c_model].empty() && !models.Make(f[c_model], &fr.model)) {
+      csv.Fail("too many distinct values in column 'model'");
+    }
     if (c_conf >= 0 && !f[c_conf].empty()) fr.confidence = csv.Double(f, c_conf, "confidence");
     const std::string bad = ValidateCameraFrame(fr);
     if (!bad.empty()) csv.Fail(bad);
@@ -106,7 +114,7 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
     any_model |= fr.model.has_value();
     any_conf |= fr.confidence.has_value();
   }
-  for (const auto& [key, value] : path.metadata) out << "# " << key << "=" << value << "\n";
+  for (const auto& [key, value] : path.metadata) WriteHeaderLine(out, key, value);
   out << "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg";
   if (any_focal) out << ",focal_px";
   out << ",pan_deg,tilt_deg,roll_deg";

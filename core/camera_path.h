@@ -12,18 +12,22 @@
 #include <string>
 #include <vector>
 
+#include "core/optional_name.h"
+
 namespace hapcine {
 
+// Small fields first: the frame packs into 128 bytes (a 10-million-row path
+// is held in memory by the readers of it).
 struct CameraFrame {
   int frame = 0;        // 0-based decoded frame index
+  std::optional<int> shot;  // optional column
+  OptionalName model;   // optional column: static, zoom, rotation, rotation+zoom, general
   double time_s = 0;    // presentation time, seconds
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // camera centre c in world
   Eigen::Quaterniond world_from_cam = Eigen::Quaterniond::Identity();
   double fov_deg = 0;   // horizontal field of view of the decoded frame
-  // Optional columns (written when set).
+  // Optional columns (written when set; also shot and model above).
   std::optional<double> focal_px;
-  std::optional<int> shot;
-  std::optional<std::string> model;  // static, zoom, rotation, rotation+zoom, general
   std::optional<double> confidence;  // [0, 1]
 };
 

@@ -126,6 +126,30 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+TEST(CameraPathTest, MetadataWithLineBreaksAndSeparatorsRoundTrips) {
+  CameraPath p = MakePath(3);
+  const std::string odd = std::string("film\nname\r,a=b\\c\x01\x1f\x7f é 日本 .mp4");
+  p.metadata["source"] = odd;
+  p.metadata["note"] = " leading and trailing ";
+  std::stringstream ss;
+  WriteCameraPath(p, ss);
+  const CameraPath r = ReadCameraPath(ss, "mem");
+  EXPECT_EQ(r.metadata.at("source"), odd);
+  EXPECT_EQ(r.metadata.at("note"), " leading and trailing ");
+  EXPECT_EQ(r.metadata.at("width"), "1280");
+  ASSERT_EQ(r.frames.size(), 3u);
+}
+
+TEST(CameraPathTest, HeaderWithABackslashThatIsNoEscapeReadsAsWritten) {
+  std::istringstream in(
+      "# source=C:\\\\films\\\\a.mp4\n"  // as written now
+      "# other=C:\\films\\a.mp4\n"           // as older versions wrote it
+      "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n0,0,0,0,0,1,0,0,0,60\n");
+  const CameraPath r = ReadCameraPath(in, "mem");
+  EXPECT_EQ(r.metadata.at("source"), "C:\\films\\a.mp4");
+  EXPECT_EQ(r.metadata.at("other"), "C:\\films\\a.mp4");
+}
+
 TEST(CameraPathTest, WriterRefusesNonFinite) {
   CameraPath p = MakePath(2);
   p.frames[1].center.x() = std::numeric_limits<double>::quiet_NaN();

@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/header_value.h"
 
 namespace hapcine {
 namespace {
@@ -65,13 +66,15 @@ void CsvReader::ReadPreamble() {
     if (line_ == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s = s.substr(3);  // BOM
     if (s.empty()) continue;
     if (s[0] == '#') {
-      // "# key=value" (value may hold spaces, e.g. a file name), or several
+      // "# key=value" (value may hold spaces, e.g. a file name; escaped as in
+      // core/header_value.h), or several
       // space-separated pairs on one line ("# width=1920 height=1080 fps=24").
       const std::string body = Trim(s.substr(1));
       const size_t eq = body.find('=');
       if (eq != std::string::npos && eq > 0) {
         if (body.find('=', eq + 1) == std::string::npos) {
-          metadata_[Trim(body.substr(0, eq))] = Trim(body.substr(eq + 1));
+          metadata_[UnescapeHeaderValue(Trim(body.substr(0, eq)))] =
+              UnescapeHeaderValue(Trim(body.substr(eq + 1)));
         } else {
           size_t pos = 0;
           while (pos < body.size()) {
@@ -80,7 +83,8 @@ void CsvReader::ReadPreamble() {
             const std::string tok = body.substr(pos, end - pos);
             const size_t teq = tok.find('=');
             if (teq != std::string::npos && teq > 0) {
-              metadata_[tok.substr(0, teq)] = tok.substr(teq + 1);
+              metadata_[UnescapeHeaderValue(tok.substr(0, teq))] =
+                  UnescapeHeaderValue(tok.substr(teq + 1));
             }
             pos = end + 1;
           }

@@ -8,7 +8,9 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/header_value.h"
 #include "core/input_file.h"
+#include "core/line_count.h"
 
 namespace hapcine {
 namespace {
@@ -64,6 +66,8 @@ void HapticTrack::Sample(double t, Eigen::Vector3d out[kNumActuators],
 }
 
 HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
+  // The shortest row: ten one-digit fields.
+  const size_t rows = CountLinesAhead(in, 19);
   CsvReader csv(in, source_name);
   csv.ReadPreamble();
   HapticTrack track;
@@ -88,6 +92,8 @@ HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
   const int c_shot = csv.Column("shot");
   const int c_effect = csv.Column("effect");
 
+  TryReserve(&track.samples, rows);
+  RecentName effects;
   std::vector<std::string> f;
   while (csv.NextRow(&f)) {
     HapticSample s;
@@ -102,7 +108,9 @@ HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
       }
     }
     if (c_shot >= 0 && !f[c_shot].empty()) s.shot = csv.Int(f, c_shot, "shot");
-    if (c_effect >= 0 && !f[c_effect].empty()) s.effect = f[c_effect];
+    if (c_effect >= 0 && !f[c_effect].empty() && !effects.Make(f[c_effect], &s.effect)) {
+      csv.Fail("too many distinct values in column 'effect'");
+    }
     if (!track.samples.empty() && s.time_s <= track.samples.back().time_s) {
       csv.Fail("time_s is not increasing");
     }
@@ -133,11 +141,11 @@ void WriteHapticTrack(const HapticTrack& track, std::ostream& out) {
     any_shot |= s.shot.has_value();
     any_effect |= s.effect.has_value();
   }
-  out << "# rate_hz=" << FormatDouble(track.rate_hz) << "\n";
-  out << "# model=" << track.model << "\n";
-  out << "# source=" << track.source << "\n";
+  WriteHeaderLine(out, "rate_hz", FormatDouble(track.rate_hz));
+  WriteHeaderLine(out, "model", track.model);
+  WriteHeaderLine(out, "source", track.source);
   for (const auto& [key, value] : track.metadata) {
-    if (key != "rate_hz" && key != "model" && key != "source") out << "# " << key << "=" << value << "\n";
+    if (key != "rate_hz" && key != "model" && key != "source") WriteHeaderLine(out, key, value);
   }
   for (size_t i = 0; i < kRequired.size(); ++i) out << (i ? "," : "") << kRequired[i];
   if (any_shot) out << ",shot";

@@ -47,6 +47,19 @@ TEST(HapticTrackTest, RoundTrip) {
   EXPECT_EQ(*r.samples[5].effect, "dutch_angle");
 }
 
+TEST(HapticTrackTest, SourceAndMetadataWithLineBreaksRoundTrip) {
+  HapticTrack t = MakeTrack(4);
+  t.source = std::string("film\nname\r,a=b\\c\x01\x1f\x7f é 日本 .camera.csv");
+  t.metadata["effects_from"] = "keys\n# model=none\n.csv";
+  std::stringstream ss;
+  WriteHapticTrack(t, ss);
+  const HapticTrack r = ReadHapticTrack(ss, "mem");
+  EXPECT_EQ(r.source, t.source);
+  EXPECT_EQ(r.model, "cinematic");
+  EXPECT_EQ(r.metadata.at("effects_from"), "keys\n# model=none\n.csv");
+  EXPECT_EQ(r.samples.size(), 4u);
+}
+
 TEST(HapticTrackTest, SampleInterpolatesAndClamps) {
   const HapticTrack t = MakeTrack(10);
   Eigen::Vector3d out[kNumActuators];

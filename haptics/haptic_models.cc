@@ -12,32 +12,56 @@
 namespace hapcine {
 namespace {
 
-// Per-frame values of the cinematic model resampled at the output times:
-// linear inside a shot, held from a shot's last frame until the next cut.
-std::vector<ActuatorFrame> ResampleFrames(const CameraPath& path,
-                                          const std::vector<ShotRange>& shots,
-                                          const std::vector<ActuatorFrame>& per_frame,
-                                          const std::vector<double>& time_s) {
-  std::vector<ActuatorFrame> out(time_s.size());
+// Per-frame values of the cinematic model resampled at the samples' times
+// (already set): linear inside a shot, held from a shot's last frame until the next cut.
+void ResampleFrames(const CameraPath& path, const std::vector<ShotRange>& shots,
+                    const std::vector<ActuatorFrame>& per_frame,
+                    std::vector<HapticSample>* samples) {
   size_t k = 0;  // current shot
   size_t i = 0;  // current frame
-  for (size_t n = 0; n < time_s.size(); ++n) {
-    const double t = time_s[n];
+  for (HapticSample& out : *samples) {
+    const double t = out.time_s;
     while (k + 1 < shots.size() && path.frames[shots[k + 1].first].time_s <= t) ++k;
     const ShotRange& s = shots[k];
     i = std::max(i, s.first);
     while (i + 1 <= s.last && path.frames[i + 1].time_s <= t) ++i;
     if (i >= s.last || t <= path.frames[i].time_s) {
-      out[n] = per_frame[i];
+      std::copy(per_frame[i].begin(), per_frame[i].end(), out.pos_m);
     } else {
       const double ta = path.frames[i].time_s, tb = path.frames[i + 1].time_s;
       const double w = (t - ta) / (tb - ta);
       for (int a = 0; a < kNumActuators; ++a) {
-        out[n][a] = (1 - w) * per_frame[i][a] + w * per_frame[i + 1][a];
+        out.pos_m[a] = (1 - w) * per_frame[i][a] + w * per_frame[i + 1][a];
       }
     }
   }
-  return out;
+}
+
+void CopyPositions(const std::vector<ActuatorFrame>& frames, std::vector<HapticSample>* samples) {
+  for (size_t i = 0; i < frames.size(); ++i) {
+    std::copy(frames[i].begin(), frames[i].end(), (*samples)[i].pos_m);
+  }
+}
+
+// The `shot` of each sample (when the path has one) and its `effect` (semantic).
+void LabelSamples(const CameraPath& path, const std::vector<ShotRange>& shots,
+                  const std::vector<CameraEffect>& effects, std::vector<HapticSample>* samples) {
+  const bool has_shot_column = std::any_of(path.frames.begin(), path.frames.end(),
+                                           [](const CameraFrame& f) { return f.shot.has_value(); });
+  size_t k = 0;
+  std::optional<CameraEffect> last_effect;
+  OptionalName last_name;
+  for (size_t i = 0; i < samples->size(); ++i) {
+    HapticSample& s = (*samples)[i];
+    if (has_shot_column) {
+      while (k + 1 < shots.size() && path.frames[shots[k + 1].first].time_s <= s.time_s) ++k;
+      s.shot = shots[k].shot;
+    }
+    if (effects.empty()) continue;
+    if (effects[i] != last_effect) last_name = EffectName(effects[i]);
+    last_effect = effects[i];
+    s.effect = last_name;
+  }
 }
 
 // A media clock this far from zero cannot be sampled at a haptic rate in
@@ -138,20 +162,20 @@ HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
   track.rate_hz = rate;
   track.model = HapticModelName(o.model);
   track.source = o.source;
-  std::vector<ActuatorFrame> frames;
+  // The samples are built in place (a two-hour film is 7.2 million of
+  // them): a model's frames, when it makes any, are copied in and freed.
+  track.samples.resize(n);
+  for (size_t i = 0; i < n; ++i) track.samples[i].time_s = time_s[i];
   std::vector<CameraEffect> effects;
   switch (o.model) {
     case HapticModel::kNone:
-      frames.resize(n);
-      for (auto& f : frames)
-        for (auto& v : f) v.setZero();
-      break;
+      break;  // samples start centred
     case HapticModel::kCinematic: {
       const CinematicScaling scaling =
           o.cinematic_scaling ? *o.cinematic_scaling
                               : ComputeCinematicScaling(path, o.seat, o.cinematic, o.washout);
       const auto per_frame = CinematicFrames(path, o.seat, o.cinematic, o.washout, scaling);
-      frames = ResampleFrames(path, shots, per_frame, time_s);
+      ResampleFrames(path, shots, per_frame, &track.samples);
       track.metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
       track.metadata["cinematic_m"] = JoinScales(scaling, true);
       std::string depths;
@@ -166,7 +190,7 @@ HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
       const std::vector<EffectSegment> segs = o.keyframes_file.empty()
                                                   ? ClassifyEffects(path, o.classifier)
                                                   : ReadKeyframesFile(o.keyframes_file);
-      frames = SemanticFrames(time_s, segs, o.seat, o.semantic, &effects);
+      CopyPositions(SemanticFrames(time_s, segs, o.seat, o.semantic, &effects), &track.samples);
       track.metadata["effects_from"] = o.keyframes_file.empty() ? "classifier" : o.keyframes_file;
       track.metadata["effect_segments"] = std::to_string(segs.size());
       break;
@@ -175,15 +199,15 @@ HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
       RandomOptions r;
       r.seed = o.seed;
       r.cutoff_hz = o.random_cutoff_hz;
-      frames = RandomFrames(n, rate, o.seat, r);
+      CopyPositions(RandomFrames(n, rate, o.seat, r), &track.samples);
       track.metadata["seed"] = std::to_string(o.seed);
       track.metadata["cutoff_hz"] = FormatDouble(o.random_cutoff_hz);
       break;
     }
   }
-  ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &frames);
-  const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &frames);
-  const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &frames);
+  ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &track.samples);
+  const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &track.samples);
+  const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &track.samples);
   // The high-pass acts on camera signals, i.e. on the cinematic model only.
   const bool high_pass = o.washout.high_pass && o.model == HapticModel::kCinematic;
   track.metadata["washout"] = high_pass ? "highpass" : "off";
@@ -194,21 +218,7 @@ HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
   track.metadata["max_step_m"] = FormatDouble(o.washout.max_speed_m_s / rate);
   track.metadata["rate_limited_samples"] = std::to_string(limited);
   track.metadata["clamped_samples"] = std::to_string(clamped);
-
-  const bool has_shot_column = std::any_of(path.frames.begin(), path.frames.end(),
-                                           [](const CameraFrame& f) { return f.shot.has_value(); });
-  track.samples.resize(n);
-  size_t k = 0;
-  for (size_t i = 0; i < n; ++i) {
-    HapticSample& s = track.samples[i];
-    s.time_s = time_s[i];
-    for (int a = 0; a < kNumActuators; ++a) s.pos_m[a] = frames[i][a];
-    if (has_shot_column) {
-      while (k + 1 < shots.size() && path.frames[shots[k + 1].first].time_s <= time_s[i]) ++k;
-      s.shot = shots[k].shot;
-    }
-    if (!effects.empty()) s.effect = EffectName(effects[i]);
-  }
+  LabelSamples(path, shots, effects, &track.samples);
   return track;
 }
 

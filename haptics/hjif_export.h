@@ -13,6 +13,7 @@
 // the test checks every one of them.
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 
 #include "core/haptic_track.h"
@@ -28,7 +29,12 @@ struct HjifOptions {
   void Check() const;             // throws UsageError
 };
 
+// The whole document in memory (for tests and small tracks: a long film's
+// keyframes take gigabytes as a json tree).
 nlohmann::json HapticTrackToHjif(const HapticTrack& track, const HjifOptions& options);
+// Writes the same text as HapticTrackToHjif(...).dump(1) + "\n", streaming
+// the keyframes: memory does not grow with the track's length.
+void WriteHjif(const HapticTrack& track, const HjifOptions& options, std::ostream& out);
 // Atomic write (temporary file + rename).
 void WriteHjifFile(const HapticTrack& track, const std::string& path, const HjifOptions& options);
 

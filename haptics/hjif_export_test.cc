@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include "haptics/haptic_models.h"
 #include "haptics/test_paths_for_test.h"
@@ -139,6 +140,26 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
   EXPECT_EQ(right["channels"][1]["direction"]["Y"], 1);
   EXPECT_EQ(right["channels"][1]["direction"]["X"], 0);
   EXPECT_EQ(right["channels"][0]["body_part_target"], nlohmann::json::array({"Right", "Hand"}));
+}
+
+// The streaming writer prints the very text of the document's dump(1).
+TEST(HjifExport, StreamedTextIsTheDocumentsDump) {
+  HjifOptions o;
+  o.date = "2026-01-02";
+  HapticTrack track = Track();
+  track.source = "odd \"name\"\n\\ \"keyframes\": \"\x01.csv";
+  for (double rate : {100.0, 7.0}) {
+    o.keyframe_rate_hz = rate;
+    std::ostringstream streamed;
+    WriteHjif(track, o, streamed);
+    EXPECT_EQ(streamed.str(), HapticTrackToHjif(track, o).dump(1) + "\n") << rate;
+  }
+  HapticTrack one;
+  one.samples.resize(1);
+  one.samples[0].pos_m[1] = {0.01, -0.02, 0.003};
+  std::ostringstream streamed;
+  WriteHjif(one, o, streamed);
+  EXPECT_EQ(streamed.str(), HapticTrackToHjif(one, o).dump(1) + "\n");
 }
 
 TEST(HjifExport, RejectsEmptyTracksAndBadOptions) {

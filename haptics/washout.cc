@@ -42,32 +42,45 @@ double SmootherStep(double u) {
   return u * u * u * (u * (u * 6 - 15) + 10);
 }
 
-void ApplyCutTransitions(const std::vector<double>& t, const std::vector<double>& cuts,
-                         double ramp_s, std::vector<ActuatorFrame>* frames) {
+namespace {
+
+// The three actuator positions of one output sample: the same steps shape a
+// model's frames and a haptic track's samples (built in place for long films).
+Eigen::Vector3d* Positions(ActuatorFrame& f) { return f.data(); }
+Eigen::Vector3d* Positions(HapticSample& s) { return s.pos_m; }
+
+template <class Frame>
+void ApplyCutTransitionsTo(const std::vector<double>& t, const std::vector<double>& cuts,
+                           double ramp_s, std::vector<Frame>* frames) {
   if (ramp_s <= 0) return;
   auto& v = *frames;
   for (double c : cuts) {
     auto it = std::lower_bound(t.begin(), t.end(), c);
     if (it == t.begin() || it == t.end()) continue;
     size_t i = static_cast<size_t>(it - t.begin());
-    const ActuatorFrame held = v[i - 1];
+    ActuatorFrame held;
+    std::copy_n(Positions(v[i - 1]), kNumActuators, held.begin());
     for (; i < t.size() && t[i] < c + ramp_s; ++i) {
       const double w = SmootherStep((t[i] - c) / ramp_s);
-      for (int a = 0; a < kNumActuators; ++a) v[i][a] = (1 - w) * held[a] + w * v[i][a];
+      Eigen::Vector3d* p = Positions(v[i]);
+      for (int a = 0; a < kNumActuators; ++a) p[a] = (1 - w) * held[a] + w * p[a];
     }
   }
 }
 
-int LimitVelocity(double max_step_m, std::vector<ActuatorFrame>* frames) {
+template <class Frame>
+int LimitVelocityOf(double max_step_m, std::vector<Frame>* frames) {
   auto& v = *frames;
   int limited = 0;
   for (size_t i = 1; i < v.size(); ++i) {
+    const Eigen::Vector3d* prev = Positions(v[i - 1]);
+    Eigen::Vector3d* p = Positions(v[i]);
     bool hit = false;
     for (int a = 0; a < kNumActuators; ++a) {
       for (int k = 0; k < 3; ++k) {
-        const double d = v[i][a][k] - v[i - 1][a][k];
+        const double d = p[a][k] - prev[a][k];
         if (std::abs(d) > max_step_m) {
-          v[i][a][k] = v[i - 1][a][k] + std::copysign(max_step_m, d);
+          p[a][k] = prev[a][k] + std::copysign(max_step_m, d);
           hit = true;
         }
       }
@@ -77,13 +90,15 @@ int LimitVelocity(double max_step_m, std::vector<ActuatorFrame>* frames) {
   return limited;
 }
 
-int ClampToWorkspace(double clamp_half_m, std::vector<ActuatorFrame>* frames) {
+template <class Frame>
+int ClampToWorkspaceOf(double clamp_half_m, std::vector<Frame>* frames) {
   int clamped = 0;
   for (auto& f : *frames) {
+    Eigen::Vector3d* p = Positions(f);
     bool hit = false;
     for (int a = 0; a < kNumActuators; ++a) {
       for (int k = 0; k < 3; ++k) {
-        double& c = f[a][k];
+        double& c = p[a][k];
         if (!std::isfinite(c)) {
           c = 0;  // never reaches a device; counted as clamped
           hit = true;
@@ -96,6 +111,31 @@ int ClampToWorkspace(double clamp_half_m, std::vector<ActuatorFrame>* frames) {
     clamped += hit;
   }
   return clamped;
+}
+
+}  // namespace
+
+void ApplyCutTransitions(const std::vector<double>& t, const std::vector<double>& cuts,
+                         double ramp_s, std::vector<ActuatorFrame>* frames) {
+  ApplyCutTransitionsTo(t, cuts, ramp_s, frames);
+}
+void ApplyCutTransitions(const std::vector<double>& t, const std::vector<double>& cuts,
+                         double ramp_s, std::vector<HapticSample>* samples) {
+  ApplyCutTransitionsTo(t, cuts, ramp_s, samples);
+}
+
+int LimitVelocity(double max_step_m, std::vector<ActuatorFrame>* frames) {
+  return LimitVelocityOf(max_step_m, frames);
+}
+int LimitVelocity(double max_step_m, std::vector<HapticSample>* samples) {
+  return LimitVelocityOf(max_step_m, samples);
+}
+
+int ClampToWorkspace(double clamp_half_m, std::vector<ActuatorFrame>* frames) {
+  return ClampToWorkspaceOf(clamp_half_m, frames);
+}
+int ClampToWorkspace(double clamp_half_m, std::vector<HapticSample>* samples) {
+  return ClampToWorkspaceOf(clamp_half_m, samples);
 }
 
 }  // namespace hapcine

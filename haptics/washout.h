@@ -53,13 +53,19 @@ double SmootherStep(double u);
 
 // Step 2: for each cut time c, samples with c <= t < c + ramp_s become
 // (1 - w) * held + w * value, held = the output just before c.
+// Steps 2-4 take a model's frames or, the same, a track's samples (positions
+// only): a long film's track is shaped in place, with no second copy.
 void ApplyCutTransitions(const std::vector<double>& time_s, const std::vector<double>& cut_times_s,
                          double ramp_s, std::vector<ActuatorFrame>* frames);
+void ApplyCutTransitions(const std::vector<double>& time_s, const std::vector<double>& cut_times_s,
+                         double ramp_s, std::vector<HapticSample>* samples);
 
 // Step 3; returns the number of samples that were limited.
 int LimitVelocity(double max_step_m, std::vector<ActuatorFrame>* frames);
+int LimitVelocity(double max_step_m, std::vector<HapticSample>* samples);
 
 // Step 4; returns the number of samples with at least one clamped coordinate.
 int ClampToWorkspace(double clamp_half_m, std::vector<ActuatorFrame>* frames);
+int ClampToWorkspace(double clamp_half_m, std::vector<HapticSample>* samples);
 
 }  // namespace hapcine

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
@@ -157,6 +158,37 @@ TEST_F(PipelineTest, SynthEstimateEvalHapticsPlay) {
                  dir_);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE((r.out + r.err).find("p99"), std::string::npos) << r.out << r.err;
+}
+
+// docs/batch.md: a local batch handles any file name. A newline, '=' and ','
+// in the film's name go into the `# source=` headers of its camera path and
+// haptic track, which must read back (escaped, core/header_value.h).
+TEST_F(PipelineTest, BatchHandlesAFilmWithANewlineInItsName) {
+  const fs::path lib = dir_ / "newline library";
+  const fs::path out = dir_ / "newline out";
+  fs::create_directories(lib);
+  const std::string name = "two\nlines=1, film.mp4";
+  fs::copy_file(dir_ / "tilting.mp4", lib / name, fs::copy_options::overwrite_existing);
+  const RunResult r = RunHapcine("batch " + Quote(lib) + " -o " + Quote(out) +
+                                     " --jobs 1 --models cinematic --progress lines"
+                                     " --estimate-args --draft",
+                                 dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  std::vector<fs::path> paths, tracks;
+  for (const auto& e : fs::recursive_directory_iterator(out)) {
+    const std::string f = e.path().filename().string();
+    if (f.size() > 11 && f.compare(f.size() - 11, 11, ".camera.csv") == 0) paths.push_back(e);
+    if (f.size() > 11 && f.compare(f.size() - 11, 11, ".haptic.csv") == 0) tracks.push_back(e);
+  }
+  ASSERT_EQ(paths.size(), 1u);
+  ASSERT_EQ(tracks.size(), 1u);
+  const hapcine::CameraPath path = hapcine::ReadCameraPathFile(paths[0].string());
+  const std::string source = path.metadata.at("source");
+  EXPECT_EQ(fs::path(source).filename().string(), name) << source;
+  EXPECT_GT(path.frames.size(), 10u);
+  const hapcine::HapticTrack track = hapcine::ReadHapticTrackFile(tracks[0].string());
+  EXPECT_NE(track.source.find(".camera.csv"), std::string::npos) << track.source;
+  EXPECT_FALSE(track.samples.empty());
 }
 
 TEST_F(PipelineTest, EstimateRejectsBadVideosWithOneLineAndNoOutput) {
