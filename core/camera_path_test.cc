@@ -56,6 +56,18 @@ TEST(CameraPathTest, RoundTripKeepsEveryValue) {
   }
 }
 
+// Fixed notation of a large time has over a hundred digits: written whole, it
+// reads back as the same double (a fixed-size buffer once cut it).
+TEST(CameraPathTest, HugeTimesRoundTripExactly) {
+  CameraPath p = MakePath(3);
+  for (size_t i = 0; i < p.frames.size(); ++i) p.frames[i].time_s = 1e100 * (1 + i);
+  std::stringstream ss;
+  WriteCameraPath(p, ss);
+  const CameraPath q = ReadCameraPath(ss, "huge.camera.csv");
+  ASSERT_EQ(q.frames.size(), 3u);
+  for (size_t i = 0; i < q.frames.size(); ++i) EXPECT_EQ(q.frames[i].time_s, p.frames[i].time_s);
+}
+
 TEST(CameraPathTest, ReadsTheSpecExample) {
   std::stringstream ss(
       "# width=1920 height=1080 fps=24\n"

@@ -44,11 +44,13 @@ std::string FormatDouble(double v) {
 }
 
 std::string FormatFixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  // Sized by snprintf itself: a value the readers accept (1e100) has over a
+  // hundred digits in fixed notation, and a cut number would read back wrong.
+  std::string s(std::snprintf(nullptr, 0, "%.*f", decimals, v), '\0');
+  std::snprintf(s.data(), s.size() + 1, "%.*f", decimals, v);
   // "-0.000000" reads oddly in a spreadsheet.
-  if (std::strtod(buf, nullptr) == 0.0) std::snprintf(buf, sizeof buf, "%.*f", decimals, 0.0);
-  return buf;
+  if (s[0] == '-' && std::strtod(s.c_str(), nullptr) == 0.0) return FormatFixed(0.0, decimals);
+  return s;
 }
 
 CsvReader::CsvReader(std::istream& in, std::string source_name)
