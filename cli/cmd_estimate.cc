@@ -9,9 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <set>
 
 #include "cli/command.h"
+#include "core/atomic_file.h"
 #include "core/camera_path.h"
+#include "core/diagnostics.h"
 #include "core/error.h"
 #include "estimate/camera_estimator.h"
 
@@ -62,6 +65,18 @@ class EstimateProgress {
   bool quiet_, tty_, drawn_ = false;
   Clock::time_point start_, last_;
 };
+
+// The --report file (docs/formats.md "Estimate report").
+void WriteReport(const JsonDiagnostics& diagnostics, const std::string& video, const CameraPath& path,
+                 const std::string& report) {
+  nlohmann::json header = {{"format", "hapcine-estimate-report"}, {"version", 1}, {"video", video},
+                           {"frames", path.frames.size()}, {"stages", nlohmann::json::array()},
+                           {"windows", nlohmann::json::array()}};
+  for (const auto& [key, value] : path.metadata) header["metadata"][key] = value;
+  AtomicFile out(report);
+  out.stream() << diagnostics.Document(header).dump(1) << "\n";
+  out.Commit();
+}
 
 }  // namespace
 
@@ -199,6 +214,14 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress output");
+  std::string report;
+  app.add_option("--report", report,
+                 "also write a JSON report (docs/formats.md \"Estimate report\"): per window the "
+                 "candidate solves and their scores, the model taken, inliers, the bundle adjustment's "
+                 "summary and timings; per run the stage timings; written atomically");
+  bool report_detail = false;
+  app.add_flag("--report-detail", report_detail,
+               "the report also lists every window track's RMS and every frame's shot-cut cues");
 
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;
@@ -210,6 +233,10 @@ int RunEstimate(int argc, char** argv) {
     const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");
     if (!std::filesystem::is_directory(parent))
       throw Error(output, "output folder does not exist");
+    std::set<std::string> kinds{"stage", "window"};
+    if (report_detail) kinds.insert({"track_rms", "cut_cues"});
+    JsonDiagnostics diagnostics(kinds);
+    if (!report.empty()) opt.diagnostics = &diagnostics;
     EstimateProgress progress(quiet);
     const CameraPath path = EstimateCameraPathFromFile(
         video, opt, [&](long done, long total) { progress.Update(done, total); });
@@ -217,6 +244,7 @@ int RunEstimate(int argc, char** argv) {
       throw Error(video, std::to_string(path.frames.size()) +
                              " video frame(s): camera motion needs at least two");
     WriteCameraPathFile(path, output);
+    if (!report.empty()) WriteReport(diagnostics, video, path, report);
     progress.Done(static_cast<long>(path.frames.size()));
     return kExitOk;
   });
