@@ -9,10 +9,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <set>
 
 #include "cli/command.h"
 #include "cli/option_checks.h"
+#include "core/atomic_file.h"
 #include "core/camera_path.h"
+#include "core/diagnostics.h"
 #include "core/error.h"
 #include "core/output_files.h"
 #include "estimate/camera_estimator.h"
@@ -64,6 +67,18 @@ class EstimateProgress {
   bool quiet_, tty_, drawn_ = false;
   Clock::time_point start_, last_;
 };
+
+// The --report file (docs/formats.md "Estimate report").
+void WriteReport(const JsonDiagnostics& diagnostics, const std::string& video, const CameraPath& path,
+                 const std::string& report) {
+  nlohmann::json header = {{"format", "hapcine-estimate-report"}, {"version", 1}, {"video", video},
+                           {"frames", path.frames.size()}, {"stages", nlohmann::json::array()},
+                           {"windows", nlohmann::json::array()}};
+  for (const auto& [key, value] : path.metadata) header["metadata"][key] = value;
+  AtomicFile out(report);
+  out.stream() << diagnostics.Document(header).dump(1) << "\n";
+  out.Commit();
+}
 
 }  // namespace
 
@@ -223,6 +238,14 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress output");
+  std::string report;
+  app.add_option("--report", report,
+                 "also write a JSON report (docs/formats.md \"Estimate report\"): per window the "
+                 "candidate solves and their scores, the model taken, inliers, the bundle adjustment's "
+                 "summary and timings; per run the stage timings; written atomically");
+  bool report_detail = false;
+  app.add_flag("--report-detail", report_detail,
+               "the report also lists every window track's RMS and every frame's shot-cut cues");
 
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;
@@ -230,7 +253,11 @@ int RunEstimate(int argc, char** argv) {
     if (no_plane_prior) opt.estimator.motion_plane_prior = false;
     if (no_klt_predict) opt.tracker.klt_predict = false;
     opt.Check();
-    OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}});
+    OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}, {report, "--report"}});
+    std::set<std::string> kinds{"stage", "window"};
+    if (report_detail) kinds.insert({"track_rms", "cut_cues"});
+    JsonDiagnostics diagnostics(kinds);
+    if (!report.empty()) opt.diagnostics = &diagnostics;
     EstimateProgress progress(quiet);
     const CameraPath path = EstimateCameraPathFromFile(
         video, opt, [&](long done, long total) { progress.Update(done, total); });
@@ -238,6 +265,7 @@ int RunEstimate(int argc, char** argv) {
       throw Error(video, std::to_string(path.frames.size()) +
                              " video frame(s): camera motion needs at least two");
     WriteCameraPathFile(path, output);
+    if (!report.empty()) WriteReport(diagnostics, video, path, report);
     outputs.CommitAll();
     progress.Done(static_cast<long>(path.frames.size()));
     return kExitOk;

@@ -250,6 +250,155 @@ std::vector<double> ObservationErrors(const std::vector<BaCamera>& cameras,
   return errs;
 }
 
+namespace {
+
+// The manifolds of a window's parameter blocks, shared by every block (the
+// problem does not own them; declared before it, they outlive it).
+struct Manifolds {
+  ceres::EigenQuaternionManifold quat;
+  ceres::SphereManifold<4> sphere4;
+  ceres::SphereManifold<3> sphere3;
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose;
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<4>> pose_focal;
+};
+
+// One residual per observation whose point starts in front of its camera,
+// with the cost function the camera's blocks call for. Returns how many;
+// `point_used`: the points that got one.
+int AddObservations(Blocks* b, const std::vector<BaPoint>& points,
+                    const std::vector<BaObservation>& observations, const std::vector<double>& before,
+                    const BaOptions& options, ceres::LossFunction* loss, std::vector<std::array<double, 4>>* X,
+                    std::vector<char>* point_used, ceres::Problem* problem) {
+  const double inv_scale = 1.0 / options.huber_scale;
+  int count = 0;
+  for (size_t i = 0; i < observations.size(); ++i) {
+    if (!std::isfinite(before[i])) continue;
+    const auto& o = observations[i];
+    const int root = b->rot[o.camera];
+    double* q = b->q[root].data();
+    double* lf = &b->lf[b->foc[o.camera]];
+    double* x = (*X)[o.point].data();
+    if (options.use_depth && b->merged_focal[root]) {
+      problem->AddResidualBlock(new PoseFocalDepthCostFunction(o.u, points[o.point].anchor, inv_scale), loss,
+                                b->pose[root].data(), x);
+    } else if (options.use_depth && b->merged[root]) {
+      problem->AddResidualBlock(new PoseDepthCostFunction(o.u, points[o.point].anchor, inv_scale), loss,
+                                b->pose[root].data(), lf, x);
+    } else if (options.use_depth) {
+      double* c = b->c[b->cen[o.camera]].data();
+      problem->AddResidualBlock(new DepthCostFunction(o.u, points[o.point].anchor, inv_scale), loss, q, c, lf, x);
+    } else {
+      problem->AddResidualBlock(new BearingCostFunction(o.u, inv_scale), loss, q, lf, x);
+    }
+    (*point_used)[o.point] = 1;
+    ++count;
+  }
+  return count;
+}
+
+void SetPointManifolds(std::vector<std::array<double, 4>>* X, const std::vector<char>& point_used, bool use_depth,
+                       Manifolds* m, ceres::Problem* problem) {
+  for (size_t i = 0; i < X->size(); ++i) {
+    if (!point_used[i]) continue;
+    double* x = (*X)[i].data();
+    problem->SetManifold(x, use_depth ? static_cast<ceres::Manifold*>(&m->sphere4)
+                                      : static_cast<ceres::Manifold*>(&m->sphere3));
+    // Cheirality: rho < 0 would be a point "beyond infinity", i.e. behind
+    // every camera, that still projects where it is seen (the homogeneous
+    // projection does not see the sign). Without this bound a forward dolly
+    // with a zoom out fits as a backward move at constant focal with the
+    // near points flipped behind the cameras.
+    if (use_depth) problem->SetParameterLowerBound(x, 3, 0.0);
+  }
+}
+
+// Focal priors: between consecutive distinct focal blocks, and on the first
+// (cameras whose focal block they are; the value may sit in a merged block).
+void AddFocalPriors(Blocks* b, int n, const BaOptions& options, ceres::Problem* problem) {
+  int prev_focal = -1, prev2_focal = -1;
+  for (int i = 0; i < n; ++i) {
+    const int f = b->foc[i];
+    if (!problem->HasParameterBlock(b->FocalBlock(i)) || (prev_focal >= 0 && f == b->foc[prev_focal])) continue;
+    if (prev2_focal >= 0) {
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<FocalStepCost>(new FocalStepCost(
+          1.0 / options.focal_step_sigma,
+          {b->FocalOffset(prev2_focal), b->FocalOffset(prev_focal), b->FocalOffset(i)}));
+      for (int k : {prev2_focal, prev_focal, i}) cost->AddParameterBlock(b->FocalBlockSize(k));
+      cost->SetNumResiduals(1);
+      problem->AddResidualBlock(cost, nullptr, b->FocalBlock(prev2_focal), b->FocalBlock(prev_focal),
+                                b->FocalBlock(i));
+    }
+    if (prev_focal < 0) {
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<FocalPriorCost>(new FocalPriorCost(
+          options.focal_prior_log, 1.0 / options.focal_prior_sigma, b->FocalOffset(i)));
+      cost->AddParameterBlock(b->FocalBlockSize(i));
+      cost->SetNumResiduals(1);
+      problem->AddResidualBlock(cost, nullptr, b->FocalBlock(i));
+    }
+    prev2_focal = prev_focal;
+    prev_focal = i;
+  }
+}
+
+void SetPoseManifolds(Blocks* b, int n, Manifolds* m, ceres::Problem* problem) {
+  for (int i = 0; i < n; ++i) {
+    if (problem->HasParameterBlock(b->q[i].data())) problem->SetManifold(b->q[i].data(), &m->quat);
+    if (b->merged[i] && problem->HasParameterBlock(b->pose[i].data()))
+      problem->SetManifold(b->pose[i].data(), b->merged_focal[i] ? static_cast<ceres::Manifold*>(&m->pose_focal)
+                                                                 : static_cast<ceres::Manifold*>(&m->pose));
+  }
+}
+
+// Gauge: fixed cameras' own blocks constant, the first focal where it is
+// not observable, and the soft scale gauge.
+void HoldGauge(Blocks* b, const std::vector<BaCamera>& cameras, const BaOptions& options, ceres::Problem* problem) {
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    if (cameras[i].fixed_focal && problem->HasParameterBlock(b->FocalBlock(i)))
+      problem->SetParameterBlockConstant(b->FocalBlock(i));
+    if (!cameras[i].fixed) continue;
+    if (problem->HasParameterBlock(b->RotationBlock(i))) problem->SetParameterBlockConstant(b->RotationBlock(i));
+    if (options.use_depth && problem->HasParameterBlock(b->CenterBlock(i)))
+      problem->SetParameterBlockConstant(b->CenterBlock(i));
+  }
+  if (options.fix_first_focal && problem->HasParameterBlock(b->FocalBlock(0)))
+    problem->SetParameterBlockConstant(b->FocalBlock(0));
+  if (!(options.use_depth && options.scale_a >= 0 && options.scale_b >= 0)) return;
+  double* ca = b->CenterBlock(options.scale_a);
+  double* cb = b->CenterBlock(options.scale_b);
+  if (ca != cb && problem->HasParameterBlock(ca) && problem->HasParameterBlock(cb) &&
+      !(problem->IsParameterBlockConstant(ca) && problem->IsParameterBlockConstant(cb))) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<ScaleCost>(
+        new ScaleCost(options.scale_distance, 1e3 / options.scale_distance, b->CenterOffset(options.scale_a),
+                      b->CenterOffset(options.scale_b)));
+    cost->AddParameterBlock(b->CenterBlockSize(options.scale_a));
+    cost->AddParameterBlock(b->CenterBlockSize(options.scale_b));
+    cost->SetNumResiduals(1);
+    problem->AddResidualBlock(cost, nullptr, ca, cb);
+  }
+}
+
+ceres::Solver::Options SolverOptions(const BaOptions& options, int cameras) {
+  ceres::Solver::Options so;
+  so.linear_solver_type = cameras <= 80 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  so.max_num_iterations = options.max_iterations;
+  // Ceres bounds the threads to the cores itself, with a warning per solve.
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  so.num_threads = cores > 0 ? std::min(options.num_threads, cores) : options.num_threads;
+  so.function_tolerance = options.function_tolerance;
+  so.parameter_tolerance = 1e-9;
+  // The cheirality bound makes the problem bounds-constrained, and Ceres then
+  // runs a projected Armijo line search after every trust-region step: one
+  // more residual-and-Jacobian evaluation per iteration, ~a fifth of the
+  // bundle adjustment's CPU. Steps are projected onto the bound anyway
+  // (ParameterBlock::Plus), and on the 17 synth clips the search changed
+  // no printed figure but dolly_zoom_parallax's (docs/estimate.md "Speed").
+  so.max_num_line_search_step_size_iterations = 0;
+  so.logging_type = ceres::SILENT;
+  return so;
+}
+
+}  // namespace
+
 BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* points,
                       const std::vector<BaObservation>& observations, const BaOptions& options) {
   BaSummary summary;
@@ -272,127 +421,26 @@ BaSummary SolveBundle(std::vector<BaCamera>* cameras, std::vector<BaPoint>* poin
   // One loss for every residual (declared before the problem, which must
   // not outlive it): no allocation per observation.
   ceres::HuberLoss huber(1.0);
+  Manifolds manifolds;
   ceres::Problem::Options po;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
-  ceres::EigenQuaternionManifold quat_manifold;
-  ceres::SphereManifold<4> sphere4;
-  ceres::SphereManifold<3> sphere3;
-  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
-  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<4>> pose_focal_manifold;
-  const double inv_scale = 1.0 / options.huber_scale;
   std::vector<char> point_used(points->size(), 0);
-  for (size_t i = 0; i < observations.size(); ++i) {
-    if (!std::isfinite(before[i])) continue;
-    const auto& o = observations[i];
-    double* q = b.q[b.rot[o.camera]].data();
-    double* lf = &b.lf[b.foc[o.camera]];
-    double* x = X[o.point].data();
-    if (options.use_depth && b.merged_focal[b.rot[o.camera]]) {
-      problem.AddResidualBlock(new PoseFocalDepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               &huber, b.pose[b.rot[o.camera]].data(), x);
-    } else if (options.use_depth && b.merged[b.rot[o.camera]]) {
-      problem.AddResidualBlock(new PoseDepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               &huber, b.pose[b.rot[o.camera]].data(), lf, x);
-    } else if (options.use_depth) {
-      double* c = b.c[b.cen[o.camera]].data();
-      problem.AddResidualBlock(new DepthCostFunction(o.u, (*points)[o.point].anchor, inv_scale),
-                               &huber, q, c, lf, x);
-    } else {
-      problem.AddResidualBlock(new BearingCostFunction(o.u, inv_scale), &huber, q, lf, x);
-    }
-    point_used[o.point] = 1;
-    ++summary.num_observations;
-  }
+  summary.num_observations = AddObservations(&b, *points, observations, before, options, &huber, &X, &point_used,
+                                             &problem);
   if (summary.num_observations == 0) return summary;
-  for (size_t i = 0; i < X.size(); ++i) {
-    if (!point_used[i]) continue;
-    problem.SetManifold(X[i].data(), options.use_depth ? static_cast<ceres::Manifold*>(&sphere4)
-                                                       : static_cast<ceres::Manifold*>(&sphere3));
-    // Cheirality: rho < 0 would be a point "beyond infinity", i.e. behind
-    // every camera, that still projects where it is seen (the homogeneous
-    // projection does not see the sign). Without this bound a forward dolly
-    // with a zoom out fits as a backward move at constant focal with the
-    // near points flipped behind the cameras.
-    if (options.use_depth) problem.SetParameterLowerBound(X[i].data(), 3, 0.0);
-  }
+  SetPointManifolds(&X, point_used, options.use_depth, &manifolds, &problem);
   const int n = static_cast<int>(cameras->size());
-  // Focal priors: between consecutive distinct focal blocks, and on the first
-  // (cameras whose focal block they are; the value may sit in a merged block).
-  int prev_focal = -1, prev2_focal = -1;
-  for (int i = 0; i < n; ++i) {
-    const int f = b.foc[i];
-    if (!problem.HasParameterBlock(b.FocalBlock(i)) || (prev_focal >= 0 && f == b.foc[prev_focal])) continue;
-    if (prev2_focal >= 0) {
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<FocalStepCost>(new FocalStepCost(
-          1.0 / options.focal_step_sigma,
-          {b.FocalOffset(prev2_focal), b.FocalOffset(prev_focal), b.FocalOffset(i)}));
-      for (int k : {prev2_focal, prev_focal, i}) cost->AddParameterBlock(b.FocalBlockSize(k));
-      cost->SetNumResiduals(1);
-      problem.AddResidualBlock(cost, nullptr, b.FocalBlock(prev2_focal), b.FocalBlock(prev_focal), b.FocalBlock(i));
-    }
-    if (prev_focal < 0) {
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<FocalPriorCost>(new FocalPriorCost(
-          options.focal_prior_log, 1.0 / options.focal_prior_sigma, b.FocalOffset(i)));
-      cost->AddParameterBlock(b.FocalBlockSize(i));
-      cost->SetNumResiduals(1);
-      problem.AddResidualBlock(cost, nullptr, b.FocalBlock(i));
-    }
-    prev2_focal = prev_focal;
-    prev_focal = i;
-  }
-  for (int i = 0; i < n; ++i) {
-    if (problem.HasParameterBlock(b.q[i].data())) problem.SetManifold(b.q[i].data(), &quat_manifold);
-    if (b.merged[i] && problem.HasParameterBlock(b.pose[i].data()))
-      problem.SetManifold(b.pose[i].data(), b.merged_focal[i] ? static_cast<ceres::Manifold*>(&pose_focal_manifold)
-                                                              : static_cast<ceres::Manifold*>(&pose_manifold));
-  }
-  // Gauge: fixed cameras' own blocks constant.
-  for (int i = 0; i < n; ++i) {
-    if ((*cameras)[i].fixed_focal && problem.HasParameterBlock(b.FocalBlock(i)))
-      problem.SetParameterBlockConstant(b.FocalBlock(i));
-    if (!(*cameras)[i].fixed) continue;
-    if (problem.HasParameterBlock(b.RotationBlock(i))) problem.SetParameterBlockConstant(b.RotationBlock(i));
-    if (options.use_depth && problem.HasParameterBlock(b.CenterBlock(i)))
-      problem.SetParameterBlockConstant(b.CenterBlock(i));
-  }
-  if (options.fix_first_focal && problem.HasParameterBlock(b.FocalBlock(0)))
-    problem.SetParameterBlockConstant(b.FocalBlock(0));
-  if (options.use_depth && options.scale_a >= 0 && options.scale_b >= 0) {
-    double* ca = b.CenterBlock(options.scale_a);
-    double* cb = b.CenterBlock(options.scale_b);
-    if (ca != cb && problem.HasParameterBlock(ca) && problem.HasParameterBlock(cb) &&
-        !(problem.IsParameterBlockConstant(ca) && problem.IsParameterBlockConstant(cb))) {
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<ScaleCost>(
-          new ScaleCost(options.scale_distance, 1e3 / options.scale_distance, b.CenterOffset(options.scale_a),
-                        b.CenterOffset(options.scale_b)));
-      cost->AddParameterBlock(b.CenterBlockSize(options.scale_a));
-      cost->AddParameterBlock(b.CenterBlockSize(options.scale_b));
-      cost->SetNumResiduals(1);
-      problem.AddResidualBlock(cost, nullptr, ca, cb);
-    }
-  }
-
-  ceres::Solver::Options so;
-  so.linear_solver_type = n <= 80 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
-  so.max_num_iterations = options.max_iterations;
-  // Ceres bounds the threads to the cores itself, with a warning per solve.
-  const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  so.num_threads = cores > 0 ? std::min(options.num_threads, cores) : options.num_threads;
-  so.function_tolerance = options.function_tolerance;
-  so.parameter_tolerance = 1e-9;
-  // The cheirality bound makes the problem bounds-constrained, and Ceres then
-  // runs a projected Armijo line search after every trust-region step: one
-  // more residual-and-Jacobian evaluation per iteration, ~a fifth of the
-  // bundle adjustment's CPU. Steps are projected onto the bound anyway
-  // (ParameterBlock::Plus), and on the 17 synth clips the search changed
-  // no printed figure but dolly_zoom_parallax's (docs/estimate.md "Speed").
-  so.max_num_line_search_step_size_iterations = 0;
-  so.logging_type = ceres::SILENT;
+  AddFocalPriors(&b, n, options, &problem);
+  SetPoseManifolds(&b, n, &manifolds, &problem);
+  HoldGauge(&b, *cameras, options, &problem);
   ceres::Solver::Summary cs;
-  ceres::Solve(so, &problem, &cs);
+  ceres::Solve(SolverOptions(options, n), &problem, &cs);
   summary.iterations = static_cast<int>(cs.iterations.size());
+  summary.initial_cost = cs.initial_cost;
+  summary.final_cost = cs.final_cost;
+  summary.termination = ceres::TerminationTypeToString(cs.termination_type);
   summary.success = cs.IsSolutionUsable();
   if (!summary.success) return summary;
   SplitPoses(&b);

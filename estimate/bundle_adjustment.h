@@ -67,6 +67,10 @@ struct BaSummary {
   int iterations = 0;
   int num_observations = 0;
   double rms_before = 0, rms_after = 0;  // unrobustified, normalised units
+  // Ceres' robustified cost before and after, and why it stopped
+  // (TerminationTypeToString: CONVERGENCE, NO_CONVERGENCE, ...). Diagnostics only.
+  double initial_cost = 0, final_cost = 0;
+  const char* termination = "";
 };
 
 // Optimises cameras and points in place. Observations whose point is behind

@@ -3,10 +3,10 @@
 #include <sstream>
 #include <thread>
 
+#include "core/diagnostics.h"
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
 #include "estimate/skipped_frames.h"
-#include "estimate/stage_timing.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
 #include "extract/threaded_frame_source.h"
@@ -104,8 +104,11 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
 CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options,
                             const ProgressFn& progress) {
   const VideoInfo& info = source.info();
-  FeatureTracker tracker(options.tracker);
-  TrackCameraEstimator estimator(info.width, info.height, options.estimator);
+  FeatureTracker tracker(options.tracker, options.diagnostics);
+  TrackCameraEstimator estimator(info.width, info.height, options.estimator, options.diagnostics);
+  // Which stage of the estimation thread is on the critical path after
+  // tracking ends (docs/estimate.md "Speed").
+  StageLog stages(options.diagnostics);
   BoundedQueue<FrameTracks> queue(kTrackQueueFrames);
   // --skip-nonref: the frames the decoder skipped (written by the tracking
   // thread, read after it ended), and the frame index of the estimator's
@@ -113,7 +116,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   std::vector<SkippedFrame> skipped;
   std::vector<int> index_of_position;
   int last_index = -1;
-  LogStage("tracking and estimation start");
+  stages.Stage("tracking and estimation start");
   std::thread tracking([&] {
     try {
       Frame frame;
@@ -124,7 +127,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
         if (!queue.Push(tracker.Process(frame))) return;  // the estimator gave up
       }
       for (double t : source.SkippedAtEnd()) skipped.push_back({++last_index, t});
-      LogStage("tracking done");
+      stages.Stage("tracking done");
       queue.Finish();
     } catch (...) {
       queue.Finish(std::current_exception());
@@ -144,11 +147,11 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     throw;
   }
   tracking.join();
-  LogStage("all frames estimated, last window next");
+  stages.Stage("all frames estimated, last window next");
   CameraPath path = estimator.Finish();
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
   InsertSkippedFrames(skipped, info.width, &path);
-  LogStage("estimation done");
+  stages.Stage("estimation done");
   return path;
 }
 

@@ -20,12 +20,18 @@
 
 namespace hapcine {
 
+class Diagnostics;
+
 struct EstimatorOptions {
   std::string backend = "hapcine";  // "hapcine" or "colmap"
   FrameSourceOptions frames;         // working resolution (max_working_side, default 960)
   TrackerOptions tracker;            // feature tracking (max_tracks, default 600)
   TrackEstimatorOptions estimator;   // models, bundle adjustment, smoothing
   std::string colmap_binary = "colmap";  // used by the colmap backend
+  // Where the run's diagnostics go (core/diagnostics.h): per-run "stage"
+  // records, per-window "window" records, and the costlier ones it asks for.
+  // Not owned; none by default.
+  Diagnostics* diagnostics = nullptr;
   void Check() const;                // throws UsageError
 };
 

@@ -109,86 +109,105 @@ void RotationResiduals(const std::vector<Eigen::Vector2d>& u1, const std::vector
   }
 }
 
-}  // namespace
+// RANSAC with `base`'s settings at the inlier threshold `max_error`.
+RansacOptions At(const RansacOptions& base, double max_error) {
+  RansacOptions ro = base;
+  ro.max_error = max_error;
+  return ro;
+}
 
-TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
-                                 const std::vector<Eigen::Vector2d>& u2, double f1,
-                                 const TwoViewOptions& options) {
-  TwoViewResult result;
-  const int n = static_cast<int>(u1.size());
-  result.num_points = n;
-  result.f1 = result.f2 = f1;
-  if (n != static_cast<int>(u2.size()) || n < options.min_correspondences || !(f1 > 0)) return result;
-  double thr = options.inlier_threshold;
-  RansacOptions ro = options.ransac;
-
-  // --- general: essential matrix at the current focal (also gives sigma).
-  // The inlier threshold grows with the measured noise (4 sigma), so noisy
-  // tracks are not thrown away as outliers.
-  const auto c1 = Scaled(u1, 1 / f1), c2 = Scaled(u2, 1 / f1);
+// Every candidate model's fit to the correspondences: its parameters and the
+// squared distance of each correspondence to its manifold (normalised
+// units; +inf where it has none).
+struct ModelFits {
+  int n = 0;
+  double thr = 0;    // the inlier threshold, grown with the measured noise
+  double sigma = 0;  // the noise, from the essential matrix's inliers
+  std::vector<Eigen::Vector2d> c1, c2;  // calibrated at f1
   RansacReport<Eigen::Matrix3d> ess;
-  std::vector<double> e_ess(n, std::numeric_limits<double>::infinity());
-  double sigma = options.noise_floor;
+  std::vector<double> e_ess, e_static, e_zoom, e_rot, e_rz, e_hom;
+  bool zoom_ok = false, hom_ok = false;
+  double s = 1;  // zoom factor
+  double f_rot = 1;
+  Eigen::Matrix3d R_rot = Eigen::Matrix3d::Identity();
+  double f1_rz = 1, f2_rz = 1;
+  Eigen::Matrix3d R_rz = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d H = Eigen::Matrix3d::Identity();
+};
+
+// General: essential matrix at the current focal (also gives sigma). The
+// inlier threshold grows with the measured noise (4 sigma), so noisy tracks
+// are not thrown away as outliers.
+void FitEssential(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2, double f1,
+                  const TwoViewOptions& options, ModelFits* m) {
+  const int n = m->n;
+  m->c1 = Scaled(u1, 1 / f1);
+  m->c2 = Scaled(u2, 1 / f1);
+  m->e_ess.assign(n, std::numeric_limits<double>::infinity());
+  m->sigma = options.noise_floor;
   for (int pass = 0; pass < 2; ++pass) {
-    ro.max_error = thr / f1;
-    ess = Ransac<EssentialEstimator>(c1, c2, ro);
-    if (ess.success) {
-      EssentialEstimator::Residuals(c1, c2, ess.model, &e_ess);
-      for (double& e : e_ess) e *= f1 * f1;  // calibrated -> normalised units
+    m->ess = Ransac<EssentialEstimator>(m->c1, m->c2, At(options.ransac, m->thr / f1));
+    if (m->ess.success) {
+      EssentialEstimator::Residuals(m->c1, m->c2, m->ess.model, &m->e_ess);
+      for (double& e : m->e_ess) e *= f1 * f1;  // calibrated -> normalised units
     }
     std::vector<double> inlier_abs;
     for (int i = 0; i < n; ++i)
-      if (ess.success && ess.inlier_mask[i]) inlier_abs.push_back(std::sqrt(e_ess[i]));
-    sigma = std::max(options.noise_floor, 1.4826 * Median(inlier_abs, 0.0));
-    if (4 * sigma <= thr) break;
-    thr = 4 * sigma;
+      if (m->ess.success && m->ess.inlier_mask[i]) inlier_abs.push_back(std::sqrt(m->e_ess[i]));
+    m->sigma = std::max(options.noise_floor, 1.4826 * Median(inlier_abs, 0.0));
+    if (4 * m->sigma <= m->thr) break;
+    m->thr = 4 * m->sigma;
   }
-  result.sigma = sigma;
+}
 
-  // --- static
-  std::vector<double> e_static(n);
-  for (int i = 0; i < n; ++i) e_static[i] = 0.5 * (u2[i] - u1[i]).squaredNorm();
+void FitStaticAndZoom(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2,
+                      const TwoViewOptions& options, ModelFits* m) {
+  const int n = m->n;
+  m->e_static.resize(n);
+  for (int i = 0; i < n; ++i) m->e_static[i] = 0.5 * (u2[i] - u1[i]).squaredNorm();
+  const auto zoom = Ransac<ZoomEstimator>(u1, u2, At(options.ransac, m->thr));
+  m->zoom_ok = zoom.success;
+  m->s = zoom.success ? zoom.model : 1.0;
+  m->e_zoom.resize(n);
+  for (int i = 0; i < n; ++i) m->e_zoom[i] = 0.5 * (u2[i] - m->s * u1[i]).squaredNorm();
+}
 
-  // --- zoom
-  ro.max_error = thr;
-  const auto zoom = Ransac<ZoomEstimator>(u1, u2, ro);
-  const double s = zoom.success ? zoom.model : 1.0;
-  std::vector<double> e_zoom(n);
-  for (int i = 0; i < n; ++i) e_zoom[i] = 0.5 * (u2[i] - s * u1[i]).squaredNorm();
-
-  // --- rotation (shared focal, refined): RANSAC at f, refit f on the inliers, repeat.
-  double f_rot = f1;
-  Eigen::Matrix3d R_rot = Eigen::Matrix3d::Identity();
-  std::vector<double> e_rot(n, std::numeric_limits<double>::infinity());
+// Rotation (shared focal, refined): RANSAC at f, refit f on the inliers, repeat.
+void FitRotation(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2, double f1,
+                 const TwoViewOptions& options, ModelFits* m) {
+  m->f_rot = f1;
+  m->e_rot.assign(m->n, std::numeric_limits<double>::infinity());
   for (int pass = 0; pass < 2; ++pass) {
-    ro.max_error = thr / f_rot;
-    const auto rot = Ransac<RotationEstimator>(Scaled(u1, 1 / f_rot), Scaled(u2, 1 / f_rot), ro);
+    const auto rot = Ransac<RotationEstimator>(Scaled(u1, 1 / m->f_rot), Scaled(u2, 1 / m->f_rot),
+                                               At(options.ransac, m->thr / m->f_rot));
     if (!rot.success) break;
     const auto in1 = Select(u1, rot.inlier_mask), in2 = Select(u2, rot.inlier_mask);
     double f_new;
     Eigen::Matrix3d R_new;
-    FitRotationAndFocal(in1, in2, f_rot, options.focal_search_range, &f_new, &R_new);
-    f_rot = f_new;
-    R_rot = R_new;
-    RotationResiduals(u1, u2, R_rot, f_rot, f_rot, &e_rot);
+    FitRotationAndFocal(in1, in2, m->f_rot, options.focal_search_range, &f_new, &R_new);
+    m->f_rot = f_new;
+    m->R_rot = R_new;
+    RotationResiduals(u1, u2, m->R_rot, m->f_rot, m->f_rot, &m->e_rot);
   }
+}
 
-  // --- rotation + zoom: view 1 at the given or at the rotation model's
-  // focal (the latter is biased when the focal changed), view 2 free.
-  double f1_rz = f_rot, f2_rz = f_rot;
-  Eigen::Matrix3d R_rz = R_rot;
-  std::vector<double> e_rz(n, std::numeric_limits<double>::infinity());
+// Rotation + zoom: view 1 at the given or at the rotation model's focal (the
+// latter is biased when the focal changed), view 2 free. Also a coarse
+// ladder around f1: while the focal is still the prior (50 deg), a
+// telephoto pan with zoom (true focal 4x the prior) has no rotation+zoom fit
+// near f1 and f_rot (a constant-focal fit, biased by the zoom); the general
+// homography then wins with a spurious translation.
+void FitRotationZoomModel(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2,
+                          double f1, const TwoViewOptions& options, ModelFits* m) {
+  m->f1_rz = m->f2_rz = m->f_rot;
+  m->R_rz = m->R_rot;
+  m->e_rz.assign(m->n, std::numeric_limits<double>::infinity());
   double best_rz_cost = std::numeric_limits<double>::infinity();
-  // Also a coarse ladder around f1: while the focal is still the prior (50
-  // deg), a telephoto pan with zoom (true focal 4x the prior) has no
-  // rotation+zoom fit near f1 and f_rot (a constant-focal fit, biased by
-  // the zoom); the general homography then wins with a spurious translation.
   std::vector<double> f1_tries = {f1};
-  if (f_rot != f1) f1_tries.push_back(f_rot);
+  if (m->f_rot != f1) f1_tries.push_back(m->f_rot);
   for (double k : {0.5, 2.0, 4.0}) f1_tries.push_back(f1 * k);
   for (double f1_try : f1_tries) {
-    ro.max_error = thr;
-    const auto rz = Ransac<RotationZoomEstimator>(Scaled(u1, 1 / f1_try), u2, ro);
+    const auto rz = Ransac<RotationZoomEstimator>(Scaled(u1, 1 / f1_try), u2, At(options.ransac, m->thr));
     if (!rz.success) continue;
     const auto in1 = Select(u1, rz.inlier_mask), in2 = Select(u2, rz.inlier_mask);
     double f2;
@@ -199,137 +218,181 @@ TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
     const double cost = Gric(e, std::max(options.noise_floor, 1e-12), 2, 5);
     if (cost < best_rz_cost) {
       best_rz_cost = cost;
-      f1_rz = f1_try;
-      f2_rz = f2;
-      R_rz = R;
-      e_rz = e;
+      m->f1_rz = f1_try;
+      m->f2_rz = f2;
+      m->R_rz = R;
+      m->e_rz = e;
     }
   }
+}
 
-  // --- general homography (planar scene with translation)
-  ro.max_error = thr;
-  const auto hom = Ransac<HomographyEstimator>(u1, u2, ro);
-  std::vector<double> e_hom(n, std::numeric_limits<double>::infinity());
+// General homography (planar scene with translation).
+void FitHomography(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2,
+                   const TwoViewOptions& options, ModelFits* m) {
+  const auto hom = Ransac<HomographyEstimator>(u1, u2, At(options.ransac, m->thr));
+  m->hom_ok = hom.success;
+  m->H = hom.model;
+  m->e_hom.assign(m->n, std::numeric_limits<double>::infinity());
   if (hom.success) {
-    HomographyEstimator::Residuals(u1, u2, hom.model, &e_hom);
-    for (double& e : e_hom) e *= 0.5;
+    HomographyEstimator::Residuals(u1, u2, hom.model, &m->e_hom);
+    for (double& e : m->e_hom) e *= 0.5;
   }
+}
 
-  result.gric[kCandStatic] = Gric(e_static, sigma, 2, 0);
-  result.gric[kCandZoom] = zoom.success ? Gric(e_zoom, sigma, 2, 1) : HUGE_VAL;
-  result.gric[kCandRotation] = Gric(e_rot, sigma, 2, 4);
-  result.gric[kCandRotationZoom] = Gric(e_rz, sigma, 2, 5);
-  result.gric[kCandEssential] = ess.success ? Gric(e_ess, sigma, 3, 5) : HUGE_VAL;
-  result.gric[kCandHomography] = hom.success ? Gric(e_hom, sigma, 2, 8) : HUGE_VAL;
-  if (options.anisotropic_noise) {
-    // Tracking noise is not always isotropic: motion blur spreads a track
-    // along the motion, a fading picture along its edges. Measured as one
-    // sigma from the essential matrix (which lets matches slide along its
-    // epipolar lines) it is only the noise across those lines, and an
-    // epipolar direction along the blur then "explains" the rest as
-    // translation (whip pan: t = (+-1, 0, 0) on every blurred pair). So the
-    // noise covariance is measured from the rough part of the rotation
-    // model's residuals and every candidate is scored in whitened units.
-    std::vector<Eigen::Vector2d> at, res;
-    for (int i = 0; i < n; ++i) {
-      const bool use = ess.success ? ess.inlier_mask[i] != 0 : e_rot[i] <= thr * thr;
-      if (!use || !std::isfinite(e_rot[i])) continue;
-      const Eigen::Vector3d p = R_rot * (u1[i] / f_rot).homogeneous();
-      at.push_back(u1[i]);
-      res.push_back(u2[i] - f_rot * p.hnormalized());
+// GRIC of every candidate, with one isotropic sigma.
+void ScoreIsotropic(const ModelFits& m, TwoViewResult* result) {
+  result->gric[kCandStatic] = Gric(m.e_static, m.sigma, 2, 0);
+  result->gric[kCandZoom] = m.zoom_ok ? Gric(m.e_zoom, m.sigma, 2, 1) : HUGE_VAL;
+  result->gric[kCandRotation] = Gric(m.e_rot, m.sigma, 2, 4);
+  result->gric[kCandRotationZoom] = Gric(m.e_rz, m.sigma, 2, 5);
+  result->gric[kCandEssential] = m.ess.success ? Gric(m.e_ess, m.sigma, 3, 5) : HUGE_VAL;
+  result->gric[kCandHomography] = m.hom_ok ? Gric(m.e_hom, m.sigma, 2, 8) : HUGE_VAL;
+}
+
+// Half the squared Mahalanobis transfer error through `H` (the residual's
+// information matrix `info`); non-finite errors stay as they are.
+std::vector<double> Whitened(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2,
+                             const std::vector<double>& e, const Eigen::Matrix3d& H, const Eigen::Matrix2d& info) {
+  const int n = static_cast<int>(e.size());
+  std::vector<double> w(n);
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(e[i])) {
+      w[i] = e[i];
+      continue;
     }
-    const Eigen::Matrix2d cov = TrackNoiseCovariance(at, res, options.noise_neighbours, sigma, options.max_noise_sigma);
-    const Eigen::Matrix2d info = cov.inverse();
-    auto whiten = [&](const std::vector<double>& e, auto predict) {
-      std::vector<double> w(n);
-      for (int i = 0; i < n; ++i) {
-        if (!std::isfinite(e[i])) {
-          w[i] = e[i];
-          continue;
-        }
-        const Eigen::Vector2d r = u2[i] - predict(u1[i]);
-        w[i] = 0.5 * r.dot(info * r);
-      }
-      return w;
-    };
-    auto homography = [](const Eigen::Matrix3d& H) {
-      return [H](const Eigen::Vector2d& x) -> Eigen::Vector2d { return (H * x.homogeneous()).hnormalized(); };
-    };
-    const Eigen::Matrix3d K_rot = Eigen::Vector3d(f_rot, f_rot, 1).asDiagonal();
-    const Eigen::Matrix3d K1_rz = Eigen::Vector3d(f1_rz, f1_rz, 1).asDiagonal();
-    const Eigen::Matrix3d K2_rz = Eigen::Vector3d(f2_rz, f2_rz, 1).asDiagonal();
-    const auto w_static = whiten(e_static, homography(Eigen::Matrix3d::Identity()));
-    const auto w_zoom = whiten(e_zoom, homography(Eigen::Vector3d(s, s, 1).asDiagonal()));
-    const auto w_rot = whiten(e_rot, homography(K_rot * R_rot * K_rot.inverse()));
-    const auto w_rz = whiten(e_rz, homography(K2_rz * R_rz * K1_rz.inverse()));
-    const auto w_hom = hom.success ? whiten(e_hom, homography(hom.model)) : e_hom;
-    // Sampson distance with the noise covariance (calibrated coordinates).
-    std::vector<double> w_ess(n, std::numeric_limits<double>::infinity());
-    const Eigen::Matrix2d cov_c = cov / (f1 * f1);
-    for (int i = 0; ess.success && i < n; ++i) {
-      const Eigen::Vector3d p = c1[i].homogeneous(), q = c2[i].homogeneous();
-      const Eigen::Vector3d Ep = ess.model * p, Etq = ess.model.transpose() * q;
-      const double num = q.dot(Ep);
-      const double den = Ep.head<2>().dot(cov_c * Ep.head<2>()) + Etq.head<2>().dot(cov_c * Etq.head<2>());
-      if (den > 1e-300) w_ess[i] = num * num / den;
-    }
-    result.gric[kCandStatic] = Gric(w_static, 1, 2, 0);
-    result.gric[kCandZoom] = zoom.success ? Gric(w_zoom, 1, 2, 1) : HUGE_VAL;
-    result.gric[kCandRotation] = Gric(w_rot, 1, 2, 4);
-    result.gric[kCandRotationZoom] = Gric(w_rz, 1, 2, 5);
-    result.gric[kCandEssential] = ess.success ? Gric(w_ess, 1, 3, 5) : HUGE_VAL;
-    result.gric[kCandHomography] = hom.success ? Gric(w_hom, 1, 2, 8) : HUGE_VAL;
-    result.noise_cov = cov;
+    const Eigen::Vector2d r = u2[i] - (H * u1[i].homogeneous()).hnormalized();
+    w[i] = 0.5 * r.dot(info * r);
   }
+  return w;
+}
+
+// Sampson distance with the noise covariance (calibrated coordinates).
+std::vector<double> WhitenedSampson(const ModelFits& m, const Eigen::Matrix2d& cov, double f1) {
+  std::vector<double> w_ess(m.n, std::numeric_limits<double>::infinity());
+  const Eigen::Matrix2d cov_c = cov / (f1 * f1);
+  for (int i = 0; m.ess.success && i < m.n; ++i) {
+    const Eigen::Vector3d p = m.c1[i].homogeneous(), q = m.c2[i].homogeneous();
+    const Eigen::Vector3d Ep = m.ess.model * p, Etq = m.ess.model.transpose() * q;
+    const double num = q.dot(Ep);
+    const double den = Ep.head<2>().dot(cov_c * Ep.head<2>()) + Etq.head<2>().dot(cov_c * Etq.head<2>());
+    if (den > 1e-300) w_ess[i] = num * num / den;
+  }
+  return w_ess;
+}
+
+// Tracking noise is not always isotropic: motion blur spreads a track along
+// the motion, a fading picture along its edges. Measured as one sigma from
+// the essential matrix (which lets matches slide along its epipolar lines)
+// it is only the noise across those lines, and an epipolar direction along
+// the blur then "explains" the rest as translation (whip pan: t = (+-1, 0,
+// 0) on every blurred pair). So the noise covariance is measured from the
+// rough part of the rotation model's residuals and every candidate is
+// scored in whitened units.
+void ScoreAnisotropic(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2, double f1,
+                      const TwoViewOptions& options, const ModelFits& m, TwoViewResult* result) {
+  std::vector<Eigen::Vector2d> at, res;
+  for (int i = 0; i < m.n; ++i) {
+    const bool use = m.ess.success ? m.ess.inlier_mask[i] != 0 : m.e_rot[i] <= m.thr * m.thr;
+    if (!use || !std::isfinite(m.e_rot[i])) continue;
+    const Eigen::Vector3d p = m.R_rot * (u1[i] / m.f_rot).homogeneous();
+    at.push_back(u1[i]);
+    res.push_back(u2[i] - m.f_rot * p.hnormalized());
+  }
+  const Eigen::Matrix2d cov = TrackNoiseCovariance(at, res, options.noise_neighbours, m.sigma, options.max_noise_sigma);
+  const Eigen::Matrix2d info = cov.inverse();
+  const Eigen::Matrix3d K_rot = Eigen::Vector3d(m.f_rot, m.f_rot, 1).asDiagonal();
+  const Eigen::Matrix3d K1_rz = Eigen::Vector3d(m.f1_rz, m.f1_rz, 1).asDiagonal();
+  const Eigen::Matrix3d K2_rz = Eigen::Vector3d(m.f2_rz, m.f2_rz, 1).asDiagonal();
+  const auto w_static = Whitened(u1, u2, m.e_static, Eigen::Matrix3d::Identity(), info);
+  const auto w_zoom = Whitened(u1, u2, m.e_zoom, Eigen::Vector3d(m.s, m.s, 1).asDiagonal(), info);
+  const auto w_rot = Whitened(u1, u2, m.e_rot, K_rot * m.R_rot * K_rot.inverse(), info);
+  const auto w_rz = Whitened(u1, u2, m.e_rz, K2_rz * m.R_rz * K1_rz.inverse(), info);
+  const auto w_hom = m.hom_ok ? Whitened(u1, u2, m.e_hom, m.H, info) : m.e_hom;
+  const auto w_ess = WhitenedSampson(m, cov, f1);
+  result->gric[kCandStatic] = Gric(w_static, 1, 2, 0);
+  result->gric[kCandZoom] = m.zoom_ok ? Gric(w_zoom, 1, 2, 1) : HUGE_VAL;
+  result->gric[kCandRotation] = Gric(w_rot, 1, 2, 4);
+  result->gric[kCandRotationZoom] = Gric(w_rz, 1, 2, 5);
+  result->gric[kCandEssential] = m.ess.success ? Gric(w_ess, 1, 3, 5) : HUGE_VAL;
+  result->gric[kCandHomography] = m.hom_ok ? Gric(w_hom, 1, 2, 8) : HUGE_VAL;
+  result->noise_cov = cov;
+}
+
+// The lowest GRIC; the essential matrix must also give a valid relative
+// pose, otherwise the best homography-type model.
+int ChooseCandidate(const std::array<double, kNumCandidates>& gric, bool pose_ok) {
   int best = 0;
   for (int c = 1; c < kNumCandidates; ++c)
-    if (result.gric[c] < result.gric[best]) best = c;
-
-  // The essential matrix must also give a valid relative pose; otherwise
-  // fall back to the best homography-type model.
-  Eigen::Matrix3d R_ess = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t_ess = Eigen::Vector3d::Zero();
-  const bool pose_ok = ess.success && DecomposeEssential(ess.model, Select(c1, ess.inlier_mask),
-                                                         Select(c2, ess.inlier_mask), &R_ess, &t_ess);
+    if (gric[c] < gric[best]) best = c;
   if ((best == kCandEssential || best == kCandHomography) && !pose_ok) {
     best = kCandStatic;
     for (int c = 1; c <= kCandRotationZoom; ++c)
-      if (result.gric[c] < result.gric[best]) best = c;
+      if (gric[c] < gric[best]) best = c;
   }
+  return best;
+}
 
-  const std::vector<double>* e_best = &e_static;
+// The chosen candidate's model, pose and focal lengths into `result`; its
+// residuals.
+const std::vector<double>& TakeCandidate(int best, const ModelFits& m, double f1, const Eigen::Matrix3d& R_ess,
+                                         const Eigen::Vector3d& t_ess, TwoViewResult* result) {
   switch (best) {
     case kCandStatic:
-      result.model = MotionModel::kStatic;
-      break;
+      result->model = MotionModel::kStatic;
+      return m.e_static;
     case kCandZoom:
-      result.model = MotionModel::kZoom;
-      result.f2 = f1 * s;
-      e_best = &e_zoom;
-      break;
+      result->model = MotionModel::kZoom;
+      result->f2 = f1 * m.s;
+      return m.e_zoom;
     case kCandRotation:
-      result.model = MotionModel::kRotation;
-      result.cam2_from_cam1 = R_rot;
-      result.f1 = result.f2 = f_rot;
-      e_best = &e_rot;
-      break;
+      result->model = MotionModel::kRotation;
+      result->cam2_from_cam1 = m.R_rot;
+      result->f1 = result->f2 = m.f_rot;
+      return m.e_rot;
     case kCandRotationZoom:
-      result.model = MotionModel::kRotationZoom;
-      result.cam2_from_cam1 = R_rz;
-      result.f1 = f1_rz;
-      result.f2 = f2_rz;
-      e_best = &e_rz;
-      break;
+      result->model = MotionModel::kRotationZoom;
+      result->cam2_from_cam1 = m.R_rz;
+      result->f1 = m.f1_rz;
+      result->f2 = m.f2_rz;
+      return m.e_rz;
     default:
-      result.model = MotionModel::kGeneral;
-      result.cam2_from_cam1 = R_ess;
-      result.translation = t_ess;
-      e_best = best == kCandEssential ? &e_ess : &e_hom;
-      break;
+      result->model = MotionModel::kGeneral;
+      result->cam2_from_cam1 = R_ess;
+      result->translation = t_ess;
+      return best == kCandEssential ? m.e_ess : m.e_hom;
   }
+}
+
+}  // namespace
+
+TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
+                                 const std::vector<Eigen::Vector2d>& u2, double f1,
+                                 const TwoViewOptions& options) {
+  TwoViewResult result;
+  const int n = static_cast<int>(u1.size());
+  result.num_points = n;
+  result.f1 = result.f2 = f1;
+  if (n != static_cast<int>(u2.size()) || n < options.min_correspondences || !(f1 > 0)) return result;
+  ModelFits m;
+  m.n = n;
+  m.thr = options.inlier_threshold;
+  FitEssential(u1, u2, f1, options, &m);
+  result.sigma = m.sigma;
+  FitStaticAndZoom(u1, u2, options, &m);
+  FitRotation(u1, u2, f1, options, &m);
+  FitRotationZoomModel(u1, u2, f1, options, &m);
+  FitHomography(u1, u2, options, &m);
+  ScoreIsotropic(m, &result);
+  if (options.anisotropic_noise) ScoreAnisotropic(u1, u2, f1, options, m, &result);
+  Eigen::Matrix3d R_ess = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t_ess = Eigen::Vector3d::Zero();
+  const bool pose_ok = m.ess.success && DecomposeEssential(m.ess.model, Select(m.c1, m.ess.inlier_mask),
+                                                           Select(m.c2, m.ess.inlier_mask), &R_ess, &t_ess);
+  const int best = ChooseCandidate(result.gric, pose_ok);
+  const std::vector<double>& e_best = TakeCandidate(best, m, f1, R_ess, t_ess, &result);
   // Inliers at the RANSAC threshold (on half-squared transfer errors for H-type).
-  const double thr_best = best == kCandEssential ? thr : thr / std::sqrt(2.0);
-  result.inliers = Mask(*e_best, thr_best);
+  const double thr_best = best == kCandEssential ? m.thr : m.thr / std::sqrt(2.0);
+  result.inliers = Mask(e_best, thr_best);
   result.num_inliers = static_cast<int>(std::count(result.inliers.begin(), result.inliers.end(), 1));
   result.valid = true;
   return result;

@@ -46,6 +46,87 @@ struct RansacReport {
   Model model{};
 };
 
+namespace ransac_internal {
+
+// A model's inliers (squared residual within thr2) and truncated cost;
+// `res`: scratch for the residuals.
+template <typename Estimator>
+void Score(const std::vector<typename Estimator::X_t>& X, const std::vector<typename Estimator::Y_t>& Y,
+           const typename Estimator::M_t& model, double thr2, std::vector<double>* res, int* inliers, double* cost) {
+  Estimator::Residuals(X, Y, model, res);
+  *inliers = 0;
+  *cost = 0;
+  for (double r : *res) {
+    if (std::isfinite(r) && r <= thr2) {
+      ++*inliers;
+      *cost += r;
+    } else {
+      *cost += thr2;
+    }
+  }
+}
+
+// Trials needed to draw an all-inlier sample of k with `confidence`, at an
+// inlier share of inliers / n, within the options' bounds.
+inline int TrialsNeeded(int inliers, int n, int k, const RansacOptions& options, int max_trials) {
+  const double w = static_cast<double>(inliers) / n;
+  const double p_good = std::pow(w, k);
+  if (p_good >= 1.0) return std::min(max_trials, options.min_trials);
+  if (p_good > 1e-12) {
+    const double needed = std::log(1 - options.confidence) / std::log(1 - p_good);
+    return std::clamp(static_cast<int>(std::ceil(needed)), options.min_trials, options.max_trials);
+  }
+  return max_trials;
+}
+
+template <typename M>
+struct Best {
+  int inliers = -1;
+  double cost = std::numeric_limits<double>::infinity();
+  M model{};
+  // Takes `model` if it has more inliers, or as many at a lower cost.
+  bool Offer(const M& m, int inl, double c) {
+    if (!(inl > inliers || (inl == inliers && c < cost))) return false;
+    inliers = inl;
+    cost = c;
+    model = m;
+    return true;
+  }
+};
+
+// Least squares on the best model's inliers, kept while it does not lose
+// inliers (local optimisation).
+template <typename Estimator>
+void RefitOnInliers(const std::vector<typename Estimator::X_t>& X, const std::vector<typename Estimator::Y_t>& Y,
+                    double thr2, const RansacOptions& options, std::vector<double>* res,
+                    Best<typename Estimator::M_t>* best) {
+  const int n = static_cast<int>(X.size());
+  for (int it = 0; it < options.local_refits; ++it) {
+    Estimator::Residuals(X, Y, best->model, res);
+    std::vector<typename Estimator::X_t> xi;
+    std::vector<typename Estimator::Y_t> yi;
+    for (int i = 0; i < n; ++i) {
+      if (std::isfinite((*res)[i]) && (*res)[i] <= thr2) {
+        xi.push_back(X[i]);
+        yi.push_back(Y[i]);
+      }
+    }
+    if (static_cast<int>(xi.size()) <= Estimator::kMinNumSamples) break;
+    bool improved = false;
+    for (const auto& model : Estimator::Estimate(xi, yi)) {
+      int inl;
+      double cost;
+      Score<Estimator>(X, Y, model, thr2, res, &inl, &cost);
+      const int before_inliers = best->inliers;
+      const double before_cost = best->cost;
+      if (best->Offer(model, inl, cost)) improved = inl > before_inliers || cost < before_cost * (1 - 1e-9);
+    }
+    if (!improved) break;
+  }
+}
+
+}  // namespace ransac_internal
+
 template <typename Estimator>
 RansacReport<typename Estimator::M_t> Ransac(const std::vector<typename Estimator::X_t>& X,
                                              const std::vector<typename Estimator::Y_t>& Y,
@@ -56,30 +137,13 @@ RansacReport<typename Estimator::M_t> Ransac(const std::vector<typename Estimato
   const int k = Estimator::kMinNumSamples;
   if (n != static_cast<int>(Y.size()) || n < k) return report;
   const double thr2 = options.max_error * options.max_error;
-
   std::vector<double> res;
-  auto score = [&](const M& model, int* inliers, double* cost) {
-    Estimator::Residuals(X, Y, model, &res);
-    *inliers = 0;
-    *cost = 0;
-    for (double r : res) {
-      if (std::isfinite(r) && r <= thr2) {
-        ++*inliers;
-        *cost += r;
-      } else {
-        *cost += thr2;
-      }
-    }
-  };
-
   std::mt19937 rng(options.seed);
   std::vector<int> idx(n);
   for (int i = 0; i < n; ++i) idx[i] = i;
   std::vector<typename Estimator::X_t> xs(k);
   std::vector<typename Estimator::Y_t> ys(k);
-  int best_inliers = -1;
-  double best_cost = std::numeric_limits<double>::infinity();
-  M best{};
+  ransac_internal::Best<M> best;
   int max_trials = options.max_trials;
   int trial = 0;
   for (; trial < max_trials; ++trial) {
@@ -92,54 +156,14 @@ RansacReport<typename Estimator::M_t> Ransac(const std::vector<typename Estimato
     for (const M& model : Estimator::Estimate(xs, ys)) {
       int inl;
       double cost;
-      score(model, &inl, &cost);
-      if (inl > best_inliers || (inl == best_inliers && cost < best_cost)) {
-        best_inliers = inl;
-        best_cost = cost;
-        best = model;
-        const double w = static_cast<double>(inl) / n;
-        const double p_good = std::pow(w, k);
-        if (p_good >= 1.0) {
-          max_trials = std::min(max_trials, options.min_trials);
-        } else if (p_good > 1e-12) {
-          const double needed = std::log(1 - options.confidence) / std::log(1 - p_good);
-          max_trials = std::clamp(static_cast<int>(std::ceil(needed)), options.min_trials,
-                                  options.max_trials);
-        }
-      }
+      ransac_internal::Score<Estimator>(X, Y, model, thr2, &res, &inl, &cost);
+      if (best.Offer(model, inl, cost)) max_trials = ransac_internal::TrialsNeeded(inl, n, k, options, max_trials);
     }
   }
   report.num_trials = trial;
-  if (best_inliers < k) return report;
-
-  // Local optimisation: least squares on the inliers, kept while it does not lose inliers.
-  for (int it = 0; it < options.local_refits; ++it) {
-    Estimator::Residuals(X, Y, best, &res);
-    std::vector<typename Estimator::X_t> xi;
-    std::vector<typename Estimator::Y_t> yi;
-    for (int i = 0; i < n; ++i) {
-      if (std::isfinite(res[i]) && res[i] <= thr2) {
-        xi.push_back(X[i]);
-        yi.push_back(Y[i]);
-      }
-    }
-    if (static_cast<int>(xi.size()) <= k) break;
-    bool improved = false;
-    for (const M& model : Estimator::Estimate(xi, yi)) {
-      int inl;
-      double cost;
-      score(model, &inl, &cost);
-      if (inl > best_inliers || (inl == best_inliers && cost < best_cost)) {
-        improved = inl > best_inliers || cost < best_cost * (1 - 1e-9);
-        best_inliers = inl;
-        best_cost = cost;
-        best = model;
-      }
-    }
-    if (!improved) break;
-  }
-
-  Estimator::Residuals(X, Y, best, &res);
+  if (best.inliers < k) return report;
+  ransac_internal::RefitOnInliers<Estimator>(X, Y, thr2, options, &res, &best);
+  Estimator::Residuals(X, Y, best.model, &res);
   report.inlier_mask.assign(n, 0);
   report.num_inliers = 0;
   for (int i = 0; i < n; ++i) {
@@ -148,7 +172,7 @@ RansacReport<typename Estimator::M_t> Ransac(const std::vector<typename Estimato
       ++report.num_inliers;
     }
   }
-  report.model = best;
+  report.model = best.model;
   report.success = report.num_inliers >= k;
   return report;
 }

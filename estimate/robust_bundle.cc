@@ -11,9 +11,12 @@ void PolishBundle(const BaOptions& options, std::vector<BaCamera>* cameras, std:
   BaOptions polish = options;
   polish.max_iterations = std::max(5, options.max_iterations / 3);
   const BaSummary s = SolveBundle(cameras, points, observations, polish);
+  summary->iterations += s.iterations;
   if (s.success) {
     summary->rms_after = s.rms_after;
     summary->num_observations = s.num_observations;
+    summary->final_cost = s.final_cost;
+    summary->termination = s.termination;
   }
 }
 
@@ -34,7 +37,12 @@ BaSummary SolveDroppingOutliers(const BaOptions& options, std::vector<BaCamera>*
     BaOptions rest = options;
     rest.max_iterations = std::max(1, options.max_iterations - s.iterations + 1);
     const BaSummary s3 = SolveBundle(cameras, points, *observations, rest);
-    if (s3.success) s.rms_after = s3.rms_after;
+    s.iterations += s3.iterations;
+    if (s3.success) {
+      s.rms_after = s3.rms_after;
+      s.final_cost = s3.final_cost;
+      s.termination = s3.termination;
+    }
   }
   if (polish_follows) {
     *observations = kept;

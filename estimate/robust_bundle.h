@@ -12,7 +12,8 @@ namespace hapcine {
 
 // Re-solves on `observations` (a reduced set), from the current, already
 // close estimate with a third of the iterations (at least 5); a success
-// updates `summary`'s RMS and observation count.
+// updates `summary`'s RMS, observation count, final cost and termination
+// (its iterations are added either way).
 void PolishBundle(const BaOptions& options, std::vector<BaCamera>* cameras, std::vector<BaPoint>* points,
                   const std::vector<BaObservation>& observations, BaSummary* summary);
 

@@ -45,10 +45,33 @@ const Eigen::Matrix3d kFlip = Eigen::Vector3d(1, -1, -1).asDiagonal();
 
 }  // namespace
 
-TrackCameraEstimator::TrackCameraEstimator(int width, int height,
-                                           const TrackEstimatorOptions& options)
-    : width_(width), height_(height), options_(options) {
+namespace {
+
+WindowOptions WindowOptionsOf(const TrackEstimatorOptions& o) {
+  WindowOptions w;
+  w.max_points = o.max_points;
+  w.point_grid_cells = o.point_grid_cells;
+  w.spread_points_factor = o.spread_points_factor;
+  w.min_rotation_for_focal_deg = o.min_rotation_for_focal_deg;
+  w.ba_iterations = o.ba_iterations;
+  w.track_rms_cut_px = o.track_rms_cut_px;
+  w.track_rms_cut_rotation_px = o.track_rms_cut_rotation_px;
+  w.depth_layer_cut = o.depth_layer_cut;
+  w.freedom_test = o.freedom_test;
+  w.blur_noise_per_speed = o.blur_noise_per_speed;
+  w.motion_plane_prior = o.motion_plane_prior;
+  w.noise_floor = o.two_view.noise_floor;
+  w.num_threads = o.num_threads;
+  return w;
+}
+
+}  // namespace
+
+TrackCameraEstimator::TrackCameraEstimator(int width, int height, const TrackEstimatorOptions& options,
+                                           Diagnostics* diagnostics)
+    : width_(width), height_(height), options_(options), diagnostics_(diagnostics) {
   options_.Check();
+  window_options_ = WindowOptionsOf(options_);
   if (width <= 0 || height <= 0) throw UsageError("frame size must be positive");
   // Normalised focal = f_px / width.
   prior_log_focal_ = std::log(FocalPxFromFovDeg(options_.prior_hfov_deg, width) / width);
@@ -124,35 +147,55 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
 }
 
 void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
-  Keyframe k;
-  k.pos = pos;
-  k.video_pos = At(pos).video_pos;
   if (keyframes_.empty()) {
     // Start of the shot's chain: identity at the origin (or the last pose).
+    Keyframe k = ChainStart(pos);
     k.cam.log_focal = prior_log_focal_;
     if (!raw_.empty()) k.cam = raw_.back().cam;
     k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
-    k.fixed = true;
-    k.chain_start = true;
     keyframes_.push_back(k);
     return;
   }
-  const Keyframe& a = keyframes_.back();
   if (force_static) {
     // Chain broken: solve what we have, then restart from here.
     ProcessWindow(true);
     keyframes_.clear();
     frames_.erase(frames_.begin(), frames_.begin() + (pos - buffer_start_));
     buffer_start_ = pos;
+    Keyframe k = ChainStart(pos);
     k.cam = raw_.empty() ? BaCamera{} : raw_.back().cam;
     k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
-    k.fixed = true;
     k.fixed_focal = focal_observed_;
-    k.chain_start = true;
-    k.chain_start = true;
     keyframes_.push_back(k);
     return;
   }
+  keyframes_.push_back(LinkedKeyframe(keyframes_.back(), pos));
+  // The window's own frames start at its last held keyframe (the lead-in before it is decided).
+  size_t held = 0;
+  while (held + 1 < keyframes_.size() && keyframes_[held + 1].fixed) ++held;
+  if (keyframes_.back().video_pos - keyframes_[held > 0 ? held - 1 : 0].video_pos >= options_.window_frames &&
+      keyframes_.size() >= std::max<size_t>(4, held + 3)) {
+    ProcessWindow(false);
+  }
+}
+
+TrackCameraEstimator::Keyframe TrackCameraEstimator::ChainStart(int pos) const {
+  Keyframe k;
+  k.pos = pos;
+  k.video_pos = At(pos).video_pos;
+  k.fixed = true;
+  k.chain_start = true;
+  return k;
+}
+
+// The keyframe at `pos` after `a`: the two-view model of the interval
+// (model_selection.h) and the pose it gives; a translation is scaled so
+// that the triangulated median depth in view a matches the scene depth so
+// far. Its outlier tracks are kept out of the window's points.
+TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyframe& a, int pos) {
+  Keyframe k;
+  k.pos = pos;
+  k.video_pos = At(pos).video_pos;
   const BufferedFrame& fa = At(a.pos);
   const BufferedFrame& fb = At(pos);
   std::vector<long> ids;
@@ -171,13 +214,16 @@ void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
   if (!tv.valid) {
     k.model = MotionModel::kStatic;
     k.inlier_ratio = 0;
-    keyframes_.push_back(k);
-    return;
+    return k;
   }
   for (size_t i = 0; i < ids.size(); ++i)
     if (!tv.inliers[i]) outlier_tracks_.insert(ids[i]);
   k.model = tv.model;
   k.inlier_ratio = tv.num_points ? static_cast<double>(tv.num_inliers) / tv.num_points : 0;
+  k.two_view_model = tv.model;
+  k.correspondences = tv.num_points;
+  k.inliers = tv.num_inliers;
+  k.gric = tv.gric;
   const Eigen::Matrix3d R_ba = tv.cam2_from_cam1;
   const Eigen::Matrix3d R_wa = a.cam.world_from_cam.toRotationMatrix();
   k.cam.world_from_cam = Eigen::Quaterniond(R_wa * R_ba.transpose()).normalized();
@@ -187,27 +233,18 @@ void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
         options_.min_rotation_for_focal_deg)
       focal_samples_.push_back(std::log(tv.f1));
   }
-  if (HasTranslation(tv.model)) {
-    // Scale: triangulated median depth in view a matches the scene depth so far.
-    std::vector<double> depths;
-    for (size_t i = 0; i < u1.size(); ++i) {
-      if (!tv.inliers[i]) continue;
-      const double d = TriangulateDepth(u1[i] / fa_norm, u2[i] / fa_norm, R_ba, tv.translation);
-      if (d > 0 && std::isfinite(d)) depths.push_back(d);
-    }
-    const double med = Median(depths);
-    const double scale = med > 0 ? scene_depth_ / med : 0.05 * scene_depth_;
-    const Eigen::Vector3d centre_b_in_a = -R_ba.transpose() * tv.translation;
-    k.cam.center = a.cam.center + R_wa * centre_b_in_a * scale;
+  if (!HasTranslation(tv.model)) return k;
+  std::vector<double> depths;
+  for (size_t i = 0; i < u1.size(); ++i) {
+    if (!tv.inliers[i]) continue;
+    const double d = TriangulateDepth(u1[i] / fa_norm, u2[i] / fa_norm, R_ba, tv.translation);
+    if (d > 0 && std::isfinite(d)) depths.push_back(d);
   }
-  keyframes_.push_back(k);
-  // The window's own frames start at its last held keyframe (the lead-in before it is decided).
-  size_t held = 0;
-  while (held + 1 < keyframes_.size() && keyframes_[held + 1].fixed) ++held;
-  if (k.video_pos - keyframes_[held > 0 ? held - 1 : 0].video_pos >= options_.window_frames &&
-      keyframes_.size() >= std::max<size_t>(4, held + 3)) {
-    ProcessWindow(false);
-  }
+  const double med = Median(depths);
+  const double scale = med > 0 ? scene_depth_ / med : 0.05 * scene_depth_;
+  const Eigen::Vector3d centre_b_in_a = -R_ba.transpose() * tv.translation;
+  k.cam.center = a.cam.center + R_wa * centre_b_in_a * scale;
+  return k;
 }
 
 void TrackCameraEstimator::FinishShot() {

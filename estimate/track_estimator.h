@@ -21,6 +21,7 @@
 //  5. At the end of the shot: zero-phase smoothing per segment, conversion to
 //     the file's OpenGL convention, units of median scene depth.
 
+#include <array>
 #include <deque>
 #include <map>
 #include <set>
@@ -31,11 +32,12 @@
 #include "estimate/bundle_adjustment.h"
 #include "estimate/model_selection.h"
 #include "estimate/motion_model.h"
-#include "estimate/occlusion_order.h"
-#include "estimate/plane_prior.h"
+#include "estimate/window_solver.h"
 #include "extract/tracks.h"
 
 namespace hapcine {
+
+class Diagnostics;
 
 struct TrackEstimatorOptions {
   double prior_hfov_deg = 50;        // focal prior (horizontal FOV) where focal is not observable
@@ -97,34 +99,24 @@ struct TrackEstimatorOptions {
   void Check() const;                // throws UsageError
 };
 
-// Per-window diagnostics, for logs and tests.
-struct WindowReport {
-  int shot = 0;
-  int first_frame = 0, last_frame = 0;
-  int keyframes = 0, points = 0, observations = 0;
-  double rms_px = 0;                 // after BA, pixels of the decoded frame
-  bool focal_observable = false;
-  bool zoom_by_bic = false;          // general segments were upgraded to general+zoom
-  bool labels_revised = false;       // re-run with the labels the window-level tests revised (window_freedoms.h)
-  bool plane_prior = false;          // depths shifted to put a floor or wall parallel to an axial move (plane_prior.h)
-};
-
 class TrackCameraEstimator {
  public:
   // width, height: decoded frame size (tracks are in its pixels).
-  TrackCameraEstimator(int width, int height, const TrackEstimatorOptions& options);
+  // `diagnostics`: where each window's report goes ("window" records,
+  // core/diagnostics.h); none by default. Not owned; outlives the estimator.
+  TrackCameraEstimator(int width, int height, const TrackEstimatorOptions& options,
+                       Diagnostics* diagnostics = nullptr);
   // Frames in order. Emits finished frames into the path as windows close.
   void AddFrame(const FrameTracks& tracks);
   // Closes the last shot and returns every frame (metadata: width, height).
   CameraPath Finish();
-  int frames_done() const { return static_cast<int>(path_.frames.size()); }
   const std::vector<WindowReport>& reports() const { return reports_; }
 
  private:
   struct BufferedFrame {
     FrameTracks tracks;
     int video_pos = 0;  // shot-relative frame of the video (FrameTracks::step summed)
-    std::map<long, Eigen::Vector2d> u;  // normalised coordinates by track id
+    KeyframeTracks u;   // normalised coordinates by track id
     bool usable = false;
   };
   struct Keyframe {
@@ -132,10 +124,14 @@ class TrackCameraEstimator {
     int video_pos = 0;               // the same in frames of the video (BufferedFrame)
     BaCamera cam;                    // OpenCV world of the shot
     MotionModel model = MotionModel::kStatic;  // of the interval ending here
+    MotionModel two_view_model = MotionModel::kStatic;  // the same as the two-view test read it
     double inlier_ratio = 1;
     bool fixed = false;              // pose constant in the window's BA
     bool fixed_focal = false;        // focal constant too (overlap with the previous window)
     bool chain_start = false;        // first keyframe of a chain: no interval of its own
+    // The interval's model selection, for the report: matches, inliers, GRIC per candidate.
+    int correspondences = 0, inliers = 0;
+    std::array<double, kNumCandidates> gric{};
   };
   struct RawPose {
     FrameTracks meta;                // index, time, shot, quality (points cleared)
@@ -144,55 +140,29 @@ class TrackCameraEstimator {
     double confidence = 0;
   };
 
-  // What a window's bundle adjustment leaves for its in-between frames.
-  struct WindowSolution {
-    std::vector<BaPoint> points;
-    std::map<long, int> point_of_track;  // track id -> index in points
-    std::vector<char> point_kept;        // the BA kept the point's track
-    BaOptions pose_options;              // the window's solve options
-    bool success = false;                // the BA succeeded
-    double rms_px = 0;                   // its reprojection RMS, pixels of the decoded frame
-    bool focal_observable = false;
-  };
-
   void StartShot(int shot);
   void FinishShot();
   void AddKeyframe(int pos, bool force_static);
-  // Bundle adjustment of the current window, then its frames
-  // (track_estimator_window.cc). `final`: the shot ends with it.
+  Keyframe ChainStart(int pos) const;  // held, no interval of its own; camera left to the caller
+  Keyframe LinkedKeyframe(const Keyframe& a, int pos);
+  // The current window through SolveWindow (window_solver.h), then its
+  // frames (track_estimator_window.cc). `final`: the shot ends with it.
   void ProcessWindow(bool final);
-  std::vector<BaCamera> WindowCameras(bool zoom_in_general, bool free_lead_in_focal,
-                                      const std::vector<MotionModel>* labels) const;
-  // Labels of short runs between two equal, more general neighbours take
-  // theirs (a keyframe interval or two misread).
-  void PromoteShortRuns();
+  WindowInput WindowInputOf(bool labels_revised) const;
+  // The keyframes' cameras and labels as a window solve left them.
+  void UpdateKeyframes(const std::vector<BaCamera>& cams, const std::vector<MotionModel>& labels);
+  void Report(WindowReport report);
   // After the window's solve (track_estimator_frames.cc).
   void SetUnits(std::vector<BaPoint>* points);
-  void EmitWindowFrames(const WindowSolution& solution, bool final);
+  void EmitWindowFrames(const WindowOutcome& solution, bool final);
   void StartNextWindow();
-  // Occlusion-order votes of candidate reconstructions of the current window
-  // (track_estimator_occlusion.cc).
-  std::vector<OcclusionVotes> OcclusionVotesOf(const std::vector<const std::vector<BaCamera>*>& candidates) const;
-  // The plane prior of an axial dolly/zoom window (plane_prior.h) on its
-  // solution, pivot `held` (track_estimator_plane.cc). `taken`: it applied.
-  void ApplyPlanePriorToWindow(const BaOptions& ba, int held, int first_frame, std::vector<BaCamera>* cams,
-                               std::vector<BaPoint>* pts, const std::vector<BaObservation>& obs,
-                               BaSummary* summary, bool* taken) const;
-  // The points the plane prior searches a floor among, under a solution of
-  // the current window (track_estimator_plane.cc).
-  PlanePointsFn PlanePointsOf(const BaOptions& ba, int held) const;
-  // Points of the plane prior's support under each candidate reconstruction
-  // of the current window (0: no plane parallel to the move).
-  std::vector<int> PlaneSupportOf(const BaOptions& ba, int held,
-                                  const std::vector<const std::vector<BaCamera>*>& candidates) const;
-  // Tracks of the current window between two depth layers under `cams`
-  // (depth_layers.h), among all tracks but `excluded` (track_estimator_depth_layers.cc).
-  std::set<long> TracksBetweenLayersOf(const std::vector<BaCamera>& cams, const std::set<long>& excluded) const;
   const BufferedFrame& At(int pos) const { return frames_[pos - buffer_start_]; }
   Eigen::Vector2d Normalise(const Eigen::Vector2d& px) const;
 
   int width_, height_;
   TrackEstimatorOptions options_;
+  WindowOptions window_options_;
+  Diagnostics* diagnostics_;
   double prior_log_focal_;
   CameraPath path_;
   std::vector<WindowReport> reports_;
@@ -210,9 +180,6 @@ class TrackCameraEstimator {
   bool focal_observed_ = false;
   bool scale_set_ = false;
   double scene_depth_ = 1;
-  // Set when ProcessWindow re-runs a window with the labels its window-level
-  // tests revised (window_freedoms.h); read into the re-run's report.
-  bool labels_revised_ = false;
 };
 
 }  // namespace hapcine

@@ -1,5 +1,5 @@
 // TrackCameraEstimator, after a window's bundle adjustment (ProcessWindow,
-// track_estimator_window.cc): the shot's units, the window's frames into the
+// track_estimator_window.cc; SolveWindow, window_solver.h): the shot's units, the window's frames into the
 // raw path, and the start of the next window.
 
 #include <algorithm>
@@ -43,7 +43,7 @@ void TrackCameraEstimator::SetUnits(std::vector<BaPoint>* points) {
 // The window's frames into raw_: keyframes as solved, the others by a
 // pose-only solve against the window's points with only their segment
 // model's freedoms, started from the slerp/lerp of the neighbouring keyframes.
-void TrackCameraEstimator::EmitWindowFrames(const WindowSolution& w, bool final) {
+void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) {
   const int n = static_cast<int>(keyframes_.size());
   const int emit_end = final ? buffer_start_ + static_cast<int>(frames_.size())
                              : keyframes_[n - 2].pos;  // exclusive

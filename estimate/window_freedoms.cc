@@ -135,28 +135,37 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
   return ev;
 }
 
-int ChooseFocalCandidate(const std::vector<double>& e_constant,
-                         const std::vector<std::vector<double>>& e_candidates,
-                         const std::vector<char>& ruled_out, int extra_parameters, double noise_floor) {
+FocalCandidateScores ScoreFocalCandidates(const std::vector<double>& e_constant,
+                                          const std::vector<std::vector<double>>& e_candidates,
+                                          const std::vector<char>& ruled_out, int extra_parameters,
+                                          double noise_floor) {
   std::vector<double> finite;
   for (const auto& e : e_candidates)
     for (double v : e)
       if (std::isfinite(v)) finite.push_back(v);
-  const double sigma = SigmaOf(finite, noise_floor);
-  auto chi2 = [&](const std::vector<double>& e) { return CappedChi2(e, sigma); };
-  int best = -1;
+  FocalCandidateScores s;
+  s.sigma = SigmaOf(finite, noise_floor);
+  s.chi2_constant = CappedChi2(e_constant, s.sigma);
+  s.penalty = BicPenalty(extra_parameters, e_constant.size());
   double best_chi2 = 0;
   for (size_t c = 0; c < e_candidates.size(); ++c) {
+    s.chi2.push_back(CappedChi2(e_candidates[c], s.sigma));
     if (c + 1 < ruled_out.size() && ruled_out[c + 1]) continue;
-    const double x = chi2(e_candidates[c]);
-    if (best < 0 || x < best_chi2) {
-      best = static_cast<int>(c);
-      best_chi2 = x;
+    if (s.best < 0 || s.chi2[c] < best_chi2) {
+      s.best = static_cast<int>(c);
+      best_chi2 = s.chi2[c];
     }
   }
-  if (best < 0) return -1;
-  const double bic0 = chi2(e_constant), bic1 = best_chi2 + BicPenalty(extra_parameters, e_constant.size());
-  return bic1 < bic0 || (!ruled_out.empty() && ruled_out[0]) ? best : -1;
+  if (s.best < 0) return s;
+  const double bic1 = best_chi2 + s.penalty;
+  if (!(bic1 < s.chi2_constant || (!ruled_out.empty() && ruled_out[0]))) s.best = -1;
+  return s;
+}
+
+int ChooseFocalCandidate(const std::vector<double>& e_constant,
+                         const std::vector<std::vector<double>>& e_candidates,
+                         const std::vector<char>& ruled_out, int extra_parameters, double noise_floor) {
+  return ScoreFocalCandidates(e_constant, e_candidates, ruled_out, extra_parameters, noise_floor).best;
 }
 
 bool FitsAsWell(const std::vector<double>& e_reference, const std::vector<double>& e_candidate, double noise_floor) {

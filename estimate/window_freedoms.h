@@ -104,6 +104,18 @@ PromotionEvidence ComparePromotion(const std::vector<BaCamera>& promoted_cams,
 int ChooseFocalCandidate(const std::vector<double>& e_constant,
                          const std::vector<std::vector<double>>& e_candidates,
                          const std::vector<char>& ruled_out, int extra_parameters, double noise_floor);
+// The same with its scores (the window report): chi2 of the constant solve
+// and of each candidate (ruled out or not), the penalty a candidate pays,
+// and the choice (`best`: ChooseFocalCandidate's answer).
+struct FocalCandidateScores {
+  double sigma = 0, chi2_constant = 0, penalty = 0;
+  std::vector<double> chi2;
+  int best = -1;
+};
+FocalCandidateScores ScoreFocalCandidates(const std::vector<double>& e_constant,
+                                          const std::vector<std::vector<double>>& e_candidates,
+                                          const std::vector<char>& ruled_out, int extra_parameters,
+                                          double noise_floor);
 
 // A candidate that moved along a direction the images leave open (a prior
 // chose it) must fit about as well as the solve it came from: its capped

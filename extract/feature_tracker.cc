@@ -12,8 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -22,6 +20,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/diagnostics.h"
 #include "core/error.h"
 #include "extract/appearance_check.h"
 #include "extract/descriptor_relinker.h"
@@ -91,6 +90,7 @@ struct FeatureTracker::Impl {
         appearance(11, o.appearance_lag_frames) {}
 
   TrackerOptions options;
+  Diagnostics* diagnostics = nullptr;  // "cut_cues" records
   ShotDetector shots;
   DescriptorRelinker relinker;
   AppearanceCheck appearance;
@@ -431,18 +431,27 @@ struct FeatureTracker::Impl {
     return ok;
   }
 
-  FrameTracks Process(const Frame& frame) {
-    if (frame.gray.empty() || frame.gray.type() != CV_8UC1)
-      throw Error("frame " + std::to_string(frame.index), "tracker needs a CV_8UC1 gray image");
-    FrameTracks out;
-    out.index = frame.index;
-    out.time_s = frame.time_s;
-    // The index gap since the last frame: > 1 where the decoder skipped frames.
-    out.step = prev_index >= 0 ? std::max(frame.index - prev_index, 1) : 1;
-    prev_index = frame.index;
-    const ShotDecision decision = shots.Update(frame);
+  // One frame's tracking, as the steps of Process() pass it on.
+  struct FrameWork {
+    std::vector<cv::Mat> pyramid;
+    cv::Size size;
+    std::vector<cv::Point2f> points, from;  // tracked points and where they came from
+    std::vector<long> ids;
+    bool had_tracks = false;  // the previous frame had tracks (false: the shot's first tracked frame)
+    size_t before = 0;        // the previous frame's tracks
+    size_t survived = 0;      // KLT survivors (after the collapse's consistency check)
+    size_t relinked = 0;      // tracks the descriptors brought back
+    bool collapsed = false;
+    RelinkResult relink;
+    std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id (klt_predict)
+    std::vector<float> klt_disp;                  // for the transition-run statistics
+  };
+
+  // The shot boundary of this frame: a cut or fade starts a new shot unless
+  // tracked camera motion or a fade through black within the shot explains it.
+  void DecideBoundary(const Frame& frame, const ShotDecision& decision, FrameTracks* out) {
     if (first) {
-      out.boundary = ShotBoundary::kStart;
+      out->boundary = ShotBoundary::kStart;
       first = false;
     } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.cols)) {
       // Gradual change explained by tracked motion: same shot, keep tracking.
@@ -455,7 +464,7 @@ struct FeatureTracker::Impl {
       // matches the last good frame before it, so the shot goes on and the
       // re-linked tracks carry the motion made in the dark.
     } else if (decision.boundary != ShotBoundary::kNone) {
-      out.boundary = decision.boundary;
+      out->boundary = decision.boundary;
       ++shot;
       DropTracks();
       bridge = {};
@@ -464,177 +473,215 @@ struct FeatureTracker::Impl {
       run_tracked = true;
       run_motion_px = 0;
     }
-    out.shot = shot;
-    out.blank = decision.blank;
-    out.transition = decision.transition;
-    if (decision.blank) {
-      // Tracks end, but the relinker keeps the last good frame before the
-      // black, to bridge a fade through black (above).
-      prev_pyramid.clear();
-      prev_points.clear();
-      prev_velocity.clear();
-      motion_last = motion_before = {kNoMotion, kNoMotion};
-      prev_ids.clear();
-      after_blank = true;
-      return out;
-    }
-    after_blank = false;
+    out->shot = shot;
+    out->blank = decision.blank;
+    out->transition = decision.transition;
+  }
 
-    const cv::Size size = frame.gray.size();
-    std::vector<cv::Mat> pyramid = std::move(spare_pyramid);
-    cv::buildOpticalFlowPyramid(frame.gray, pyramid, Window(), options.pyramid_levels - 1, true);
+  // Tracks end at a blank frame, but the relinker keeps the last good frame
+  // before the black, to bridge a fade through black (DecideBoundary).
+  void EndTracksAtBlank() {
+    prev_pyramid.clear();
+    prev_points.clear();
+    prev_velocity.clear();
+    motion_last = motion_before = {kNoMotion, kNoMotion};
+    prev_ids.clear();
+    after_blank = true;
+  }
 
-    std::vector<cv::Point2f> points, from;
-    std::vector<long> ids;
-    bool had_tracks = !prev_points.empty();
-    const size_t before = prev_points.size();
-    step = out.step;
-    Track(pyramid, size, &points, &ids, &from);
-    std::unordered_map<long, cv::Point2f> moved;  // this frame's KLT displacement per id (klt_predict)
+  // KLT from the last frame, with the displacements the prediction and the
+  // transition-run statistics need.
+  void TrackFromLastFrame(const Frame& frame, bool transition, FrameWork* w) {
+    w->size = frame.gray.size();
+    w->pyramid = std::move(spare_pyramid);
+    cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
+    w->had_tracks = !prev_points.empty();
+    w->before = prev_points.size();
+    Track(w->pyramid, w->size, &w->points, &w->ids, &w->from);
     if (options.klt_predict)  // per frame (x 1 exactly when no frame was skipped)
-      for (size_t i = 0; i < points.size(); ++i) moved.emplace(ids[i], (points[i] - from[i]) * (1.0f / step));
-    size_t survived = points.size();
-    std::vector<float> klt_disp;  // for the transition-run statistics
-    if (decision.transition)
-      for (size_t i = 0; i < points.size(); ++i) klt_disp.push_back(static_cast<float>(cv::norm(points[i] - from[i])));
+      for (size_t i = 0; i < w->points.size(); ++i)
+        w->moved.emplace(w->ids[i], (w->points[i] - w->from[i]) * (1.0f / step));
+    w->survived = w->points.size();
+    if (transition)
+      for (size_t i = 0; i < w->points.size(); ++i)
+        w->klt_disp.push_back(static_cast<float>(cv::norm(w->points[i] - w->from[i])));
+    w->collapsed = w->had_tracks && w->before >= kMinTracksForCollapse && w->survived < kCollapseFraction * w->before;
+  }
 
-    size_t relinked = 0;
-    const bool collapsed =
-        had_tracks && before >= kMinTracksForCollapse && survived < kCollapseFraction * before;
-    RelinkResult r;
+  // The re-links across a fade through black, refined against the keyframe
+  // on a copy of this frame with the keyframe's mean and contrast (a fade-in
+  // is dimmer, and LK assumes constant brightness). Too few refined: the
+  // matched corners.
+  RelinkResult BridgeFade(const Frame& frame, cv::Size size) {
+    RelinkResult r = std::move(bridge);
+    bridge = {};
+    cv::Scalar key_mean, key_std, cur_mean, cur_std;
+    cv::meanStdDev(relinker.key_gray(), key_mean, key_std);
+    cv::meanStdDev(frame.gray, cur_mean, cur_std);
+    const double gain = key_std[0] / std::max(cur_std[0], 1e-3);
+    cv::Mat matched;
+    frame.gray.convertTo(matched, -1, gain, key_mean[0] - gain * cur_mean[0]);
+    std::vector<cv::Mat> matched_pyramid;
+    cv::buildOpticalFlowPyramid(matched, matched_pyramid, Window(), options.pyramid_levels - 1, true);
+    RelinkResult refined = r;
+    RefineRelinked(matched_pyramid, size, &refined);
+    if (refined.points.size() >= kMinTracksForCollapse) r = std::move(refined);
+    return r;
+  }
+
+  // Descriptor recovery (after a fade through black, or a collapse), and
+  // the re-linked tracks added to the survivors.
+  void Recover(const Frame& frame, FrameTracks* out, FrameWork* w) {
     if (!bridge.points.empty()) {
-      // Sub-pixel refinement against the keyframe, on a copy of this frame
-      // with the keyframe's mean and contrast (a fade-in is dimmer, and LK
-      // assumes constant brightness). Too few refined: the matched corners.
-      r = std::move(bridge);
-      bridge = {};
-      cv::Scalar key_mean, key_std, cur_mean, cur_std;
-      cv::meanStdDev(relinker.key_gray(), key_mean, key_std);
-      cv::meanStdDev(frame.gray, cur_mean, cur_std);
-      const double gain = key_std[0] / std::max(cur_std[0], 1e-3);
-      cv::Mat matched;
-      frame.gray.convertTo(matched, -1, gain, key_mean[0] - gain * cur_mean[0]);
-      std::vector<cv::Mat> matched_pyramid;
-      cv::buildOpticalFlowPyramid(matched, matched_pyramid, Window(), options.pyramid_levels - 1, true);
-      RelinkResult refined = r;
-      RefineRelinked(matched_pyramid, size, &refined);
-      if (refined.points.size() >= kMinTracksForCollapse) r = std::move(refined);
-    } else if (collapsed && options.descriptor_recovery && relinker.has_keyframe()) {
-      r = relinker.Relink(frame.gray, 2 * options.max_tracks);
-      if (!r.points.empty()) RefineRelinked(pyramid, size, &r);
+      w->relink = BridgeFade(frame, w->size);
+    } else if (w->collapsed && options.descriptor_recovery && relinker.has_keyframe()) {
+      w->relink = relinker.Relink(frame.gray, 2 * options.max_tracks);
+      if (!w->relink.points.empty()) RefineRelinked(w->pyramid, w->size, &w->relink);
     }
-    if (collapsed) {
+    if (w->collapsed) {
       // The few KLT "survivors" of a collapse are suspect: LK can converge
       // to a look-alike patch in both directions. Keep those that agree with
       // the recovered motion, or, without one, with each other.
-      if (!r.current_from_key.empty())
-        relinker.KeepConsistent(r.current_from_key, 3.0, &points, &ids);
+      if (!w->relink.current_from_key.empty())
+        relinker.KeepConsistent(w->relink.current_from_key, 3.0, &w->points, &w->ids);
       else
-        KeepMutuallyConsistent(from, &points, &ids);
-      survived = points.size();
+        KeepMutuallyConsistent(w->from, &w->points, &w->ids);
+      w->survived = w->points.size();
     }
-    if (!r.points.empty()) {
-      std::unordered_set<long> alive(ids.begin(), ids.end());
-      for (size_t i = 0; i < r.points.size(); ++i) {
-        if (alive.count(r.ids[i])) continue;
-        points.push_back(r.points[i]);
-        ids.push_back(r.ids[i]);
-        alive.insert(r.ids[i]);
-        ++relinked;
-      }
-      out.recovered = relinked > 0;
+    const RelinkResult& r = w->relink;
+    if (r.points.empty()) return;
+    std::unordered_set<long> alive(w->ids.begin(), w->ids.end());
+    for (size_t i = 0; i < r.points.size(); ++i) {
+      if (alive.count(r.ids[i])) continue;
+      w->points.push_back(r.points[i]);
+      w->ids.push_back(r.ids[i]);
+      alive.insert(r.ids[i]);
+      ++w->relinked;
     }
-    // HAPCINE_CUT_DEBUG=1: the cues of the look-alike cut test, per frame.
-    static const bool cut_debug = std::getenv("HAPCINE_CUT_DEBUG") != nullptr;
-    if (cut_debug)
-      std::fprintf(stderr,
-                   "cut_debug frame %d distance %.3f spike %d transition %d tracks %zu kept %zu "
-                   "collapsed %d relinked %zu relink_failed %d\n",
-                   frame.index, decision.distance, decision.spike, decision.transition, before, survived,
-                   collapsed, relinked, static_cast<int>(r.current_from_key.empty()));
-    if (had_tracks && IsLookAlikeCut(decision, collapsed, before, survived, r)) {
-      StartShotAtThisFrame(&out, &points, &ids);
-      had_tracks = false;  // counts as the shot's first tracked frame
+    out->recovered = w->relinked > 0;
+  }
+
+  // A look-alike cut starts a new shot here; otherwise a transition-flagged
+  // frame adds to its run's statistics.
+  void CheckCut(const Frame& frame, const ShotDecision& decision, FrameTracks* out, FrameWork* w) {
+    if (Wants(diagnostics, "cut_cues"))
+      diagnostics->Record("cut_cues", {{"frame", frame.index}, {"distance", decision.distance},
+                                       {"spike", decision.spike}, {"transition", decision.transition},
+                                       {"tracks", w->before}, {"kept", w->survived}, {"collapsed", w->collapsed},
+                                       {"relinked", w->relinked}, {"relink_failed", w->relink.current_from_key.empty()}});
+    if (w->had_tracks && IsLookAlikeCut(decision, w->collapsed, w->before, w->survived, w->relink)) {
+      StartShotAtThisFrame(out, &w->points, &w->ids);
+      w->had_tracks = false;  // counts as the shot's first tracked frame
     } else if (decision.transition) {
-      if (relinked > 0 && klt_disp.size() < kMotionRunSurvival * static_cast<double>(before)) {
-        klt_disp.clear();  // KLT collapsed: the re-links carry the motion
+      const RelinkResult& r = w->relink;
+      if (w->relinked > 0 && w->klt_disp.size() < kMotionRunSurvival * static_cast<double>(w->before)) {
+        w->klt_disp.clear();  // KLT collapsed: the re-links carry the motion
         for (size_t i = 0; i < r.points.size(); ++i)
-          klt_disp.push_back(static_cast<float>(cv::norm(r.points[i] - r.key_points[i])));
+          w->klt_disp.push_back(static_cast<float>(cv::norm(r.points[i] - r.key_points[i])));
       }
-      AccumulateRun(before, survived + relinked, std::move(klt_disp), frame.gray.cols);
+      AccumulateRun(w->before, w->survived + w->relinked, std::move(w->klt_disp), frame.gray.cols);
     }
+  }
 
-    // Not after a collapse (blur changes every patch; the references stay
-    // those of the last ordinary frame). Transition-flagged frames are
-    // checked: the flag is also raised by camera moves that bring new colours
-    // into view (synth crane_shot), where the check is needed.
-    if (options.appearance_min_ncc > 0 && !collapsed && relinked == 0)
-      DropChangedAppearance(frame.gray, &points, &ids);
-
-    // Top up when well below max_tracks and either the count fell since the
-    // last top-up (tracks died) or a while has passed (new texture may have
-    // come into view). Low-texture pictures never reach max_tracks; without
-    // this they would pay for a full detection every frame.
-    const size_t verified = points.size();
+  // Top up when well below max_tracks and either the count fell since the
+  // last top-up (tracks died) or a while has passed (new texture may have
+  // come into view). Low-texture pictures never reach max_tracks; without
+  // this they would pay for a full detection every frame.
+  void TopUpIfThin(const Frame& frame, FrameWork* w) {
     ++frames_since_detect;
-    if (points.size() < 0.9 * options.max_tracks &&
-        (!had_tracks || points.size() < 0.9 * tracks_after_detect || frames_since_detect >= 8)) {
-      const size_t n0 = points.size();
-      TopUp(frame.gray, pyramid, &points, &ids);
-      if (options.appearance_min_ncc > 0)
-        for (size_t i = n0; i < points.size(); ++i) appearance.Born(frame.gray, points[i], ids[i]);
-      tracks_after_detect = points.size();
-      frames_since_detect = 0;
-    }
+    if (!(w->points.size() < 0.9 * options.max_tracks &&
+          (!w->had_tracks || w->points.size() < 0.9 * tracks_after_detect || frames_since_detect >= 8)))
+      return;
+    const size_t n0 = w->points.size();
+    TopUp(frame.gray, w->pyramid, &w->points, &w->ids);
+    if (options.appearance_min_ncc > 0)
+      for (size_t i = n0; i < w->points.size(); ++i) appearance.Born(frame.gray, w->points[i], w->ids[i]);
+    tracks_after_detect = w->points.size();
+    frames_since_detect = 0;
+  }
 
-    // Quality: verified (tracked or re-linked) share of the wanted tracks;
-    // on a shot's first tracked frame nothing can be verified yet, so the
-    // detections count.
-    const size_t counted = had_tracks ? verified : points.size();
-    out.quality = std::min(1.0, static_cast<double>(counted) / options.max_tracks);
-    if (decision.transition) out.quality = std::min(out.quality, kTransitionQualityCap);
-
-    // Keyframe for recovery: the last frame where tracking was healthy.
-    const bool healthy = had_tracks ? (before > 0 && survived >= kGoodSurvival * before &&
-                                       survived >= kMinTracksForCollapse)
-                                    : points.size() >= kMinTracksForCollapse;
-    if (healthy || (out.recovered && relinked >= kMinTracksForCollapse))
-      relinker.SetKeyframe(frame.gray, points, ids);
-
-    // Output in decoded-frame pixels (pixel-centre convention).
-    const double sx =
-        frame.decoded_width > 0 ? double(size.width) / frame.decoded_width : frame.scale;
-    const double sy =
-        frame.decoded_height > 0 ? double(size.height) / frame.decoded_height : frame.scale;
-    out.points.reserve(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
+  // The tracks in decoded-frame pixels (pixel-centre convention).
+  static void WriteTracks(const Frame& frame, const FrameWork& w, FrameTracks* out) {
+    const double sx = frame.decoded_width > 0 ? double(w.size.width) / frame.decoded_width : frame.scale;
+    const double sy = frame.decoded_height > 0 ? double(w.size.height) / frame.decoded_height : frame.scale;
+    out->points.reserve(w.points.size());
+    for (size_t i = 0; i < w.points.size(); ++i) {
       TrackPoint tp;
-      tp.track_id = ids[i];
-      tp.px = Eigen::Vector2d((points[i].x + 0.5) / sx - 0.5, (points[i].y + 0.5) / sy - 0.5);
-      out.points.push_back(tp);
+      tp.track_id = w.ids[i];
+      tp.px = Eigen::Vector2d((w.points[i].x + 0.5) / sx - 0.5, (w.points[i].y + 0.5) / sy - 0.5);
+      out->points.push_back(tp);
     }
+  }
 
+  // This frame becomes the previous one for the next.
+  void KeepForNextFrame(FrameWork* w) {
     spare_pyramid = std::move(prev_pyramid);
-    prev_pyramid = std::move(pyramid);
-    prev_size = size;
+    prev_pyramid = std::move(w->pyramid);
+    prev_size = w->size;
     if (options.klt_predict) {
-      prev_velocity.assign(ids.size(), cv::Point2f(kNoMotion, kNoMotion));
-      for (size_t i = 0; i < ids.size(); ++i) {
-        const auto it = moved.find(ids[i]);
-        if (it != moved.end()) prev_velocity[i] = it->second;
+      prev_velocity.assign(w->ids.size(), cv::Point2f(kNoMotion, kNoMotion));
+      for (size_t i = 0; i < w->ids.size(); ++i) {
+        const auto it = w->moved.find(w->ids[i]);
+        if (it != w->moved.end()) prev_velocity[i] = it->second;
       }
       motion_before = motion_last;
       motion_last = MedianMotion(prev_velocity);
     }
-    prev_points = std::move(points);
-    prev_ids = std::move(ids);
+    prev_points = std::move(w->points);
+    prev_ids = std::move(w->ids);
+  }
+
+  FrameTracks Process(const Frame& frame) {
+    if (frame.gray.empty() || frame.gray.type() != CV_8UC1)
+      throw Error("frame " + std::to_string(frame.index), "tracker needs a CV_8UC1 gray image");
+    FrameTracks out;
+    out.index = frame.index;
+    out.time_s = frame.time_s;
+    // The index gap since the last frame: > 1 where the decoder skipped frames.
+    out.step = prev_index >= 0 ? std::max(frame.index - prev_index, 1) : 1;
+    prev_index = frame.index;
+    const ShotDecision decision = shots.Update(frame);
+    DecideBoundary(frame, decision, &out);
+    if (decision.blank) {
+      EndTracksAtBlank();
+      return out;
+    }
+    after_blank = false;
+    step = out.step;
+    FrameWork w;
+    TrackFromLastFrame(frame, decision.transition, &w);
+    Recover(frame, &out, &w);
+    CheckCut(frame, decision, &out, &w);
+    // Not after a collapse (blur changes every patch; the references stay
+    // those of the last ordinary frame). Transition-flagged frames are
+    // checked: the flag is also raised by camera moves that bring new colours
+    // into view (synth crane_shot), where the check is needed.
+    if (options.appearance_min_ncc > 0 && !w.collapsed && w.relinked == 0)
+      DropChangedAppearance(frame.gray, &w.points, &w.ids);
+    const size_t verified = w.points.size();
+    TopUpIfThin(frame, &w);
+    // Quality: verified (tracked or re-linked) share of the wanted tracks;
+    // on a shot's first tracked frame nothing can be verified yet, so the
+    // detections count.
+    const size_t counted = w.had_tracks ? verified : w.points.size();
+    out.quality = std::min(1.0, static_cast<double>(counted) / options.max_tracks);
+    if (decision.transition) out.quality = std::min(out.quality, kTransitionQualityCap);
+    // Keyframe for recovery: the last frame where tracking was healthy.
+    const bool healthy = w.had_tracks ? (w.before > 0 && w.survived >= kGoodSurvival * w.before &&
+                                         w.survived >= kMinTracksForCollapse)
+                                      : w.points.size() >= kMinTracksForCollapse;
+    if (healthy || (out.recovered && w.relinked >= kMinTracksForCollapse))
+      relinker.SetKeyframe(frame.gray, w.points, w.ids);
+    WriteTracks(frame, w, &out);
+    KeepForNextFrame(&w);
     return out;
   }
 };
 
-FeatureTracker::FeatureTracker(const TrackerOptions& options) {
+FeatureTracker::FeatureTracker(const TrackerOptions& options, Diagnostics* diagnostics) {
   options.Check();
   impl_ = std::make_unique<Impl>(options);
+  impl_->diagnostics = diagnostics;
 }
 
 FeatureTracker::~FeatureTracker() = default;

@@ -48,9 +48,13 @@ struct TrackerOptions {
   void Check() const;              // throws UsageError
 };
 
+class Diagnostics;
+
 class FeatureTracker {
  public:
-  explicit FeatureTracker(const TrackerOptions& options = {});
+  // `diagnostics`: where the look-alike cut test's cues go, one "cut_cues"
+  // record per tracked frame when wanted (core/diagnostics.h); not owned.
+  explicit FeatureTracker(const TrackerOptions& options = {}, Diagnostics* diagnostics = nullptr);
   ~FeatureTracker();
   // Processes the next frame (frames must come in order) and returns its tracks.
   FrameTracks Process(const Frame& frame);

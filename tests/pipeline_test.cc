@@ -191,6 +191,78 @@ TEST_F(PipelineTest, BatchHandlesAFilmWithANewlineInItsName) {
   EXPECT_FALSE(track.samples.empty());
 }
 
+// `estimate --report`: the per-window JSON (docs/formats.md "Estimate
+// report"), on a travelling clip (general windows: candidate solves).
+TEST_F(PipelineTest, EstimateReportListsEveryWindowsCandidatesModelAndSolve) {
+  const fs::path dir = dir_ / "report";
+  fs::create_directories(dir);
+  RunResult r = RunHapcine("synth traveling --width 480 --height 270 --duration-s 2 -o " + Quote(dir), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path est = dir / "traveling.est.camera.csv", report_path = dir / "traveling.report.json";
+  r = RunHapcine("estimate -q " + Quote(dir / "traveling.mp4") + " -o " + Quote(est) + " --window 24 --report " +
+                     Quote(report_path),
+                 dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // the algorithms print nothing
+  EXPECT_EQ(CountFilesStartingWith(dir, "traveling.report.json"), 1);  // no temporary left
+  std::ifstream in(report_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report.at("format"), "hapcine-estimate-report");
+  EXPECT_EQ(report.at("version"), 1);
+  EXPECT_EQ(report.at("frames").get<size_t>(), hapcine::ReadCameraPathFile(est.string()).frames.size());
+  std::vector<std::string> stages;
+  for (const auto& s : report.at("stages")) {
+    stages.push_back(s.at("name"));
+    EXPECT_GE(s.at("wall_s").get<double>(), 0);
+    EXPECT_GE(s.at("thread_cpu_s").get<double>(), 0);
+  }
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "tracking done"), stages.end());
+  EXPECT_EQ(stages.back(), "estimation done");
+  const auto& windows = report.at("windows");
+  ASSERT_GE(windows.size(), 2u);  // 2 s at --window 24
+  int focal_candidates = 0, previous_last = -1;
+  for (const auto& w : windows) {
+    EXPECT_EQ(w.at("shot"), 0);
+    EXPECT_GT(w.at("last_frame").get<int>(), previous_last);
+    previous_last = w.at("last_frame");
+    EXPECT_TRUE(w.at("model").is_string());
+    EXPECT_GT(w.at("points").get<int>(), 0);
+    EXPECT_GT(w.at("observations").get<int>(), 0);
+    EXPECT_LT(w.at("rms_px").get<double>(), 2.0);
+    const auto& ba = w.at("ba");
+    EXPECT_TRUE(ba.at("success").get<bool>());
+    EXPECT_GT(ba.at("iterations").get<int>(), 0);
+    EXPECT_LE(ba.at("final_cost").get<double>(), ba.at("initial_cost").get<double>());
+    EXPECT_FALSE(ba.at("termination").get<std::string>().empty());
+    int interval_inliers = 0;
+    for (const auto& k : w.at("keyframes")) {
+      EXPECT_TRUE(k.at("model").is_string());
+      if (k.contains("inliers")) {
+        interval_inliers += k.at("inliers").get<int>();
+        EXPECT_LE(k.at("inliers").get<int>(), k.at("correspondences").get<int>());
+        EXPECT_TRUE(k.at("gric").contains("essential"));
+      }
+    }
+    EXPECT_GT(interval_inliers, 0);
+    for (const auto& c : w.at("candidates")) {
+      EXPECT_TRUE(c.at("score").is_number());
+      EXPECT_TRUE(c.at("chosen").is_boolean());
+      if (c.at("test") == "focal") ++focal_candidates;
+    }
+    EXPECT_TRUE(w.at("timings_s").contains("constant_focal_solve"));
+  }
+  EXPECT_GT(focal_candidates, 0) << "a travelling window compares a per-keyframe focal";
+  // The report changes nothing in the camera path.
+  const fs::path plain = dir / "traveling.plain.camera.csv";
+  r = RunHapcine("estimate -q " + Quote(dir / "traveling.mp4") + " -o " + Quote(plain) + " --window 24", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream a(est), b(plain);
+  std::stringstream sa, sb;
+  sa << a.rdbuf();
+  sb << b.rdbuf();
+  EXPECT_EQ(sa.str(), sb.str());
+}
+
 TEST_F(PipelineTest, EstimateRejectsBadVideosWithOneLineAndNoOutput) {
   const fs::path empty = dir_ / "empty file.mp4";
   std::ofstream(empty).close();
