@@ -68,7 +68,7 @@ class EstimateProgress {
 int RunEstimate(int argc, char** argv) {
   CLI::App app{
       "Estimate the camera path (rotation, translation, zoom) of a video and write it as a "
-      "*.camera.csv file (docs/estimate.md, camera-path spec). Per shot and segment the simplest "
+      "*.camera.csv file (docs/estimate.md; the format: docs/formats.md). Per shot and segment the simplest "
       "motion model is chosen (static, zoom, rotation, rotation+zoom, general, general+zoom).",
       argv[0]};
   std::string video, output;
@@ -84,6 +84,17 @@ int RunEstimate(int argc, char** argv) {
       ->required();
   app.add_option("-o,--output", output, "output camera path (*.camera.csv), written atomically")
       ->required();
+  app.add_flag("--fast", fast,
+               "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
+                   "; options given beside it win");
+  app.add_flag("--draft", draft,
+               "~1.4x decoding time, least accurate (docs/estimate.md \"Accuracy\"): " +
+                   DraftPresetSummary() + "; options given beside it win");
+  app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
+               "decode only the frames others are predicted from (about half of H.264/HEVC "
+               "with B-frames): faster; the skipped frames' poses are interpolated between "
+               "their neighbours' at lower confidence; ~2.3x decoding time instead of ~3.2x "
+               "(docs/estimate.md \"Accuracy\")");
   app.add_option("--backend", opt.backend,
                  "hapcine: tracks + model selection + bundle adjustment; colmap: COLMAP "
                  "incremental SfM (needs translation to initialise)")
@@ -112,16 +123,6 @@ int RunEstimate(int argc, char** argv) {
                  "drop a window's track whole when its reprojection RMS exceeds this (pixels at "
                  "960 px width; occlusion-edge tracks)")
       ->capture_default_str();
-  app.add_option("--window-lead-in", opt.estimator.window_lead_in_frames,
-                 "hold the previous window's last N frames' keyframes constant in the next window "
-                 "(0: two keyframes), so tracks are judged over a longer baseline; experimental, no "
-                 "gain measured on the synthetic clips (docs/estimate.md)")
-      ->capture_default_str();
-  app.add_option("--depth-layer-cut", opt.estimator.depth_layer_cut,
-                 "after the RMS cut, also drop a translating window's tracks whose depth lies "
-                 "between the two depth layers of their neighbourhood (occlusion-edge corners); "
-                 "experimental, no gain measured on the synthetic clips (docs/estimate.md)")
-      ->capture_default_str();
   bool no_freedom_test = false;
   app.add_flag("--no-freedom-test", no_freedom_test,
                "keep the two-view labels: no window-level BIC test of a few translating (or "
@@ -138,11 +139,6 @@ int RunEstimate(int argc, char** argv) {
                  "(motion blur): px of noise per px/frame of motion, added in quadrature "
                  "(0: off; docs/estimate.md, step 4)")
       ->capture_default_str();
-  app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
-               "score the two-view models with a track-noise covariance measured from the rough "
-               "part of the rotation fit's residuals (blur along a whip pan is then not read as "
-               "translation); experimental: small irregular parallax is read as noise too "
-               "(docs/estimate.md)");
   app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
                  "horizontal field of view, degrees, assumed where the focal length cannot be "
                  "observed (no rotation)")
@@ -156,23 +152,12 @@ int RunEstimate(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--threads", opt.estimator.num_threads, "Ceres solver threads")
       ->capture_default_str();
-  app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
-               "decode only the frames others are predicted from (about half of H.264/HEVC "
-               "with B-frames): faster; the skipped frames' poses are interpolated between "
-               "their neighbours' at lower confidence; ~2.3x decoding time instead of ~3.2x "
-               "(docs/estimate.md \"Status\")");
   app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,
                "skip H.264/HEVC deblocking when decoding: ~10 % cheaper decoding, slightly "
                "blockier analysis images");
   app.add_option("--decode-threads", opt.frames.decode_threads,
                  "FFmpeg decoder threads (0 = FFmpeg's choice); decoding runs beside tracking")
       ->capture_default_str();
-  app.add_flag("--fast", fast,
-               "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
-                   "; options given beside it win");
-  app.add_flag("--draft", draft,
-               "~1.4x decoding time, least accurate (docs/estimate.md \"Status\"): " +
-                   DraftPresetSummary() + "; options given beside it win");
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
       ->capture_default_str();
   bool no_klt_predict = false;
@@ -188,17 +173,18 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--klt-coarse-step", opt.tracker.klt_coarse_step_px,
                  "KLT stop step on the coarser pyramid levels, pixels of that level")
       ->group("");
-  app.add_option("--appearance-min-ncc", opt.tracker.appearance_min_ncc,
-                 "end tracks whose patch NCC with their earlier patch falls below this (0: off)")
-      ->group("");
-  app.add_option("--appearance-lag", opt.tracker.appearance_lag_frames,
-                 "frames back to the reference patch of the appearance check (0: birth)")
-      ->group("");
   app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
       ->group("");
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress output");
+  // What most users need stays on top of --help; the algorithm's knobs
+  // (docs/estimate.md, "Options") are listed after them.
+  for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
+                           "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
+                           "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
+                           "--no-klt-predict", "--skip-loop-filter", "--decode-threads"})
+    app.get_option(name)->group("Tuning");
 
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;

@@ -18,8 +18,6 @@ void TwoViewOptions::Check() const {
   if (!(inlier_threshold > 0)) throw UsageError("two-view inlier_threshold must be > 0");
   if (min_correspondences < 8) throw UsageError("two-view min_correspondences must be >= 8");
   if (!(focal_search_range > 1)) throw UsageError("two-view focal_search_range must be > 1");
-  if (noise_neighbours < 1) throw UsageError("two-view noise_neighbours must be >= 1");
-  if (!(max_noise_sigma > 0)) throw UsageError("two-view max_noise_sigma must be > 0");
   ransac.Check();
 }
 
@@ -31,49 +29,6 @@ double Gric(const std::vector<double>& sq, double sigma, int d, int k) {
   double sum = 0;
   for (double e2 : sq) sum += std::isfinite(e2) ? std::min(e2 / s2, cap) : cap;
   return sum + std::log(r) * d * n + std::log(r * std::max(n, 1.0)) * k;
-}
-
-Eigen::Matrix2d TrackNoiseCovariance(const std::vector<Eigen::Vector2d>& at,
-                                     const std::vector<Eigen::Vector2d>& residual, int neighbours,
-                                     double min_sigma, double max_sigma) {
-  const int n = static_cast<int>(at.size());
-  Eigen::Matrix2d cov = min_sigma * min_sigma * Eigen::Matrix2d::Identity();
-  if (n < 2 * neighbours + 2 || neighbours < 1) return cov;
-  // The rough part: each residual minus the mean of its neighbours'. A
-  // smooth field (parallax, a slightly wrong focal) cancels; independent
-  // tracking noise stays, with (1 + 1/k) times its variance.
-  std::vector<Eigen::Vector2d> rough(n);
-  std::vector<std::pair<double, int>> dist(n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) dist[j] = {j == i ? HUGE_VAL : (at[j] - at[i]).squaredNorm(), j};
-    std::nth_element(dist.begin(), dist.begin() + neighbours - 1, dist.end());
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (int k = 0; k < neighbours; ++k) mean += residual[dist[k].second];
-    rough[i] = residual[i] - mean / neighbours;
-  }
-  // Principal axes from the smaller three quarters (depth edges and
-  // outliers are the rest), then a robust scale (MAD) along each axis.
-  std::vector<double> norm2(n);
-  for (int i = 0; i < n; ++i) norm2[i] = rough[i].squaredNorm();
-  std::vector<double> sorted = norm2;
-  std::nth_element(sorted.begin(), sorted.begin() + 3 * n / 4, sorted.end());
-  const double cut = sorted[3 * n / 4];
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (int i = 0; i < n; ++i)
-    if (norm2[i] <= cut) scatter += rough[i] * rough[i].transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-  // Per view: a homography-type residual carries the noise of both views.
-  const double per_view = 1.0 / (2.0 * (1.0 + 1.0 / neighbours));
-  Eigen::Matrix2d out = Eigen::Matrix2d::Zero();
-  for (int a = 0; a < 2; ++a) {
-    const Eigen::Vector2d v = eig.eigenvectors().col(a);
-    std::vector<double> proj(n);
-    for (int i = 0; i < n; ++i) proj[i] = std::abs(rough[i].dot(v));
-    const double mad = 1.4826 * Median(proj, 0.0);
-    const double var = std::clamp(mad * mad * per_view, min_sigma * min_sigma, std::max(min_sigma, max_sigma) * std::max(min_sigma, max_sigma));
-    out += var * v * v.transpose();
-  }
-  return out;
 }
 
 namespace {
@@ -221,66 +176,6 @@ TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
   result.gric[kCandRotationZoom] = Gric(e_rz, sigma, 2, 5);
   result.gric[kCandEssential] = ess.success ? Gric(e_ess, sigma, 3, 5) : HUGE_VAL;
   result.gric[kCandHomography] = hom.success ? Gric(e_hom, sigma, 2, 8) : HUGE_VAL;
-  if (options.anisotropic_noise) {
-    // Tracking noise is not always isotropic: motion blur spreads a track
-    // along the motion, a fading picture along its edges. Measured as one
-    // sigma from the essential matrix (which lets matches slide along its
-    // epipolar lines) it is only the noise across those lines, and an
-    // epipolar direction along the blur then "explains" the rest as
-    // translation (whip pan: t = (+-1, 0, 0) on every blurred pair). So the
-    // noise covariance is measured from the rough part of the rotation
-    // model's residuals and every candidate is scored in whitened units.
-    std::vector<Eigen::Vector2d> at, res;
-    for (int i = 0; i < n; ++i) {
-      const bool use = ess.success ? ess.inlier_mask[i] != 0 : e_rot[i] <= thr * thr;
-      if (!use || !std::isfinite(e_rot[i])) continue;
-      const Eigen::Vector3d p = R_rot * (u1[i] / f_rot).homogeneous();
-      at.push_back(u1[i]);
-      res.push_back(u2[i] - f_rot * p.hnormalized());
-    }
-    const Eigen::Matrix2d cov = TrackNoiseCovariance(at, res, options.noise_neighbours, sigma, options.max_noise_sigma);
-    const Eigen::Matrix2d info = cov.inverse();
-    auto whiten = [&](const std::vector<double>& e, auto predict) {
-      std::vector<double> w(n);
-      for (int i = 0; i < n; ++i) {
-        if (!std::isfinite(e[i])) {
-          w[i] = e[i];
-          continue;
-        }
-        const Eigen::Vector2d r = u2[i] - predict(u1[i]);
-        w[i] = 0.5 * r.dot(info * r);
-      }
-      return w;
-    };
-    auto homography = [](const Eigen::Matrix3d& H) {
-      return [H](const Eigen::Vector2d& x) -> Eigen::Vector2d { return (H * x.homogeneous()).hnormalized(); };
-    };
-    const Eigen::Matrix3d K_rot = Eigen::Vector3d(f_rot, f_rot, 1).asDiagonal();
-    const Eigen::Matrix3d K1_rz = Eigen::Vector3d(f1_rz, f1_rz, 1).asDiagonal();
-    const Eigen::Matrix3d K2_rz = Eigen::Vector3d(f2_rz, f2_rz, 1).asDiagonal();
-    const auto w_static = whiten(e_static, homography(Eigen::Matrix3d::Identity()));
-    const auto w_zoom = whiten(e_zoom, homography(Eigen::Vector3d(s, s, 1).asDiagonal()));
-    const auto w_rot = whiten(e_rot, homography(K_rot * R_rot * K_rot.inverse()));
-    const auto w_rz = whiten(e_rz, homography(K2_rz * R_rz * K1_rz.inverse()));
-    const auto w_hom = hom.success ? whiten(e_hom, homography(hom.model)) : e_hom;
-    // Sampson distance with the noise covariance (calibrated coordinates).
-    std::vector<double> w_ess(n, std::numeric_limits<double>::infinity());
-    const Eigen::Matrix2d cov_c = cov / (f1 * f1);
-    for (int i = 0; ess.success && i < n; ++i) {
-      const Eigen::Vector3d p = c1[i].homogeneous(), q = c2[i].homogeneous();
-      const Eigen::Vector3d Ep = ess.model * p, Etq = ess.model.transpose() * q;
-      const double num = q.dot(Ep);
-      const double den = Ep.head<2>().dot(cov_c * Ep.head<2>()) + Etq.head<2>().dot(cov_c * Etq.head<2>());
-      if (den > 1e-300) w_ess[i] = num * num / den;
-    }
-    result.gric[kCandStatic] = Gric(w_static, 1, 2, 0);
-    result.gric[kCandZoom] = zoom.success ? Gric(w_zoom, 1, 2, 1) : HUGE_VAL;
-    result.gric[kCandRotation] = Gric(w_rot, 1, 2, 4);
-    result.gric[kCandRotationZoom] = Gric(w_rz, 1, 2, 5);
-    result.gric[kCandEssential] = ess.success ? Gric(w_ess, 1, 3, 5) : HUGE_VAL;
-    result.gric[kCandHomography] = hom.success ? Gric(w_hom, 1, 2, 8) : HUGE_VAL;
-    result.noise_cov = cov;
-  }
   int best = 0;
   for (int c = 1; c < kNumCandidates; ++c)
     if (result.gric[c] < result.gric[best]) best = c;

@@ -154,7 +154,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   init_points(cams, &points, &obs);
 
   BaOptions ba;
-  ba.huber_scale = 1.0 / 960;
+  ba.huber_scale = 1.0 / kReferenceWidthPx;
   ba.focal_prior_log = prior_log_focal_;
   ba.fix_first_focal = !focal_observable;
   ba.use_depth = has_translation;
@@ -179,8 +179,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
 
   // Every solve drops what the fit cannot explain and polishes
   // (robust_bundle.h); the whole-track test comes after the model choice.
-  auto polish_on = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, const std::vector<BaObservation>& o,
-                       BaSummary* s) { PolishBundle(ba, c, p, o, s); };
   auto solve = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p, std::vector<BaObservation>* o) {
     return SolveDroppingOutliers(ba, c, p, o);
   };
@@ -201,28 +199,6 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     if (HasZoom(keyframes_[i].model)) zooming_frames += span;
   }
   const bool mostly_translating = has_translation && 2 * translating >= free_keyframes;
-  // Tracks between two depth layers (depth_layers.h) under the solution the
-  // RMS cut left: corners sliding along a silhouette that fit a rigid point
-  // at an in-between depth, which the RMS cannot see. The tracks the RMS cut
-  // dropped are no one's neighbours (they are often such corners too).
-  auto drop_between_layers = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
-                                 std::vector<BaObservation>* o, BaSummary* s) {
-    std::vector<char> kept_point(p->size(), 0);
-    for (const auto& ob : *o) kept_point[ob.point] = 1;
-    std::vector<long> track_of_point(p->size(), -1);
-    std::set<long> dropped;
-    for (const auto& [id, k] : point_of_track) {
-      track_of_point[k] = id;
-      if (!kept_point[k]) dropped.insert(id);
-    }
-    const std::set<long> between = TracksBetweenLayersOf(*c, dropped);
-    std::vector<BaObservation> kept;
-    for (const auto& ob : *o)
-      if (!between.count(track_of_point[ob.point])) kept.push_back(ob);
-    if (kept.size() == o->size() || kept.size() <= 10) return;
-    *o = kept;
-    polish_on(c, p, *o, s);
-  };
   // After the model choice (the comparison needs the same tracks in every
   // candidate, and the tracks in front of a dolly-zoom subject are the cue).
   auto drop_bad_tracks = [&](std::vector<BaCamera>* c, std::vector<BaPoint>* p,
@@ -238,13 +214,12 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     // ambiguity (docs/estimate.md, "Where the rotation error comes from").
     // Residuals of a track are systematic, so a track's RMS is the test, not
     // single observations (all of the track's, also those cut above); the
-    // cut tightens in rounds (crane_shot: 0.15 deg instead of 0.08 when
-    // cutting tight at once).
+    // cut tightens in rounds (cutting tight at once on the first, still bent
+    // solution also drops good tracks: a crane move 0.15 deg instead of 0.08).
     const double cut_px = mostly_translating ? options_.track_rms_cut_px : options_.track_rms_cut_rotation_px;
-    DropInconsistentTracks(ba, cut_px / 960.0, c, p, all, o, s);  // normalised units
-    if (options_.depth_layer_cut && mostly_translating) drop_between_layers(c, p, o, s);
-    // Diagnostic (docs/estimate.md, crane_shot): every point's RMS over all
-    // its observations after the cut (and the options above), and whether it was kept.
+    DropInconsistentTracks(ba, cut_px / kReferenceWidthPx, c, p, all, o, s);  // normalised units
+    // Diagnostic (docs/estimate.md, "Diagnostics"): every point's RMS over all
+    // its observations after the cut, and whether it was kept.
     if (std::getenv("HAPCINE_TRACK_RMS_DEBUG")) {
       const auto errs = ObservationErrors(*c, *p, all, ba.use_depth);
       std::vector<double> sq(p->size(), 0);
@@ -257,7 +232,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
       for (const auto& [id, k] : point_of_track)
         if (cnt[k])
           std::fprintf(stderr, "track_rms %d %ld %.4f %d\n", At(keyframes_.front().pos).tracks.index, id,
-                       std::sqrt(sq[k] / cnt[k]) * 960, kept_pt[k]);
+                       std::sqrt(sq[k] / cnt[k]) * kReferenceWidthPx, kept_pt[k]);
     }
   };
 
@@ -346,7 +321,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
                      "freedom_test frame %d: keyframes %d, dropping translation %d zoom %d (|d ln f| %.2g), "
                      "points %d: chi2 with %.1f without %.1f, penalty %.1f, sigma %.3f px -> %s\n",
                      report.first_frame, n, ev.translation_dropped, ev.zoom_dropped, ev.zoom_change,
-                     ev.informed_points, ev.chi2_with, ev.chi2_without, ev.penalty, ev.sigma * 960,
+                     ev.informed_points, ev.chi2_with, ev.chi2_without, ev.penalty, ev.sigma * kReferenceWidthPx,
                      ev.PaysOff() ? "kept" : "dropped");
       LogStage("window: freedom test");
       if (!ev.PaysOff()) {
@@ -359,8 +334,8 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   // translation in a window with translation (the slow start of a forward
   // dolly read as a zoom by a pair of frames) become general if that pays
   // for itself over the window. Not `rotation` ones: next to a whip pan's
-  // blur read as translation they would take that translation too
-  // (whip_pan at --klt-window 19: 11 -> 18 `general` frames).
+  // blur read as translation they would take that translation too (one
+  // whip pan went from 11 to 18 `general` frames).
   if (options_.freedom_test && !rerun && has_translation && summary.success) {
     std::vector<MotionModel> promoted_labels(n);
     int promoted = 0;
@@ -381,7 +356,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
                        "promotion_test frame %d: keyframes %d, promoting %d: chi2 current %.1f promoted %.1f, "
                        "penalty %.1f, sigma %.3f px -> %s\n",
                        report.first_frame, n, ev.promoted, ev.chi2_current, ev.chi2_promoted, ev.penalty,
-                       ev.sigma * 960, ev.PaysOff() ? "promoted" : "kept");
+                       ev.sigma * kReferenceWidthPx, ev.PaysOff() ? "promoted" : "kept");
         LogStage("window: promotion test");
         if (ev.PaysOff()) {
           rerun_with(promoted_labels);
