@@ -15,7 +15,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "datasets/tum_format.h"
-#include "estimate/colmap_model.h"
+#include "datasets/colmap_text.h"
 #include "extract/frame_source.h"
 
 namespace hapcine::cli {
