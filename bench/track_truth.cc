@@ -34,6 +34,7 @@
 
 #include "core/camera_path.h"
 #include "core/rotation.h"
+#include "core/statistics.h"
 #include "datasets/eval.h"
 #include "datasets/render.h"
 #include "datasets/synth_clip.h"
@@ -48,11 +49,7 @@ using namespace hapcine;
 
 namespace {
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
+double Percentile(std::vector<double> v, double p) { return v.empty() ? 0 : Quantile(std::move(v), p); }
 
 synth::CameraView ViewOf(const CameraFrame& f, int w, int h) {
   synth::CameraView v;

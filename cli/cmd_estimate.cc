@@ -3,67 +3,16 @@
 // EstimateCameraPathFromFile() in estimate/camera_estimator.h, documented in
 // docs/estimate.md.
 
-#include <unistd.h>
-
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "cli/command.h"
 #include "core/camera_path.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "estimate/camera_estimator.h"
 
 namespace hapcine::cli {
-namespace {
-
-// Frames done / total, rate and ETA: a bar on a terminal, a line every ~5 s otherwise.
-class EstimateProgress {
- public:
-  explicit EstimateProgress(bool quiet)
-      : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_(start_) {}
-
-  void Update(long done, long total) {
-    if (quiet_) return;
-    const auto now = Clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double since = std::chrono::duration<double>(now - last_).count();
-    if (since < (tty_ ? 0.2 : 5.0)) return;
-    last_ = now;
-    const double fps = elapsed > 0 ? done / elapsed : 0;
-    if (tty_) {
-      if (total > 0) {
-        const int width = 30;
-        const int filled = static_cast<int>(std::min<long>(done, total) * width / total);
-        const double eta = fps > 0 ? (total - std::min(done, total)) / fps : 0;
-        std::fprintf(stderr, "\r[%s%s] %ld/%ld frames  %.1f fps  ETA %.0f s   ",
-                     std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
-                     done, total, fps, eta);
-      } else {
-        std::fprintf(stderr, "\r%ld frames  %.1f fps   ", done, fps);
-      }
-    } else {
-      std::fprintf(stderr, "estimate: %ld/%ld frames, %.1f fps\n", done, total, fps);
-    }
-    std::fflush(stderr);
-    drawn_ = true;
-  }
-  void Done(long frames) {
-    if (quiet_) return;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    if (tty_ && drawn_) std::fprintf(stderr, "\n");
-    std::fprintf(stderr, "estimate: %ld frames in %.1f s (%.1f fps)\n", frames, elapsed,
-                 elapsed > 0 ? frames / elapsed : 0.0);
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  bool quiet_, tty_, drawn_ = false;
-  Clock::time_point start_, last_;
-};
-
-}  // namespace
 
 int RunEstimate(int argc, char** argv) {
   CLI::App app{
@@ -196,14 +145,14 @@ int RunEstimate(int argc, char** argv) {
     const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");
     if (!std::filesystem::is_directory(parent))
       throw Error(output, "output folder does not exist");
-    EstimateProgress progress(quiet);
+    Progress progress(std::cerr, ProgressModeFor(quiet), "estimate", "frames");
     const CameraPath path = EstimateCameraPathFromFile(
         video, opt, [&](long done, long total) { progress.Update(done, total); });
     if (path.frames.size() < 2)
       throw Error(video, std::to_string(path.frames.size()) +
                              " video frame(s): camera motion needs at least two");
     WriteCameraPathFile(path, output);
-    progress.Done(static_cast<long>(path.frames.size()));
+    progress.Finish(static_cast<double>(path.frames.size()));
     return kExitOk;
   });
 }

@@ -1,10 +1,10 @@
 // `hapcine preview`: the video with an inset of the three actuators
 // (datasets/preview.h).
-#include <unistd.h>
 
 #include <iostream>
 
 #include "cli/command.h"
+#include "core/progress.h"
 #include "datasets/preview.h"
 #include "player/simulate_seat.h"
 
@@ -40,19 +40,9 @@ int RunPreview(int argc, char** argv) {
       loop.Check();
       o.simulate = [&loop](const HapticTrack& t) { return SimulateSeat(t, loop); };
     }
-    const bool tty = isatty(STDERR_FILENO);
-    int last = 0;
-    const int n = RenderPreview(o, [&](int done, int total) {
-      if (tty) {
-        std::cerr << "\rpreview: frame " << done;
-        if (total > 0) std::cerr << " / ~" << total;
-        std::cerr << std::flush;
-      } else if (done - last >= 500) {
-        std::cerr << "preview: frame " << done << "\n";
-        last = done;
-      }
-    });
-    if (tty) std::cerr << "\n";
+    Progress progress(std::cerr, ProgressModeFor(false), "preview", "frames");
+    const int n = RenderPreview(o, [&](int done, int total) { progress.Update(done, total); });
+    progress.Close();
     std::cerr << "wrote " << o.output << " (" << n << " frames)\n";
     return kExitOk;
   });

@@ -23,6 +23,7 @@
 #include <unordered_set>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
 #include "extract/keep_tracks.h"
@@ -149,8 +150,7 @@ struct FeatureTracker::Impl {
       if (run_motion_px < kMotionRunShare * working_width) run_tracked = false;
       return;
     }
-    std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
-    run_motion_px += disp[disp.size() / 2];
+    run_motion_px += Quantile(std::move(disp), 0.5);
   }
 
   bool RunWasCameraMotion(int working_width) const {
@@ -331,10 +331,7 @@ struct FeatureTracker::Impl {
         vy.push_back(v.y);
       }
     if (vx.empty()) return {kNoMotion, kNoMotion};
-    const size_t mid = vx.size() / 2;
-    std::nth_element(vx.begin(), vx.begin() + mid, vx.end());
-    std::nth_element(vy.begin(), vy.begin() + mid, vy.end());
-    return {vx[mid], vy[mid]};
+    return {Quantile(std::move(vx), 0.5), Quantile(std::move(vy), 0.5)};
   }
 
   // KLT from the previous pyramid to `pyramid`, forward then backward.
