@@ -149,8 +149,7 @@ BatchSummary RunLocalBatch(const BatchOptions& options) {
   ProgressReporter::Mode mode = ProgressReporter::Mode::kQuiet;
   switch (options.progress) {
     case BatchOptions::Progress::kAuto:
-      mode =
-          ::isatty(STDERR_FILENO) ? ProgressReporter::Mode::kBar : ProgressReporter::Mode::kLines;
+      mode = ProgressModeFor(false);
       break;
     case BatchOptions::Progress::kBar:
       mode = ProgressReporter::Mode::kBar;

@@ -60,28 +60,6 @@ void HashRange(FILE* f, const std::string& path, uint64_t offset, uint64_t lengt
 
 }  // namespace
 
-void Fnv1a64::Update(const void* data, size_t size_bytes) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  uint64_t h = hash_;
-  for (size_t i = 0; i < size_bytes; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;
-  }
-  hash_ = h;
-}
-
-std::string Fnv1a64::Hex() const {
-  char buf[17];
-  std::snprintf(buf, sizeof(buf), "%016llx", static_cast<unsigned long long>(hash_));
-  return buf;
-}
-
-std::string Fnv1a64Hex(const std::string& s) {
-  Fnv1a64 h;
-  h.Update(s);
-  return h.Hex();
-}
-
 ContentId SampledContentId(const std::string& path) {
   ContentId id;
   id.size_bytes = SizeOrThrow(path);

@@ -13,27 +13,15 @@
 // windows (use --force for that). Duplicates are therefore CONFIRMED by a
 // full byte comparison (FilesEqual) before a film is skipped as a copy.
 //
-// FNV-1a is not cryptographic; it needs no library, is stable across
-// platforms and is plenty for telling a user's own films apart.
+// FNV-1a (core/hash.h) is not cryptographic; it needs no library, is stable
+// across platforms and is plenty for telling a user's own films apart.
 
 #include <cstdint>
 #include <string>
 
+#include "core/hash.h"
+
 namespace hapcine::batch {
-
-// Incremental FNV-1a 64-bit hash.
-class Fnv1a64 {
- public:
-  void Update(const void* data, size_t size_bytes);
-  void Update(const std::string& s) { Update(s.data(), s.size()); }
-  uint64_t value() const { return hash_; }
-  std::string Hex() const;  // 16 lower-case hex digits
-
- private:
-  uint64_t hash_ = 14695981039346656037ull;
-};
-
-std::string Fnv1a64Hex(const std::string& s);
 
 struct ContentId {
   uint64_t size_bytes = 0;

@@ -11,20 +11,6 @@ namespace {
 using testutil::TempDir;
 using testutil::WriteFile;
 
-TEST(Fnv1a64Test, KnownVectors) {
-  // Reference values of FNV-1a 64 (Fowler/Noll/Vo test suite).
-  EXPECT_EQ(Fnv1a64Hex(""), "cbf29ce484222325");
-  EXPECT_EQ(Fnv1a64Hex("a"), "af63dc4c8601ec8c");
-  EXPECT_EQ(Fnv1a64Hex("foobar"), "85944171f73967e8");
-}
-
-TEST(Fnv1a64Test, IncrementalEqualsOneShot) {
-  Fnv1a64 h;
-  h.Update("foo");
-  h.Update("bar");
-  EXPECT_EQ(h.Hex(), Fnv1a64Hex("foobar"));
-}
-
 TEST(ContentIdTest, SmallFilesAreHashedWhole) {
   TempDir d;
   WriteFile(d.path() + "/a", "hello world");

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "batch/content_hash.h"
+#include "core/csv.h"
 #include "core/error.h"
 #include "core/input_file.h"
 
@@ -31,35 +32,6 @@ std::string Absolute(const fs::path& p) {
   fs::path abs = fs::absolute(p, ec);
   if (ec) abs = p;
   return abs.lexically_normal().string();
-}
-
-// Splits one CSV line into fields (RFC 4180 quoting, no embedded newlines).
-std::vector<std::string> SplitCsvLine(const std::string& line) {
-  std::vector<std::string> fields;
-  std::string field;
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        field += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        field += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      fields.push_back(field);
-      field.clear();
-    } else if (c != '\r') {
-      field += c;
-    }
-  }
-  fields.push_back(field);
-  return fields;
 }
 
 std::vector<std::string> ReadManifest(const fs::path& manifest) {

@@ -6,23 +6,8 @@
 
 namespace hapcine::batch {
 
-std::string FormatDuration(double seconds) {
-  char buf[32];
-  if (!(seconds >= 0) || !std::isfinite(seconds)) return "?";
-  if (seconds < 60) {
-    std::snprintf(buf, sizeof(buf), "%.1fs", seconds);
-  } else if (seconds < 3600) {
-    const int s = static_cast<int>(seconds + 0.5);
-    std::snprintf(buf, sizeof(buf), "%dm%02ds", s / 60, s % 60);
-  } else {
-    const int m = static_cast<int>(seconds / 60 + 0.5);
-    std::snprintf(buf, sizeof(buf), "%dh%02dm", m / 60, m % 60);
-  }
-  return buf;
-}
-
 ProgressReporter::ProgressReporter(std::ostream& out, Mode mode, int total, int workers)
-    : out_(out),
+    : progress_(out, mode, "batch", "films"),
       mode_(mode),
       total_(total),
       workers_(workers < 1 ? 1 : workers),
@@ -64,37 +49,32 @@ void ProgressReporter::Finished(const std::string& id, const std::string& status
     done_seconds_ += seconds;
   }
   if (mode_ == Mode::kLines) {
-    out_ << "batch: [" << finished_ << "/" << total_ << "] " << status << " " << id;
-    if (!reused) out_ << " (" << FormatDuration(seconds) << ")";
-    if (!reason.empty()) out_ << ": " << reason;
-    out_ << "\n" << std::flush;
+    std::string line = "batch: [" + std::to_string(finished_) + "/" + std::to_string(total_) + "] " +
+                       status + " " + id;
+    if (!reused) line += " (" + FormatDuration(seconds) + ")";
+    if (!reason.empty()) line += ": " + reason;
+    progress_.Line(line);
   } else if (mode_ == Mode::kBar) {
-    if (status == "failed") {
-      out_ << "\r\033[K"
-           << "failed " << id << ": " << reason << "\n";
-    }
+    if (status == "failed") progress_.Line("failed " + id + ": " + reason);
     DrawBar();
   }
 }
 
 void ProgressReporter::DrawBar() {
-  constexpr int kWidth = 30;
-  const int filled = total_ > 0 ? finished_ * kWidth / total_ : kWidth;
-  std::string bar(filled, '#');
-  bar += std::string(kWidth - filled, '.');
   const auto now = std::chrono::steady_clock::now();
   std::vector<double> running_elapsed;
   for (const auto& [id, t0] : running_) {
     running_elapsed.push_back(std::chrono::duration<double>(now - t0).count());
   }
   const int running = static_cast<int>(running_.size());
-  const double eta = Eta(MeanFilmSeconds(done_, done_seconds_, failed_, failed_seconds_, running),
-                         running_elapsed, total_ - finished_ - running, workers_);
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  out_ << "\r\033[K[" << bar << "] " << finished_ << "/" << total_;
-  if (failed_ > 0) out_ << " (" << failed_ << " failed)";
-  out_ << "  elapsed " << FormatDuration(elapsed) << "  ETA "
-       << (eta < 0 ? "?" : FormatDuration(eta)) << std::flush;
+  ProgressSnapshot s;
+  s.done = finished_;
+  s.total = total_;
+  s.eta_s = Eta(MeanFilmSeconds(done_, done_seconds_, failed_, failed_seconds_, running),
+                running_elapsed, total_ - finished_ - running, workers_);
+  s.note = "elapsed " + FormatDuration(std::chrono::duration<double>(now - start_).count());
+  if (failed_ > 0) s.note += " (" + std::to_string(failed_) + " failed)";
+  progress_.Show(s);
 }
 
 void ProgressReporter::Tick() {
@@ -104,7 +84,7 @@ void ProgressReporter::Tick() {
 
 void ProgressReporter::Close() {
   std::lock_guard<std::mutex> lock(mu_);
-  if (mode_ == Mode::kBar) out_ << "\n" << std::flush;
+  progress_.Close();
 }
 
 }  // namespace hapcine::batch

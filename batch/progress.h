@@ -1,7 +1,7 @@
 #pragma once
-// Progress of a batch on stderr: a redrawn bar with counts and ETA on a
-// terminal; plain lines (one per finished film) otherwise, so logs of Slurm
-// tasks and CI stay readable.
+// Progress of a batch on stderr, drawn by core/progress.h: a redrawn bar
+// with counts and ETA on a terminal; plain lines (one per finished film)
+// otherwise, so logs of Slurm tasks and CI stay readable.
 
 #include <chrono>
 #include <map>
@@ -10,11 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
+
 namespace hapcine::batch {
 
 class ProgressReporter {
  public:
-  enum class Mode { kBar, kLines, kQuiet };
+  using Mode = ProgressMode;
   // total: films to consider; workers: parallel jobs (for the ETA).
   ProgressReporter(std::ostream& out, Mode mode, int total, int workers);
 
@@ -44,7 +46,7 @@ class ProgressReporter {
  private:
   void DrawBar();
   std::mutex mu_;
-  std::ostream& out_;
+  Progress progress_;
   Mode mode_;
   int total_;
   int workers_;
@@ -56,7 +58,5 @@ class ProgressReporter {
   std::map<std::string, std::chrono::steady_clock::time_point> running_;
   std::chrono::steady_clock::time_point start_;
 };
-
-std::string FormatDuration(double seconds);  // "1h02m", "3m12s", "4.2s"
 
 }  // namespace hapcine::batch

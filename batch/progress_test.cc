@@ -27,14 +27,6 @@ TEST(ProgressTest, InstantFailuresDoNotMakeTheEtaShort) {
   EXPECT_DOUBLE_EQ(ProgressReporter::MeanFilmSeconds(0, 0, 3, 1.5, 0), 0.5);
 }
 
-TEST(ProgressTest, FormatDuration) {
-  EXPECT_EQ(FormatDuration(4.24), "4.2s");
-  EXPECT_EQ(FormatDuration(192), "3m12s");
-  EXPECT_EQ(FormatDuration(3720), "1h02m");
-  EXPECT_EQ(FormatDuration(-1), "?");
-  EXPECT_EQ(FormatDuration(0.0 / 0.0), "?");
-}
-
 TEST(ProgressTest, LinesModePrintsOneLinePerFilmWithReason) {
   std::ostringstream out;
   ProgressReporter p(out, ProgressReporter::Mode::kLines, 2, 1);
@@ -52,7 +44,7 @@ TEST(ProgressTest, BarModeRedrawsInPlace) {
   p.Finished("a", "done", 2.0, false, "");
   p.Close();
   const std::string s = out.str();
-  EXPECT_NE(s.find("\r\033[K[#######.......................] 1/4"), std::string::npos) << s;
+  EXPECT_NE(s.find("\r\033[Kbatch [#######.......................] 1/4 films"), std::string::npos) << s;
   EXPECT_NE(s.find("ETA 3.0s"), std::string::npos) << s;
   EXPECT_EQ(s.back(), '\n');
 }

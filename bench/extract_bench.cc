@@ -1,7 +1,7 @@
 // Extract speed: decode-only vs decode + shot detection + KLT tracking.
 //   hapcine_extract_bench <video> [--threads N] [--side PX] [--tracks N] [--cv-threads N]
 //   [--color-side PX] [--skip-loop-filter] [--decode-only] [--klt-window N]
-//   [--coarse-iterations N] [--coarse-step PX] [--appearance-min-ncc NCC] [--appearance-lag K]
+//   [--coarse-iterations N] [--coarse-step PX]
 // Prints frames, wall time and ms/frame for decoding (scaling included) and
 // for decoding + tracking, so the tracking overhead can be read directly.
 
@@ -29,8 +29,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: %s <video> [--threads N] [--side PX] [--tracks N] [--cv-threads N] "
                  "[--color-side PX] [--skip-loop-filter] [--decode-only] [--klt-window N] "
-                 "[--coarse-iterations N] [--coarse-step PX] [--appearance-min-ncc NCC] "
-                 "[--appearance-lag K]\n",
+                 "[--coarse-iterations N] [--coarse-step PX]\n",
                  argv[0]);
     return 2;
   }
@@ -51,10 +50,6 @@ int main(int argc, char** argv) {
       tracker_options.klt_coarse_iterations = std::atoi(argv[++i]);
     else if (a == "--coarse-step" && i + 1 < argc)
       tracker_options.klt_coarse_step_px = std::atof(argv[++i]);
-    else if (a == "--appearance-min-ncc" && i + 1 < argc)
-      tracker_options.appearance_min_ncc = std::atof(argv[++i]);
-    else if (a == "--appearance-lag" && i + 1 < argc)
-      tracker_options.appearance_lag_frames = std::atoi(argv[++i]);
     else if (a == "--color-side" && i + 1 < argc)
       source_options.color_max_side = std::atoi(argv[++i]);
     else if (a == "--skip-loop-filter")

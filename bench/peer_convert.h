@@ -1,6 +1,6 @@
 #pragma once
 // Turning what the OpenCV peers measure into camera-path frames
-// (../shared/spec/camera-path.md), so `hapcine eval` scores them like hapcine:
+// (docs/formats.md), so `hapcine eval` scores them like hapcine:
 //  - the stitching module's cameras: `R` is world_from_cam in OpenCV camera
 //    axes (+X right, +Y down, +Z forward: a pixel's ray in the world is
 //    R * K^-1 * [u v 1]), plus a focal length in pixels;

@@ -3,8 +3,7 @@
 //
 //   hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad] [--cut PX]
 //                       [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]
-//                       [--est-out FILE] [--errors-out FILE] [--ncc 1] [--appearance NCC]
-//                       [--appearance-lag K]
+//                       [--est-out FILE] [--errors-out FILE] [--layers 1]
 //
 // Tracks the clip with the real FeatureTracker, then casts the ray of every
 // track's first observation into the synthetic scene (ground-truth camera) to
@@ -19,19 +18,10 @@
 //   ray      the same tracks at the projection of their ray-cast point
 //   cut      KLT, without observations off their rigid fit by > --cut px
 //   dropbad  KLT, without tracks whose rigid fit is off by > --cut px
-//   dropncc  KLT, without tracks whose lowest NCC with the patch 8 frames
-//            back is below --cut (needs --ncc 1)
 //   droplayers KLT, without tracks the depth-layer cue flags with GT depths
 // (--noise adds Gaussian pixel noise to fit/ray positions).
-// --ncc 1 prints how well the tracker's appearance check (extract/
-// appearance_check.h) separates the bad tracks (rigid fit off by > 2 px) from
-// the good ones (< 1 px): quantiles of each track's lowest NCC with its
-// reference patch (birth: lag 0, or 4, 8, 16 frames before), and the share of
-// each class a threshold would end.
 // --layers 1 prints how well the depth-layer cue (estimate/depth_layers.h)
 // separates them, with the ground-truth depth of each track's rigid fit.
-// --appearance NCC sets TrackerOptions::appearance_min_ncc (0: off),
-// --appearance-lag K its appearance_lag_frames.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdio>
@@ -44,13 +34,13 @@
 
 #include "core/camera_path.h"
 #include "core/rotation.h"
+#include "core/statistics.h"
 #include "datasets/eval.h"
 #include "datasets/render.h"
 #include "datasets/synth_clip.h"
 #include "datasets/synth_presets.h"
 #include "estimate/depth_layers.h"
 #include "estimate/track_estimator.h"
-#include "extract/appearance_check.h"
 #include "extract/feature_tracker.h"
 #include "extract/frame_source.h"
 #include <cstdlib>
@@ -59,11 +49,7 @@ using namespace hapcine;
 
 namespace {
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
+double Percentile(std::vector<double> v, double p) { return v.empty() ? 0 : Quantile(std::move(v), p); }
 
 synth::CameraView ViewOf(const CameraFrame& f, int w, int h) {
   synth::CameraView v;
@@ -87,9 +73,7 @@ int main(int argc, char** argv) {
   const std::string preset = argv[1], dir = argv[2];
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
-  int klt_window = 0, points = 0, per_frame = 0, ncc_stats = 0, layers = 0;
-  double appearance = -1;
-  int appearance_lag = -1;
+  int klt_window = 0, points = 0, per_frame = 0, layers = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--mode") mode = argv[i + 1];
@@ -100,10 +84,7 @@ int main(int argc, char** argv) {
     else if (a == "--per-frame") per_frame = std::stoi(argv[i + 1]);
     else if (a == "--est-out") est_out = argv[i + 1];
     else if (a == "--errors-out") errors_out = argv[i + 1];
-    else if (a == "--ncc") ncc_stats = std::stoi(argv[i + 1]);
     else if (a == "--layers") layers = std::stoi(argv[i + 1]);
-    else if (a == "--appearance") appearance = std::stod(argv[i + 1]);
-    else if (a == "--appearance-lag") appearance_lag = std::stoi(argv[i + 1]);
     else {
       std::cerr << "unknown option " << a << "\n";
       return 2;
@@ -117,39 +98,10 @@ int main(int argc, char** argv) {
   const int W = source->info().width, H = source->info().height;
   TrackerOptions to;
   if (klt_window > 0) to.klt_window = klt_window;
-  if (appearance >= 0) to.appearance_min_ncc = appearance;
-  if (appearance_lag >= 0) to.appearance_lag_frames = appearance_lag;
   FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
   Frame frame;
-  // Per track: lowest NCC with its birth patch (extract/appearance_check.h).
-  const std::vector<double> kNccLevels = {0.95, 0.9, 0.85, 0.8, 0.7, 0.6, 0.5};
-  const std::vector<int> kLags = {0, 4, 8, 16};  // AppearanceCheck reference_lag
-  std::vector<AppearanceCheck> checks;
-  for (int lag : kLags) checks.emplace_back(11, lag);
-  std::map<long, std::vector<double>> min_ncc;  // per lag
-  std::vector<cv::Point2f> working;
-  std::vector<long> working_ids;
-  std::vector<float> ncc;
-  while (source->Next(&frame)) {
-    frames.push_back(tracker.Process(frame));
-    if (!ncc_stats) continue;
-    const double sx = double(frame.gray.cols) / frame.decoded_width,
-                 sy = double(frame.gray.rows) / frame.decoded_height;
-    working.clear();
-    working_ids.clear();
-    for (const TrackPoint& p : frames.back().points) {
-      working.emplace_back((p.px.x() + 0.5) * sx - 0.5, (p.px.y() + 0.5) * sy - 0.5);
-      working_ids.push_back(p.track_id);
-    }
-    for (size_t l = 0; l < kLags.size(); ++l) {
-      checks[l].Score(frame.gray, working, working_ids, &ncc);
-      for (size_t i = 0; i < ncc.size(); ++i) {
-        auto& m = min_ncc.emplace(working_ids[i], std::vector<double>(kLags.size(), 1.0)).first->second;
-        m[l] = std::min<double>(m[l], ncc[i]);
-      }
-    }
-  }
+  while (source->Next(&frame)) frames.push_back(tracker.Process(frame));
 
   const int n_gt = static_cast<int>(gt.frames.size());
   std::vector<synth::CameraView> views;
@@ -254,31 +206,6 @@ int main(int argc, char** argv) {
     std::printf("tracks born within 8 px of a depth edge: %.1f %% of bad (> 2 px, %d), %.1f %% of good (< 1 px, %d)\n",
                 100.0 * bad_edge / std::max(bad, 1), bad, 100.0 * good_edge / std::max(good, 1), good);
   }
-  if (ncc_stats) {
-    // Separation by the appearance check, over tracks of >= 10 frames (the
-    // estimator's reprojection test sees the short ones poorly either way).
-    for (size_t l = 0; l < kLags.size(); ++l) {
-    std::vector<double> bad, good;
-    for (const auto& [id, obs] : obs_of) {
-      if (obs.size() < 10 || !min_ncc.count(id)) continue;
-      if (fit_max[id] > 2) bad.push_back(min_ncc[id][l]);
-      else if (fit_max[id] < 1) good.push_back(min_ncc[id][l]);
-    }
-    auto row = [&](const char* name, const std::vector<double>& v) {
-      std::printf("lag %2d lowest NCC, %s (%zu tracks >= 10 frames): p5 %.3f p10 %.3f "
-                  "p25 %.3f p50 %.3f |", kLags[l], name, v.size(), Percentile(v, 0.05),
-                  Percentile(v, 0.1), Percentile(v, 0.25), Percentile(v, 0.5));
-      for (double t : kNccLevels) {
-        size_t below = 0;
-        for (double x : v) below += x < t;
-        std::printf(" <%.2f %.1f%%", t, 100.0 * below / std::max<size_t>(v.size(), 1));
-      }
-      std::printf("\n");
-    };
-    row("bad (> 2 px) ", bad);
-    row("good (< 1 px)", good);
-    }
-  }
   // Depth-layer cue (estimate/depth_layers.h) with the ground-truth depths of
   // each track's rigid fit, judged every 6th frame (about the keyframes).
   std::set<long> between;
@@ -362,9 +289,6 @@ int main(int argc, char** argv) {
         if (e > cut) continue;
       } else if (mode == "dropbad") {  // whole tracks whose fit is off by more than --cut px dropped
         if (fit_max.at(p.track_id) > cut) continue;
-      } else if (mode == "dropncc") {  // tracks whose lowest NCC (lag 8, --ncc 1) is below --cut dropped
-        auto it = min_ncc.find(p.track_id);
-        if (it != min_ncc.end() && it->second[2] < cut) continue;
       } else if (mode == "droplayers") {  // tracks the depth-layer cue flags (GT depths) dropped
         if (between.count(p.track_id)) continue;
       } else if (mode == "fit") {  // every track moved onto its rigid fit

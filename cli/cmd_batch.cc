@@ -110,7 +110,7 @@ int RunBatch(int argc, char** argv) {
               << " done, " << s.Count(batch::FilmStatus::kSkipped) << " skipped, "
               << s.Count(batch::FilmStatus::kFailed) << " failed, "
               << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
-              << batch::FormatDuration(s.wall_seconds) << "\n";
+              << FormatDuration(s.wall_seconds) << "\n";
     return s.ExitCode();
   });
 }

@@ -4,7 +4,6 @@
 //   --from-colmap DIR --times-from VIDEO_OR_CAMERA_CSV -o OUT.camera.csv
 // Formats and the COLMAP axis mapping: docs/formats.md.
 
-#include <unistd.h>
 
 #include <cstdio>
 #include <iostream>
@@ -16,8 +15,9 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/progress.h"
 #include "datasets/tum_format.h"
-#include "estimate/colmap_model.h"
+#include "datasets/colmap_text.h"
 #include "extract/frame_source.h"
 
 namespace hapcine::cli {
@@ -60,7 +60,7 @@ FrameTimes ReadFrameTimes(const std::string& file) {
   times.width = info.width;
   times.height = info.height;
   times.fps = info.fps;
-  const bool tty = ::isatty(2);
+  Progress progress(std::cerr, ProgressModeFor(false), "reading frame times", "frames");
   Frame frame;
   long n = 0;
   while (source->Next(&frame)) {
@@ -68,15 +68,9 @@ FrameTimes ReadFrameTimes(const std::string& file) {
       throw Error(file, "decoder skipped to frame " + std::to_string(frame.index));
     }
     times.time_s.push_back(frame.time_s);
-    if (++n % 250 == 0) {
-      if (tty) {
-        std::fprintf(stderr, "\rreading frame times: %ld / %ld", n, info.frame_count);
-      } else if (n % 2500 == 0) {
-        std::fprintf(stderr, "reading frame times: %ld frames\n", n);
-      }
-    }
+    progress.Update(static_cast<double>(++n), static_cast<double>(info.frame_count));
   }
-  if (tty && n >= 250) std::fprintf(stderr, "\rreading frame times: %ld frames, done\n", n);
+  progress.Close();
   if (times.time_s.empty()) throw Error(file, "no frames decoded");
   return times;
 }

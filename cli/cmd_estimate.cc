@@ -3,11 +3,6 @@
 // EstimateCameraPathFromFile() in estimate/camera_estimator.h, documented in
 // docs/estimate.md.
 
-#include <unistd.h>
-
-#include <chrono>
-#include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <set>
 
@@ -18,55 +13,11 @@
 #include "core/diagnostics.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/progress.h"
 #include "estimate/camera_estimator.h"
 
 namespace hapcine::cli {
 namespace {
-
-// Frames done / total, rate and ETA: a bar on a terminal, a line every ~5 s otherwise.
-class EstimateProgress {
- public:
-  explicit EstimateProgress(bool quiet)
-      : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_(start_) {}
-
-  void Update(long done, long total) {
-    if (quiet_) return;
-    const auto now = Clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double since = std::chrono::duration<double>(now - last_).count();
-    if (since < (tty_ ? 0.2 : 5.0)) return;
-    last_ = now;
-    const double fps = elapsed > 0 ? done / elapsed : 0;
-    if (tty_) {
-      if (total > 0) {
-        const int width = 30;
-        const int filled = static_cast<int>(std::min<long>(done, total) * width / total);
-        const double eta = fps > 0 ? (total - std::min(done, total)) / fps : 0;
-        std::fprintf(stderr, "\r[%s%s] %ld/%ld frames  %.1f fps  ETA %.0f s   ",
-                     std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
-                     done, total, fps, eta);
-      } else {
-        std::fprintf(stderr, "\r%ld frames  %.1f fps   ", done, fps);
-      }
-    } else {
-      std::fprintf(stderr, "estimate: %ld/%ld frames, %.1f fps\n", done, total, fps);
-    }
-    std::fflush(stderr);
-    drawn_ = true;
-  }
-  void Done(long frames) {
-    if (quiet_) return;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    if (tty_ && drawn_) std::fprintf(stderr, "\n");
-    std::fprintf(stderr, "estimate: %ld frames in %.1f s (%.1f fps)\n", frames, elapsed,
-                 elapsed > 0 ? frames / elapsed : 0.0);
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  bool quiet_, tty_, drawn_ = false;
-  Clock::time_point start_, last_;
-};
 
 // The --report file (docs/formats.md "Estimate report").
 void WriteReport(const JsonDiagnostics& diagnostics, const std::string& video, const CameraPath& path,
@@ -85,7 +36,7 @@ void WriteReport(const JsonDiagnostics& diagnostics, const std::string& video, c
 int RunEstimate(int argc, char** argv) {
   CLI::App app{
       "Estimate the camera path (rotation, translation, zoom) of a video and write it as a "
-      "*.camera.csv file (docs/estimate.md, camera-path spec). Per shot and segment the simplest "
+      "*.camera.csv file (docs/estimate.md; the format: docs/formats.md). Per shot and segment the simplest "
       "motion model is chosen (static, zoom, rotation, rotation+zoom, general, general+zoom).",
       argv[0]};
   std::string video, output;
@@ -101,6 +52,17 @@ int RunEstimate(int argc, char** argv) {
       ->required();
   app.add_option("-o,--output", output, "output camera path (*.camera.csv), written atomically")
       ->required();
+  app.add_flag("--fast", fast,
+               "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
+                   "; options given beside it win");
+  app.add_flag("--draft", draft,
+               "~1.4x decoding time, least accurate (docs/estimate.md \"Accuracy\"): " +
+                   DraftPresetSummary() + "; options given beside it win");
+  app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
+               "decode only the frames others are predicted from (about half of H.264/HEVC "
+               "with B-frames): faster; the skipped frames' poses are interpolated between "
+               "their neighbours' at lower confidence; ~2.3x decoding time instead of ~3.2x "
+               "(docs/estimate.md \"Accuracy\")");
   app.add_option("--backend", opt.backend,
                  "hapcine: tracks + model selection + bundle adjustment; colmap: COLMAP "
                  "incremental SfM (needs translation to initialise)")
@@ -136,17 +98,6 @@ int RunEstimate(int argc, char** argv) {
                  "960 px width; occlusion-edge tracks)")
       ->capture_default_str()
       ->check(FiniteRange(0.01, 1000));
-  app.add_option("--window-lead-in", opt.estimator.window_lead_in_frames,
-                 "hold the previous window's last N frames' keyframes constant in the next window "
-                 "(0: two keyframes), so tracks are judged over a longer baseline; experimental, no "
-                 "gain measured on the synthetic clips (docs/estimate.md)")
-      ->capture_default_str()
-      ->check(FiniteRange(0, 10000));
-  app.add_option("--depth-layer-cut", opt.estimator.depth_layer_cut,
-                 "after the RMS cut, also drop a translating window's tracks whose depth lies "
-                 "between the two depth layers of their neighbourhood (occlusion-edge corners); "
-                 "experimental, no gain measured on the synthetic clips (docs/estimate.md)")
-      ->capture_default_str();
   bool no_freedom_test = false;
   app.add_flag("--no-freedom-test", no_freedom_test,
                "keep the two-view labels: no window-level BIC test of a few translating (or "
@@ -164,11 +115,6 @@ int RunEstimate(int argc, char** argv) {
                  "(0: off; docs/estimate.md, step 4)")
       ->capture_default_str()
       ->check(FiniteRange(0, 1));
-  app.add_flag("--anisotropic-noise", opt.estimator.two_view.anisotropic_noise,
-               "score the two-view models with a track-noise covariance measured from the rough "
-               "part of the rotation fit's residuals (blur along a whip pan is then not read as "
-               "translation); experimental: small irregular parallax is read as noise too "
-               "(docs/estimate.md)");
   app.add_option("--prior-fov", opt.estimator.prior_hfov_deg,
                  "horizontal field of view, degrees, assumed where the focal length cannot be "
                  "observed (no rotation)")
@@ -186,11 +132,6 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--threads", opt.estimator.num_threads, "Ceres solver threads")
       ->capture_default_str()
       ->check(FiniteRange(1, 256));
-  app.add_flag("--skip-nonref", opt.frames.skip_nonref_frames,
-               "decode only the frames others are predicted from (about half of H.264/HEVC "
-               "with B-frames): faster; the skipped frames' poses are interpolated between "
-               "their neighbours' at lower confidence; ~2.3x decoding time instead of ~3.2x "
-               "(docs/estimate.md \"Status\")");
   app.add_flag("--skip-loop-filter", opt.frames.skip_loop_filter,
                "skip H.264/HEVC deblocking when decoding: ~10 % cheaper decoding, slightly "
                "blockier analysis images");
@@ -198,12 +139,6 @@ int RunEstimate(int argc, char** argv) {
                  "FFmpeg decoder threads (0 = FFmpeg's choice); decoding runs beside tracking")
       ->capture_default_str()
       ->check(FiniteRange(0, 256));
-  app.add_flag("--fast", fast,
-               "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
-                   "; options given beside it win");
-  app.add_flag("--draft", draft,
-               "~1.4x decoding time, least accurate (docs/estimate.md \"Status\"): " +
-                   DraftPresetSummary() + "; options given beside it win");
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
       ->capture_default_str()
       ->check(FiniteRange(5, 101));
@@ -211,29 +146,15 @@ int RunEstimate(int argc, char** argv) {
   app.add_flag("--no-klt-predict", no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
-  // Tuning knobs for bench/speed.sh, apart in --help (CLI11's errors do not name hidden ones).
-  const std::string tuning = "Tuning (bench/speed.sh)";
   app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
-      ->group(tuning)
       ->check(FiniteRange(1, 8));
   app.add_option("--klt-coarse-iterations", opt.tracker.klt_coarse_iterations,
                  "KLT iterations on the coarser pyramid levels")
-      ->group(tuning)
       ->check(FiniteRange(1, 100));
   app.add_option("--klt-coarse-step", opt.tracker.klt_coarse_step_px,
                  "KLT stop step on the coarser pyramid levels, pixels of that level")
-      ->group(tuning)
       ->check(FiniteRange(0, 1));
-  app.add_option("--appearance-min-ncc", opt.tracker.appearance_min_ncc,
-                 "end tracks whose patch NCC with their earlier patch falls below this (0: off)")
-      ->group(tuning)
-      ->check(FiniteRange(0, 1));
-  app.add_option("--appearance-lag", opt.tracker.appearance_lag_frames,
-                 "frames back to the reference patch of the appearance check (0: birth)")
-      ->group(tuning)
-      ->check(FiniteRange(0, 100));
   app.add_option("--ba-iterations", opt.estimator.ba_iterations, "Ceres iterations per window")
-      ->group(tuning)
       ->check(FiniteRange(1, 10000));
   app.add_option("--colmap-binary", opt.colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
@@ -246,6 +167,14 @@ int RunEstimate(int argc, char** argv) {
   bool report_detail = false;
   app.add_flag("--report-detail", report_detail,
                "the report also lists every window track's RMS and every frame's shot-cut cues");
+  // What most users need stays on top of --help; the algorithm's knobs
+  // (docs/estimate.md, "Options") are listed after them.
+  for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
+                           "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
+                           "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
+                           "--no-klt-predict", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations"})
+    app.get_option(name)->group("Tuning");
 
   return RunApp(app, argc, argv, [&]() {
     opt.estimator.smooth = !no_smooth;
@@ -258,7 +187,7 @@ int RunEstimate(int argc, char** argv) {
     if (report_detail) kinds.insert({"track_rms", "cut_cues"});
     JsonDiagnostics diagnostics(kinds);
     if (!report.empty()) opt.diagnostics = &diagnostics;
-    EstimateProgress progress(quiet);
+    Progress progress(std::cerr, ProgressModeFor(quiet), "estimate", "frames");
     const CameraPath path = EstimateCameraPathFromFile(
         video, opt, [&](long done, long total) { progress.Update(done, total); });
     if (path.frames.size() < 2)
@@ -267,7 +196,7 @@ int RunEstimate(int argc, char** argv) {
     WriteCameraPathFile(path, output);
     if (!report.empty()) WriteReport(diagnostics, video, path, report);
     outputs.CommitAll();
-    progress.Done(static_cast<long>(path.frames.size()));
+    progress.Finish(static_cast<double>(path.frames.size()));
     return kExitOk;
   });
 }

@@ -1,7 +1,6 @@
 // `hapcine haptics`: camera path (or video) -> haptic track (+ optional .hjif).
 // A thin mapping of flags onto HapticOptions; the work is in haptics/.
 
-#include <unistd.h>
 
 #include <iostream>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "core/camera_path.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/progress.h"
 #include "core/haptic_track.h"
 #include "core/input_file.h"
 #include "estimate/camera_estimator.h"
@@ -134,7 +134,6 @@ int RunHaptics(int argc, char** argv) {
     opt.Check();
     hjif_opt.gain_m = opt.seat.workspace_half_m;
     hjif_opt.Check();
-    const bool tty = isatty(STDERR_FILENO);
     CameraPath path;
     if (EndsWith(input, ".csv")) {
       path = ReadCameraPathFile(input);
@@ -144,19 +143,10 @@ int RunHaptics(int argc, char** argv) {
     } else {
       // A video: estimate its camera path first (default estimator settings;
       // run `hapcine estimate` yourself to choose them and keep the path).
-      long last_reported = -1;
-      path = EstimateCameraPathFromFile(input, EstimatorOptions{}, [&](long done, long total) {
-        if (tty) {
-          std::cerr << "\rhaptics: estimating camera path, frame " << done;
-          if (total > 0) std::cerr << "/" << total;
-          std::cerr << std::flush;
-        } else if (done / 250 != last_reported) {
-          last_reported = done / 250;
-          std::cerr << "haptics: estimating camera path, frame " << done
-                    << (total > 0 ? "/" + std::to_string(total) : "") << "\n";
-        }
-      });
-      if (tty) std::cerr << "\n";
+      Progress progress(std::cerr, ProgressModeFor(false), "haptics: estimating camera path", "frames");
+      path = EstimateCameraPathFromFile(input, EstimatorOptions{},
+                                        [&](long done, long total) { progress.Update(done, total); });
+      progress.Close();
     }
     const InputScope making(input);  // "INPUT: out of memory" if it comes to that
     const HapticTrack track = MakeHapticTrack(path, opt);

@@ -1,6 +1,5 @@
 // `hapcine preview`: the video with an inset of the three actuators
 // (datasets/preview.h).
-#include <unistd.h>
 
 #include <filesystem>
 #include <iostream>
@@ -8,6 +7,7 @@
 #include "cli/command.h"
 #include "cli/option_checks.h"
 #include "core/output_files.h"
+#include "core/progress.h"
 #include "datasets/preview.h"
 #include "player/simulate_seat.h"
 
@@ -55,19 +55,9 @@ int RunPreview(int argc, char** argv) {
                                   ? (v.parent_path() / (v.stem().string() + ".haptic.csv")).string()
                                   : o.track;
     OutputSet outputs({{o.video, "VIDEO"}, {track, "--track"}}, {{o.output, "-o"}});
-    const bool tty = isatty(STDERR_FILENO);
-    int last = 0;
-    const int n = RenderPreview(o, [&](int done, int total) {
-      if (tty) {
-        std::cerr << "\rpreview: frame " << done;
-        if (total > 0) std::cerr << " / ~" << total;
-        std::cerr << std::flush;
-      } else if (done - last >= 500) {
-        std::cerr << "preview: frame " << done << "\n";
-        last = done;
-      }
-    });
-    if (tty) std::cerr << "\n";
+    Progress progress(std::cerr, ProgressModeFor(false), "preview", "frames");
+    const int n = RenderPreview(o, [&](int done, int total) { progress.Update(done, total); });
+    progress.Close();
     outputs.CommitAll();
     std::cerr << "wrote " << o.output << " (" << n << " frames)\n";
     return kExitOk;

@@ -2,50 +2,21 @@
 // A thin mapping of flags onto SynthOptions; the work is SynthClip() in
 // datasets/synth_clip.h, documented in docs/synth.md.
 
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <set>
 
 #include "cli/command.h"
 #include "cli/option_checks.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/progress.h"
 #include "datasets/synth_clip.h"
 
 namespace hapcine::cli {
-namespace {
-
-// A progress bar on a terminal; occasional plain lines otherwise.
-class Progress {
- public:
-  explicit Progress(int clips) : clips_(clips), tty_(::isatty(STDERR_FILENO) != 0) {}
-
-  void Update(const std::string& preset, int done, int total) {
-    if (tty_) {
-      const int width = 30, filled = done * width / total;
-      std::fprintf(stderr, "\r[%d/%d] %-20s [%s%s] %3d/%d", clip_, clips_, preset.c_str(),
-                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
-                   done, total);
-      if (done == total) std::fprintf(stderr, "\n");
-      std::fflush(stderr);
-    } else if (done == total || done * 4 / total != (done - 1) * 4 / total) {
-      std::fprintf(stderr, "[%d/%d] %s: %d/%d frames\n", clip_, clips_, preset.c_str(), done,
-                   total);
-    }
-  }
-  void NextClip() { ++clip_; }
-
- private:
-  int clips_;
-  bool tty_;
-  int clip_ = 0;
-};
-
-}  // namespace
 
 int RunSynth(int argc, char** argv) {
   CLI::App app{
@@ -132,14 +103,15 @@ int RunSynth(int argc, char** argv) {
       outputs.push_back({stem.string() + ".camera.csv", "-o"});
     }
     CheckOutputPaths({}, outputs);
-    Progress progress(static_cast<int>(todo.size()));
-    opt.progress = [&](const std::string& p, int done, int total) {
-      progress.Update(p, done, total);
-    };
+    std::unique_ptr<Progress> progress;  // one per clip
+    opt.progress = [&](const std::string&, int done, int total) { progress->Update(done, total); };
     const auto start = std::chrono::steady_clock::now();
-    for (const std::string& name : todo) {
-      progress.NextClip();
+    for (size_t i = 0; i < todo.size(); ++i) {
+      const std::string& name = todo[i];
+      const std::string label = "synth [" + std::to_string(i + 1) + "/" + std::to_string(todo.size()) + "] " + name;
+      progress = std::make_unique<Progress>(std::cerr, ProgressModeFor(false), label, "frames");
       const SynthResult r = SynthClip(name, opt, out_dir);
+      progress->Close();
       std::printf("%s\n%s\n", r.video_path.c_str(), r.camera_path.c_str());
       std::fflush(stdout);
     }

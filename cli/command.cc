@@ -36,16 +36,4 @@ int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& bod
   }
 }
 
-int NotYetImplemented(const char* name, const char* what, int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      std::cout << "hapcine " << name << ": " << what << "\n\nNot implemented yet.\n";
-      return kExitOk;
-    }
-  }
-  std::cerr << "hapcine " << name << ": not implemented yet (" << what << ")\n";
-  return kExitUsage;
-}
-
 }  // namespace hapcine::cli

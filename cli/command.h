@@ -19,9 +19,6 @@ constexpr int kExitUsage = 2;
 // std::exceptions -> 1 with "hapcine <cmd>: <message>" on stderr.
 int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
-// For subcommands whose issue has not landed yet: says so, exits 2.
-int NotYetImplemented(const char* name, const char* what, int argc, char** argv);
-
 // One function per subcommand; argv[0] is "hapcine <name>".
 int RunSynth(int argc, char** argv);
 int RunEstimate(int argc, char** argv);

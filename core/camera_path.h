@@ -1,5 +1,5 @@
 #pragma once
-// The camera path file (*.camera.csv): see ../shared/spec/camera-path.md,
+// The camera path file (*.camera.csv): see docs/formats.md ("Camera path specification"),
 // which this code implements exactly. Pose is camera-to-world
 // (`world_from_cam`), rotation stored as a scalar-first unit quaternion with
 // qw >= 0, positions in metres or in "median scene depth" units.

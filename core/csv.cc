@@ -1,5 +1,6 @@
 #include "core/csv.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -20,18 +21,62 @@ std::string Trim(const std::string& s) {
 
 }  // namespace
 
+namespace {
+
+// The quoted field starting at line[*i] == '"'; leaves *i after its closing quote.
+std::string QuotedField(const std::string& line, size_t* i) {
+  std::string field;
+  for (++*i; *i < line.size(); ++*i) {
+    if (line[*i] != '"') {
+      field += line[*i];
+    } else if (*i + 1 < line.size() && line[*i + 1] == '"') {
+      field += '"';
+      ++*i;
+    } else {
+      ++*i;
+      break;
+    }
+  }
+  return field;
+}
+
+}  // namespace
+
 std::vector<std::string> SplitCsvLine(const std::string& line) {
   std::vector<std::string> out;
-  size_t start = 0;
+  size_t i = 0;
   while (true) {
-    size_t comma = line.find(',', start);
-    out.push_back(Trim(line.substr(start, comma == std::string::npos
-                                              ? std::string::npos
-                                              : comma - start)));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    std::string field;
+    if (i < line.size() && line[i] == '"') {
+      field = QuotedField(line, &i);
+      while (i < line.size() && line[i] != ',') ++i;  // white space after the closing quote
+    } else {
+      const size_t comma = std::min(line.find(',', i), line.size());
+      field = Trim(line.substr(i, comma - i));
+      i = comma;
+    }
+    out.push_back(field);
+    if (i >= line.size()) break;
+    ++i;  // the comma
   }
   return out;
+}
+
+std::string QuoteCsvField(const std::string& field) {
+  auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  const bool plain = field.find_first_of(",\"\r\n") == std::string::npos &&
+                     (field.empty() || (!blank(field.front()) && !blank(field.back())));
+  if (plain) return field;
+  std::string quoted = "\"";
+  for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string JoinCsvLine(const std::vector<std::string>& fields) {
+  std::string line;
+  for (size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + QuoteCsvField(fields[i]);
+  return line;
 }
 
 std::string FormatDouble(double v) {

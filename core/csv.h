@@ -42,7 +42,17 @@ class CsvReader {
   std::vector<std::string> header_;
 };
 
+// Fields of one CSV line (RFC 4180 quoting, no embedded newlines): a field
+// that starts with '"' runs to the matching '"', with "" for a quote inside,
+// and keeps its text as is; an unquoted field is trimmed of spaces, tabs and
+// carriage returns. An unterminated quote runs to the end of the line.
 std::vector<std::string> SplitCsvLine(const std::string& line);
+// `field` as one CSV field: quoted (with "" for a quote inside) when it holds
+// a comma, a quote, a line break or leading/trailing white space, so that
+// SplitCsvLine reads it back unchanged.
+std::string QuoteCsvField(const std::string& field);
+// The fields, each through QuoteCsvField, joined by commas (no line break).
+std::string JoinCsvLine(const std::vector<std::string>& fields);
 // Shortest text that reads back to the same double ("%.17g" trimmed).
 std::string FormatDouble(double v);
 // Fixed decimals; used for columns with a natural resolution (times, metres).

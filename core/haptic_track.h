@@ -1,5 +1,5 @@
 #pragma once
-// The haptic track file (*.haptic.csv): see ../shared/spec/haptic-track.md.
+// The haptic track file (*.haptic.csv): see docs/formats.md ("Haptic track specification").
 // For each instant, the displacement G_A -> G'_A of each HapSeat actuator
 // from the centre of its own workspace, in metres, in the seat frame
 // (+X right, +Y up, +Z backward). Rows at a fixed rate (# rate_hz).

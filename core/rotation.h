@@ -1,5 +1,5 @@
 #pragma once
-// Rotation conventions of ../shared/spec/camera-path.md, in one place.
+// Rotation conventions of the camera path (docs/formats.md), in one place.
 //   world_from_cam = R_y(pan) * R_x(tilt) * R_z(roll)   (angles in degrees)
 // Positive pan turns the view left, positive tilt turns it up, positive roll
 // turns the camera counter-clockwise. Euler angles are for people and for the

@@ -49,6 +49,28 @@ TEST(MedianTest, MatchesASortedReference) {
   }
 }
 
+TEST(QuantileTest, RankIsTheFloorOfQTimesTheCount) {
+  const std::vector<double> v = {50, 10, 40, 20, 30};
+  EXPECT_EQ(Quantile(v, 0.0), 10);
+  EXPECT_EQ(Quantile(v, 0.25), 20);  // rank 1
+  EXPECT_EQ(Quantile(v, 0.5), 30);
+  EXPECT_EQ(Quantile(v, 0.99), 50);
+  EXPECT_EQ(Quantile(v, 1.0), 50);  // rank n clamped to n - 1
+}
+
+TEST(QuantileTest, EvenCountGivesTheUpperMedianNotTheMean) {
+  EXPECT_EQ(Quantile(std::vector<double>{4, 1, 2, 3}, 0.5), 3);
+  EXPECT_DOUBLE_EQ(Median({4, 1, 2, 3}), 2.5);
+  EXPECT_EQ(Quantile(std::vector<float>{2.5f, -1.f}, 0.5), 2.5f);  // any ordered type
+}
+
+TEST(QuantileTest, OneValueAndOutOfRangeFractions) {
+  EXPECT_EQ(Quantile(std::vector<double>{7}, 0.5), 7);
+  EXPECT_EQ(Quantile(std::vector<double>{3, 1, 2}, -1), 1);
+  EXPECT_EQ(Quantile(std::vector<double>{3, 1, 2}, 2), 3);
+  EXPECT_EQ(Quantile(std::vector<double>{3, 1, 2}, NAN), 1);  // NaN: the smallest
+}
+
 }  // namespace
 TEST(Clamp01Test, ClampsAndMapsNonFiniteToZero) {
   EXPECT_EQ(Clamp01(0.25), 0.25);

@@ -10,6 +10,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/rotation.h"
+#include "core/statistics.h"
 #include "datasets/umeyama.h"
 
 namespace hapcine {
@@ -30,8 +31,7 @@ double FramePeriod(const CameraPath& p) {
   for (size_t i = 1; i < p.frames.size(); ++i) {
     dt.push_back(p.frames[i].time_s - p.frames[i - 1].time_s);
   }
-  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
-  return dt[dt.size() / 2];
+  return Quantile(std::move(dt), 0.5);
 }
 
 std::vector<MatchedPair> MatchByIndex(const CameraPath& gt, const CameraPath& est) {

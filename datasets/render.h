@@ -1,6 +1,6 @@
 #pragma once
 // CPU ray caster for the synthetic scene, in the camera convention of
-// ../shared/spec/camera-path.md (OpenGL): world_from_cam maps camera
+// docs/formats.md, "Camera path specification" (OpenGL): world_from_cam maps camera
 // coordinates to the world, the camera looks along its -Z axis with +Y up in
 // the image, and fov_deg is the HORIZONTAL field of view.
 //

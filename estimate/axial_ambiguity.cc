@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/statistics.h"
 #include "estimate/motion_plane.h"
 
 namespace hapcine {
@@ -40,9 +41,7 @@ double RadialScalePercentile(const std::vector<std::pair<Eigen::Vector2d, Eigen:
     if (std::isfinite(v) && v > 0) s.push_back(v);
   }
   if (s.empty()) return 1;
-  const size_t k = std::min(s.size() - 1, static_cast<size_t>(std::clamp(percentile, 0.0, 1.0) * s.size()));
-  std::nth_element(s.begin(), s.begin() + k, s.end());
-  return s[k];
+  return Quantile(std::move(s), percentile);
 }
 
 std::vector<BaCamera> MirroredAxialBranch(

@@ -7,7 +7,7 @@
 // b the forward motion), and any affine change of the inverse depths
 // w' = alpha + beta w explains the same tracks with another zoom a' and
 // motion b'. With beta < 0 the depth order flips: a forward dolly zooming
-// out (Vertigo) fits exactly as a backward move at constant focal with the
+// out (a dolly zoom) fits exactly as a backward move at constant focal with the
 // subject at infinity and the background near. Only cheirality (no point
 // beyond infinity, enforced in the bundle adjustment) separates the two
 // branches, so both must be optimised and compared; a solve started on one

@@ -22,6 +22,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "estimate/reference_width.h"
+
 namespace hapcine {
 
 struct BaCamera {
@@ -47,7 +49,7 @@ struct BaObservation {
 };
 
 struct BaOptions {
-  double huber_scale = 1.0 / 960;     // residual scale / Huber threshold, normalised units (~1 px)
+  double huber_scale = 1.0 / kReferenceWidthPx;  // residual scale / Huber threshold, normalised units (~1 px)
   double focal_step_sigma = 0.01;     // prior sigma on the 2nd difference of log f over focal blocks
   double focal_prior_sigma = 0.7;     // prior sigma on the first focal around focal_prior_log
   double focal_prior_log = 0;         // log normalised focal of the prior

@@ -24,11 +24,12 @@ void EstimatorOptions::Check() const {
     throw UsageError("skipping non-reference frames is for the hapcine backend only");
 }
 
-// Measured on the 17 synthetic clips (docs/estimate.md "Speed", "Status"):
-// ~0.6x the CPU of the defaults, less accurate (crane_shot 0.32 deg, the
-// telephoto FOV 7.7 %, whip_pan 0.94 deg). Skipping the deblocking filter
-// was left out here (3 % less CPU, but crane_shot 0.086 -> 0.11 deg and
-// whip_pan 0.45 -> 0.63 deg when measured); --draft adds it.
+// Measured on the 17 synthetic clips (docs/estimate.md "Accuracy and
+// speed"): ~0.6x the CPU of the defaults, less accurate (a crane move
+// 0.32 deg, a telephoto pan's FOV 7.7 %, a whip pan 0.94 deg). Skipping the
+// deblocking filter was left out here (3 % less CPU, but the crane move
+// 0.086 -> 0.11 deg and the whip pan 0.45 -> 0.63 deg when measured);
+// --draft adds it.
 void ApplyFastPreset(EstimatorOptions* options) {
   options->frames.max_working_side = 640;
   options->tracker.max_tracks = 300;

@@ -1,6 +1,6 @@
 #pragma once
 // The estimator's public entry point: video (or any FrameSource) in, camera
-// path (../shared/spec/camera-path.md) out.
+// path (docs/formats.md, "Camera path specification") out.
 //
 // Streaming: frames are decoded and tracked one at a time and handed to
 // TrackCameraEstimator (track_estimator.h), which solves bundle-adjustment
@@ -43,7 +43,7 @@ std::string FastPresetSummary();
 // The decoding-speed draft (--draft): the fast preset, and the decoder
 // skips the frames nothing is predicted from (their poses are interpolated)
 // and H.264's deblocking. 1.4x the decoder's own wall time on 1080p H.264,
-// less accurate (docs/estimate.md "Status against the targets").
+// less accurate (docs/estimate.md "Accuracy").
 void ApplyDraftPreset(EstimatorOptions* options);
 std::string DraftPresetSummary();
 

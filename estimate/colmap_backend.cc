@@ -13,7 +13,7 @@
 #include "core/child_process.h"
 #include "core/error.h"
 #include "core/stop_signal.h"
-#include "estimate/colmap_model.h"
+#include "datasets/colmap_text.h"
 
 namespace hapcine {
 namespace {

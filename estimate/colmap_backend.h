@@ -8,7 +8,7 @@
 //   colmap sequential_matcher --SiftMatching.use_gpu 0
 //   colmap mapper
 //   colmap model_converter    --output_type TXT
-// and the largest model is read with ReadColmapTextModel (colmap_model.h).
+// and the largest model is read with ReadColmapTextModel (datasets/colmap_text.h).
 // COLMAP cannot initialise on pure rotation or a static camera: that, a
 // missing binary or any failing step is a hapcine::Error naming the video.
 

@@ -3,16 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/statistics.h"
+
 namespace hapcine {
-namespace {
-
-double Quantile(std::vector<double> v, double q) {
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
-}
-
-}  // namespace
 
 std::vector<int> JudgeDepthLayers(const std::vector<DepthSample>& frame, const DepthLayerOptions& options) {
   std::vector<int> verdict(frame.size(), -1);

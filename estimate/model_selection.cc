@@ -18,8 +18,6 @@ void TwoViewOptions::Check() const {
   if (!(inlier_threshold > 0)) throw UsageError("two-view inlier_threshold must be > 0");
   if (min_correspondences < 8) throw UsageError("two-view min_correspondences must be >= 8");
   if (!(focal_search_range > 1)) throw UsageError("two-view focal_search_range must be > 1");
-  if (noise_neighbours < 1) throw UsageError("two-view noise_neighbours must be >= 1");
-  if (!(max_noise_sigma > 0)) throw UsageError("two-view max_noise_sigma must be > 0");
   ransac.Check();
 }
 
@@ -31,49 +29,6 @@ double Gric(const std::vector<double>& sq, double sigma, int d, int k) {
   double sum = 0;
   for (double e2 : sq) sum += std::isfinite(e2) ? std::min(e2 / s2, cap) : cap;
   return sum + std::log(r) * d * n + std::log(r * std::max(n, 1.0)) * k;
-}
-
-Eigen::Matrix2d TrackNoiseCovariance(const std::vector<Eigen::Vector2d>& at,
-                                     const std::vector<Eigen::Vector2d>& residual, int neighbours,
-                                     double min_sigma, double max_sigma) {
-  const int n = static_cast<int>(at.size());
-  Eigen::Matrix2d cov = min_sigma * min_sigma * Eigen::Matrix2d::Identity();
-  if (n < 2 * neighbours + 2 || neighbours < 1) return cov;
-  // The rough part: each residual minus the mean of its neighbours'. A
-  // smooth field (parallax, a slightly wrong focal) cancels; independent
-  // tracking noise stays, with (1 + 1/k) times its variance.
-  std::vector<Eigen::Vector2d> rough(n);
-  std::vector<std::pair<double, int>> dist(n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) dist[j] = {j == i ? HUGE_VAL : (at[j] - at[i]).squaredNorm(), j};
-    std::nth_element(dist.begin(), dist.begin() + neighbours - 1, dist.end());
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (int k = 0; k < neighbours; ++k) mean += residual[dist[k].second];
-    rough[i] = residual[i] - mean / neighbours;
-  }
-  // Principal axes from the smaller three quarters (depth edges and
-  // outliers are the rest), then a robust scale (MAD) along each axis.
-  std::vector<double> norm2(n);
-  for (int i = 0; i < n; ++i) norm2[i] = rough[i].squaredNorm();
-  std::vector<double> sorted = norm2;
-  std::nth_element(sorted.begin(), sorted.begin() + 3 * n / 4, sorted.end());
-  const double cut = sorted[3 * n / 4];
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (int i = 0; i < n; ++i)
-    if (norm2[i] <= cut) scatter += rough[i] * rough[i].transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-  // Per view: a homography-type residual carries the noise of both views.
-  const double per_view = 1.0 / (2.0 * (1.0 + 1.0 / neighbours));
-  Eigen::Matrix2d out = Eigen::Matrix2d::Zero();
-  for (int a = 0; a < 2; ++a) {
-    const Eigen::Vector2d v = eig.eigenvectors().col(a);
-    std::vector<double> proj(n);
-    for (int i = 0; i < n; ++i) proj[i] = std::abs(rough[i].dot(v));
-    const double mad = 1.4826 * Median(proj, 0.0);
-    const double var = std::clamp(mad * mad * per_view, min_sigma * min_sigma, std::max(min_sigma, max_sigma) * std::max(min_sigma, max_sigma));
-    out += var * v * v.transpose();
-  }
-  return out;
 }
 
 namespace {
@@ -249,75 +204,6 @@ void ScoreIsotropic(const ModelFits& m, TwoViewResult* result) {
   result->gric[kCandHomography] = m.hom_ok ? Gric(m.e_hom, m.sigma, 2, 8) : HUGE_VAL;
 }
 
-// Half the squared Mahalanobis transfer error through `H` (the residual's
-// information matrix `info`); non-finite errors stay as they are.
-std::vector<double> Whitened(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2,
-                             const std::vector<double>& e, const Eigen::Matrix3d& H, const Eigen::Matrix2d& info) {
-  const int n = static_cast<int>(e.size());
-  std::vector<double> w(n);
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(e[i])) {
-      w[i] = e[i];
-      continue;
-    }
-    const Eigen::Vector2d r = u2[i] - (H * u1[i].homogeneous()).hnormalized();
-    w[i] = 0.5 * r.dot(info * r);
-  }
-  return w;
-}
-
-// Sampson distance with the noise covariance (calibrated coordinates).
-std::vector<double> WhitenedSampson(const ModelFits& m, const Eigen::Matrix2d& cov, double f1) {
-  std::vector<double> w_ess(m.n, std::numeric_limits<double>::infinity());
-  const Eigen::Matrix2d cov_c = cov / (f1 * f1);
-  for (int i = 0; m.ess.success && i < m.n; ++i) {
-    const Eigen::Vector3d p = m.c1[i].homogeneous(), q = m.c2[i].homogeneous();
-    const Eigen::Vector3d Ep = m.ess.model * p, Etq = m.ess.model.transpose() * q;
-    const double num = q.dot(Ep);
-    const double den = Ep.head<2>().dot(cov_c * Ep.head<2>()) + Etq.head<2>().dot(cov_c * Etq.head<2>());
-    if (den > 1e-300) w_ess[i] = num * num / den;
-  }
-  return w_ess;
-}
-
-// Tracking noise is not always isotropic: motion blur spreads a track along
-// the motion, a fading picture along its edges. Measured as one sigma from
-// the essential matrix (which lets matches slide along its epipolar lines)
-// it is only the noise across those lines, and an epipolar direction along
-// the blur then "explains" the rest as translation (whip pan: t = (+-1, 0,
-// 0) on every blurred pair). So the noise covariance is measured from the
-// rough part of the rotation model's residuals and every candidate is
-// scored in whitened units.
-void ScoreAnisotropic(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2, double f1,
-                      const TwoViewOptions& options, const ModelFits& m, TwoViewResult* result) {
-  std::vector<Eigen::Vector2d> at, res;
-  for (int i = 0; i < m.n; ++i) {
-    const bool use = m.ess.success ? m.ess.inlier_mask[i] != 0 : m.e_rot[i] <= m.thr * m.thr;
-    if (!use || !std::isfinite(m.e_rot[i])) continue;
-    const Eigen::Vector3d p = m.R_rot * (u1[i] / m.f_rot).homogeneous();
-    at.push_back(u1[i]);
-    res.push_back(u2[i] - m.f_rot * p.hnormalized());
-  }
-  const Eigen::Matrix2d cov = TrackNoiseCovariance(at, res, options.noise_neighbours, m.sigma, options.max_noise_sigma);
-  const Eigen::Matrix2d info = cov.inverse();
-  const Eigen::Matrix3d K_rot = Eigen::Vector3d(m.f_rot, m.f_rot, 1).asDiagonal();
-  const Eigen::Matrix3d K1_rz = Eigen::Vector3d(m.f1_rz, m.f1_rz, 1).asDiagonal();
-  const Eigen::Matrix3d K2_rz = Eigen::Vector3d(m.f2_rz, m.f2_rz, 1).asDiagonal();
-  const auto w_static = Whitened(u1, u2, m.e_static, Eigen::Matrix3d::Identity(), info);
-  const auto w_zoom = Whitened(u1, u2, m.e_zoom, Eigen::Vector3d(m.s, m.s, 1).asDiagonal(), info);
-  const auto w_rot = Whitened(u1, u2, m.e_rot, K_rot * m.R_rot * K_rot.inverse(), info);
-  const auto w_rz = Whitened(u1, u2, m.e_rz, K2_rz * m.R_rz * K1_rz.inverse(), info);
-  const auto w_hom = m.hom_ok ? Whitened(u1, u2, m.e_hom, m.H, info) : m.e_hom;
-  const auto w_ess = WhitenedSampson(m, cov, f1);
-  result->gric[kCandStatic] = Gric(w_static, 1, 2, 0);
-  result->gric[kCandZoom] = m.zoom_ok ? Gric(w_zoom, 1, 2, 1) : HUGE_VAL;
-  result->gric[kCandRotation] = Gric(w_rot, 1, 2, 4);
-  result->gric[kCandRotationZoom] = Gric(w_rz, 1, 2, 5);
-  result->gric[kCandEssential] = m.ess.success ? Gric(w_ess, 1, 3, 5) : HUGE_VAL;
-  result->gric[kCandHomography] = m.hom_ok ? Gric(w_hom, 1, 2, 8) : HUGE_VAL;
-  result->noise_cov = cov;
-}
-
 // The lowest GRIC; the essential matrix must also give a valid relative
 // pose, otherwise the best homography-type model.
 int ChooseCandidate(const std::array<double, kNumCandidates>& gric, bool pose_ok) {
@@ -383,7 +269,6 @@ TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,
   FitRotationZoomModel(u1, u2, f1, options, &m);
   FitHomography(u1, u2, options, &m);
   ScoreIsotropic(m, &result);
-  if (options.anisotropic_noise) ScoreAnisotropic(u1, u2, f1, options, m, &result);
   Eigen::Matrix3d R_ess = Eigen::Matrix3d::Identity();
   Eigen::Vector3d t_ess = Eigen::Vector3d::Zero();
   const bool pose_ok = m.ess.success && DecomposeEssential(m.ess.model, Select(m.c1, m.ess.inlier_mask),

@@ -29,27 +29,15 @@
 
 #include "estimate/motion_model.h"
 #include "estimate/ransac.h"
+#include "estimate/reference_width.h"
 
 namespace hapcine {
 
 struct TwoViewOptions {
-  double noise_floor = 0.25 / 960;        // lower bound on sigma, normalised units (0.25 px at 960)
-  double inlier_threshold = 1.5 / 960;    // RANSAC inlier threshold, normalised units
+  double noise_floor = 0.25 / kReferenceWidthPx;      // lower bound on sigma, normalised units
+  double inlier_threshold = 1.5 / kReferenceWidthPx;  // RANSAC inlier threshold, normalised units
   int min_correspondences = 12;           // fewer: result.valid = false
   double focal_search_range = 2.0;        // rotation model searches f in [f1 / r, f1 * r]
-  // Score the candidates with a 2x2 track-noise covariance measured from the
-  // rough part of the rotation model's residuals (see model_selection.cc).
-  // Off by default: it removes the blur's spurious translation of a whip pan,
-  // but parallax of a scene whose depth changes from point to point (a pull
-  // back, a cluttered scene) is irregular too and, when small, is then read
-  // as noise (five track_estimator tests fail with it on: the pull-back
-  // loses its translation, the others their accuracy).
-  bool anisotropic_noise = false;
-  int noise_neighbours = 8;               // neighbours whose mean residual is the smooth part
-  // Largest tracking noise believed (normalised units, 2 px at 960): beyond
-  // it an irregular residual is structure — parallax of a cluttered scene,
-  // whose depth changes from one point to its neighbour — not noise.
-  double max_noise_sigma = 2.0 / 960;
   RansacOptions ransac;                   // max_error is set per model from inlier_threshold
   void Check() const;                     // throws UsageError
 };
@@ -67,19 +55,10 @@ struct TwoViewResult {
   int num_inliers = 0;                    // of the chosen model
   std::vector<char> inliers;              // of the chosen model
   std::array<double, kNumCandidates> gric{};
-  Eigen::Matrix2d noise_cov = Eigen::Matrix2d::Zero();  // per view, normalised units^2 (anisotropic_noise)
 };
 
 // GRIC of a set of squared residuals (see above).
 double Gric(const std::vector<double>& squared_residuals, double sigma, int d, int k);
-
-// Per-view track-noise covariance from residuals of a two-view fit at the
-// points `at`: each residual minus the mean of its `neighbours` nearest
-// neighbours' (a smooth field such as parallax cancels), robust scale along
-// the principal axes; eigenvalues within [min_sigma^2, max_sigma^2].
-Eigen::Matrix2d TrackNoiseCovariance(const std::vector<Eigen::Vector2d>& at,
-                                     const std::vector<Eigen::Vector2d>& residual, int neighbours,
-                                     double min_sigma, double max_sigma);
 
 // u1, u2: matched normalised coordinates; f1: current focal estimate of view 1.
 TwoViewResult SelectTwoViewModel(const std::vector<Eigen::Vector2d>& u1,

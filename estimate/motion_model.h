@@ -42,11 +42,6 @@ inline MotionModel CombineModels(bool rotation, bool translation, bool zoom) {
 inline MotionModel ReducedModel(MotionModel m, bool drop_translation, bool drop_zoom) {
   return CombineModels(HasRotation(m), HasTranslation(m) && !drop_translation, HasZoom(m) && !drop_zoom);
 }
-// Least general model that has the freedoms of both.
-inline MotionModel UnionModel(MotionModel a, MotionModel b) {
-  return CombineModels(HasRotation(a) || HasRotation(b), HasTranslation(a) || HasTranslation(b),
-                       HasZoom(a) || HasZoom(b));
-}
 
 // Names written in the camera path's `model` column.
 inline std::string MotionModelName(MotionModel m) {

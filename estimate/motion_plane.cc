@@ -5,15 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include "core/statistics.h"
+
 namespace hapcine {
 namespace {
-
-// Value at `q` in [0, 1] of `v` (reordered).
-double Quantile(std::vector<double> v, double q) {
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * v.size()));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
-}
 
 // w range (2nd..98th percentile) of the points `idx` of `xyw`.
 double WRange(const std::vector<Eigen::Vector3d>& xyw, const std::vector<int>& idx) {

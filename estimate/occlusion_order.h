@@ -44,8 +44,8 @@ struct OcclusionOptions {
   // Count tracks that begin next to survivors too (uncovered background).
   // Off: the detector starts new tracks wherever it finds room, and the
   // silhouette's own corners (T-junctions, fresh texture on the subject) start
-  // there in either direction of motion; on dolly_zoom_parallax the births
-  // voted 6/15 against the branch the ends voted for 115/38 (docs/estimate.md).
+  // there in either direction of motion; on a dolly zoom the births voted
+  // 6/15 against the branch the ends voted for 115/38.
   bool births = false;
 };
 

@@ -42,8 +42,9 @@ using PlanePointsFn = std::function<std::vector<Eigen::Vector3d>(const std::vect
 // zoom in a unit test, and that prior pulls back to where the fit started.
 // The two ends' focals block the shift (it changes the last one most); the
 // focals between them are free to follow the tracks, which also undoes the
-// bend that prior left in the first solve of a strong zoom (holding them all:
-// dolly_zoom_parallax 0.95 % of zoom; the ends only: 0.21 %). Repeated on
+// bend that prior left in the first solve of a strong zoom (on a dolly zoom
+// over a floor, holding them all: 0.95 % of zoom error; the ends only:
+// 0.21 %). Repeated on
 // the polished solution until the shift is negligible. The result replaces
 // the input only when it fits as well (FitsAsWell).
 PlanePriorResult ApplyPlanePrior(const BaOptions& options, int pivot, double noise_floor,

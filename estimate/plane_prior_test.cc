@@ -8,7 +8,7 @@ namespace {
 using Ruled = std::vector<char>;
 
 TEST(PlanePrior, TheFloorRulesOutTheBranchesWithoutIt) {
-  // vertigo at --fast: the two pull-back candidates have no floor parallel to the move.
+  // A dolly zoom at --fast: the two pull-back candidates have no floor parallel to the move.
   EXPECT_EQ(ContradictedByPlane({0, 0, 38}), (Ruled{1, 1, 0}));
   // --klt-window 19: a slab through a cluster on the wrong branch (29 points)
   // is under half of the floor's support.

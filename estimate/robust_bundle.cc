@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/statistics.h"
+
 namespace hapcine {
 
 void PolishBundle(const BaOptions& options, std::vector<BaCamera>* cameras, std::vector<BaPoint>* points,
@@ -22,8 +24,8 @@ void PolishBundle(const BaOptions& options, std::vector<BaCamera>* cameras, std:
 
 BaSummary SolveDroppingOutliers(const BaOptions& options, std::vector<BaCamera>* cameras,
                                 std::vector<BaPoint>* points, std::vector<BaObservation>* observations) {
-  // 40 iterations without converging on the first window of the 1080p
-  // traveling at the usual tolerance, ~1e-5 a step.
+  // 40 iterations without converging on the first window of a 1080p
+  // sideways traveling at the usual tolerance, ~1e-5 a step.
   BaOptions first = options;
   first.function_tolerance = 1e-4;
   BaSummary s = SolveBundle(cameras, points, *observations, first);
@@ -71,8 +73,7 @@ void DropInconsistentTracks(const BaOptions& options, double floor_cut, std::vec
       if (std::isfinite(rms[k])) finite.push_back(rms[k]);
     }
     if (finite.empty()) break;
-    std::nth_element(finite.begin(), finite.begin() + finite.size() / 4, finite.end());
-    const double cut = factor * std::max(floor_cut, 2.0 * finite[finite.size() / 4]);
+    const double cut = factor * std::max(floor_cut, 2.0 * Quantile(std::move(finite), 0.25));
     std::vector<BaObservation> next;
     for (const auto& o : *kept)
       if (rms[o.point] < cut) next.push_back(o);

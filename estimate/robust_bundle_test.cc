@@ -8,7 +8,7 @@
 namespace hapcine {
 namespace {
 
-constexpr double kPx = 1.0 / 960;  // one pixel at 960 px width, normalised units
+constexpr double kPx = 1.0 / kReferenceWidthPx;  // one reference pixel, normalised units
 
 // A pan on a tripod (OpenCV axes): 8 cameras 2 degrees apart, focal 1 held,
 // 120 points as bearings seen by every camera, 0.2 px of noise. Camera 0

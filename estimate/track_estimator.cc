@@ -24,8 +24,6 @@ void TrackEstimatorOptions::Check() const {
     throw UsageError("spread points factor must be in [1, 10]");
   if (point_grid_cells < 0) throw UsageError("point grid must be >= 0 cells");
   if (!(track_rms_cut_px > 0 && track_rms_cut_rotation_px > 0)) throw UsageError("track RMS cut must be > 0");
-  if (window_lead_in_frames < 0 || window_lead_in_frames >= window_frames)
-    throw UsageError("window lead-in must be in [0, window frames)");
   if (!(keyframe_motion > 0 && keyframe_motion < 0.5)) throw UsageError("keyframe motion must be in (0, 0.5)");
   if (!(keyframe_min_shared > 0 && keyframe_min_shared < 1)) throw UsageError("keyframe min shared must be in (0, 1)");
   if (keyframe_max_gap < 1) throw UsageError("keyframe max gap must be >= 1");
@@ -56,7 +54,6 @@ WindowOptions WindowOptionsOf(const TrackEstimatorOptions& o) {
   w.ba_iterations = o.ba_iterations;
   w.track_rms_cut_px = o.track_rms_cut_px;
   w.track_rms_cut_rotation_px = o.track_rms_cut_rotation_px;
-  w.depth_layer_cut = o.depth_layer_cut;
   w.freedom_test = o.freedom_test;
   w.blur_noise_per_speed = o.blur_noise_per_speed;
   w.motion_plane_prior = o.motion_plane_prior;
@@ -276,7 +273,8 @@ void TrackCameraEstimator::FinishShot() {
     // The sigma is in frames of the video: where the decoder skipped frames
     // (FrameTracks::step) a sample stands for more than one, and a sigma in
     // samples would smooth over more time and lag the fast parts (with
-    // every other frame: ATE 0.12 -> 0.06 % on traveling, docs/estimate.md).
+    // every other frame, a sideways traveling's ATE was 0.12 % instead of
+    // 0.06 %).
     double video_frames = 0;
     for (int i = 1; i < n; ++i) video_frames += std::max(raw_[i].meta.step, 1);
     const double sigma = n > 1 ? options_.smooth_sigma_frames / (video_frames / (n - 1))

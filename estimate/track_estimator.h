@@ -43,20 +43,14 @@ struct TrackEstimatorOptions {
   double prior_hfov_deg = 50;        // focal prior (horizontal FOV) where focal is not observable
   int window_frames = 120;           // frames per bundle-adjustment window (long shots)
   int max_points = 300;              // points per window
-  // Keyframes of the previous window's last this-many frames are held
-  // constant in the next one (at least two keyframes): its tracks are judged
-  // over a longer baseline, where an occlusion-edge corner's slide shows.
-  // Off: it did not change crane_shot and cost accuracy in a unit test
-  // (docs/estimate.md, "crane_shot").
-  int window_lead_in_frames = 0;
   // Points spread over point_grid_cells^2 image cells (point_selection.h) in
   // translating windows (not along the optical axis); 0 or 1: longest first.
   int point_grid_cells = 6;
   // Those windows take max_points x this: the whole-track cut drops about
   // half of them on footage with silhouettes (occlusion-edge corners, and
   // good tracks the first bent solve puts far), and a window left with too
-  // few rigid points bends along the rotation/translation ambiguity
-  // (crane_shot: 0.145 deg with x1, 0.020 with x2; docs/estimate.md).
+  // few rigid points bends along the rotation/translation ambiguity (a crane
+  // move past a subject: 0.145 deg with x1, 0.020 with x2).
   double spread_points_factor = 2;
   double keyframe_motion = 0.02;     // median track motion for a new keyframe, fraction of width
   double keyframe_min_shared = 0.7;  // fraction of the last keyframe's tracks still alive
@@ -73,12 +67,6 @@ struct TrackEstimatorOptions {
   // keyframe intervals translate: without parallax an occlusion edge does not
   // slide and the RMS is tracking noise (blur of a whip pan, fades).
   double track_rms_cut_rotation_px = 0.4;
-  // After that cut, in the same windows, also drop the tracks whose depth
-  // lies between the two depth layers of their neighbourhood (occlusion-edge
-  // corners that fit a rigid point at an in-between depth; depth_layers.h).
-  // Off: it flags about a tenth of them and left crane_shot as it was
-  // (docs/estimate.md, "crane_shot").
-  bool depth_layer_cut = false;
   // Window-level BIC tests of the two-view labels (window_freedoms.h): a few
   // translating (or, without translation, zooming) intervals keep their
   // freedoms only if they pay for themselves over the whole window (motion

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/statistics.h"
+#include "estimate/reference_width.h"
 #include "estimate/track_estimator.h"
 
 namespace hapcine {
@@ -68,7 +69,7 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
       out.model = ki == 0 && n > 1 ? keyframes_[1].model : a.model;
       if (a.fixed && ki == 0 && n > 1) out.model = keyframes_[1].model;
       out.confidence = Clamp01(a.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
-                       std::exp(-0.5 * std::pow(w.rms_px * 960.0 / width_ / 2.0, 2)) *
+                       std::exp(-0.5 * std::pow(w.rms_px * kReferenceWidthPx / width_ / 2.0, 2)) *
                        (w.focal_observable ? 1.0 : 0.8);
       if (!w.success) out.confidence *= 0.3;
       raw_.push_back(out);
@@ -118,22 +119,17 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
       }
     }
     out.confidence = Clamp01(b.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
-                     std::exp(-0.5 * std::pow(rms_px * 960.0 / width_ / 2.0, 2)) *
+                     std::exp(-0.5 * std::pow(rms_px * kReferenceWidthPx / width_ / 2.0, 2)) *
                      (w.focal_observable ? 1.0 : 0.8);
     if (!w.success) out.confidence *= 0.3;
     raw_.push_back(out);
   }
 }
 
-// The next window starts with the last two keyframes (or those of the last
-// window_lead_in_frames), held constant; the frames before them are done.
+// The next window starts with the last two keyframes, held constant; the
+// frames before them are done.
 void TrackCameraEstimator::StartNextWindow() {
-  const int n = static_cast<int>(keyframes_.size());
-  int first_kept = n - 2;
-  while (first_kept > 0 &&
-         keyframes_[n - 1].pos - keyframes_[first_kept - 1].pos <= options_.window_lead_in_frames)
-    --first_kept;
-  std::vector<Keyframe> lead_in(keyframes_.begin() + first_kept, keyframes_.end());
+  std::vector<Keyframe> lead_in(keyframes_.end() - 2, keyframes_.end());
   for (Keyframe& k : lead_in) {
     k.fixed = k.fixed_focal = true;
     k.chain_start = false;

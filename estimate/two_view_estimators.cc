@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/statistics.h"
+
 namespace hapcine {
 namespace {
 
@@ -71,7 +73,7 @@ bool NullVector(const Matrix& A, Eigen::Matrix<double, 9, 1>* v) {
 // A minimal sample's 8 x 9 system always has a null vector: the direction
 // orthogonal to its 8 rows, i.e. the last column of Q in A^T = Q R. One
 // Householder QR costs a fraction of the SVD above (whose Jacobi sweeps were
-// ~3 % of the estimator's CPU, docs/estimate.md "Speed"). Column pivoting
+// ~3 % of the estimator's CPU under perf). Column pivoting
 // orders R's diagonal, so a small last entry flags the same degenerate
 // samples (rank < 8: a 2-d null space, no unique model).
 bool MinimalNullVector(const DltMinimal& A, Eigen::Matrix<double, 9, 1>* v) {
@@ -198,9 +200,7 @@ std::vector<RotationZoom> RotationZoomEstimator::Estimate(const std::vector<X_t>
   if (n == 2) {
     f2s = f2_candidates;
   } else {  // least squares: the median of the pair solutions, then Kabsch
-    std::nth_element(f2_candidates.begin(), f2_candidates.begin() + f2_candidates.size() / 2,
-                     f2_candidates.end());
-    f2s.push_back(f2_candidates[f2_candidates.size() / 2]);
+    f2s.push_back(Quantile(f2_candidates, 0.5));
   }
   std::vector<RotationZoom> models;
   std::vector<Eigen::Vector3d> b1, b2;

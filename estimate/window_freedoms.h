@@ -31,7 +31,8 @@ namespace hapcine {
 // A zoom-only test also drops a zoom whose total change over the tested
 // intervals (sum of |delta ln f| in the solve with it) is under this: 0.1 %,
 // a fifth of the zoom-ratio accuracy the estimator aims at, is no zoom a
-// viewer sees, however well the tracks support it (tilting: 0.007 %).
+// viewer sees, however well the tracks support it (a slow tilt can read as
+// a 0.007 % zoom that fits better than none).
 constexpr double kNegligibleLogZoom = 1e-3;
 
 // Motion blur: KLT on a blurred corner is off along the blur by an amount

@@ -18,9 +18,9 @@
 #include "core/rotation.h"
 #include "core/statistics.h"
 #include "estimate/axial_ambiguity.h"
-#include "estimate/depth_layers.h"
 #include "estimate/occlusion_order.h"
 #include "estimate/plane_prior.h"
+#include "estimate/reference_width.h"
 #include "estimate/robust_bundle.h"
 #include "estimate/two_view_geometry.h"
 #include "estimate/window_freedoms.h"
@@ -99,7 +99,7 @@ void InitPoints(const WindowProblem& p, const std::vector<BaCamera>& c, std::vec
 void SetSolveOptions(WindowProblem* p) {
   const WindowOptions& opt = *p->opt;
   BaOptions& ba = p->ba;
-  ba.huber_scale = 1.0 / 960;
+  ba.huber_scale = 1.0 / kReferenceWidthPx;
   ba.focal_prior_log = p->in->prior_log_focal;
   ba.fix_first_focal = !p->focal_observable;
   ba.use_depth = p->has_translation;
@@ -400,33 +400,6 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   for (auto& r : reports) report->candidates.push_back(std::move(r));
 }
 
-// Tracks between two depth layers (depth_layers.h) under the solution the
-// RMS cut left: corners sliding along a silhouette that fit a rigid point at
-// an in-between depth, which the RMS cannot see. The tracks the RMS cut
-// dropped are no one's neighbours (they are often such corners too).
-void DropBetweenLayers(const WindowProblem& p, Candidate* c) {
-  std::vector<char> kept_point(c->pts.size(), 0);
-  for (const auto& ob : c->ob) kept_point[ob.point] = 1;
-  std::vector<long> track_of_point(c->pts.size(), -1);
-  std::set<long> dropped;
-  for (const auto& [id, k] : p.window_tracks.point_of_track) {
-    track_of_point[k] = id;
-    if (!kept_point[k]) dropped.insert(id);
-  }
-  std::map<long, KeyframeTrack> tracks;
-  const int n = static_cast<int>(std::min<size_t>(p.n, c->cams.size()));
-  for (int i = 0; i < n; ++i)
-    for (const auto& [id, u] : *p.keyframes[i].tracks)
-      if (!dropped.count(id) && !p.in->outlier_tracks.count(id)) tracks[id].push_back({i, u});
-  const std::set<long> between = TracksBetweenDepthLayers(c->cams, tracks);
-  std::vector<BaObservation> kept;
-  for (const auto& ob : c->ob)
-    if (!between.count(track_of_point[ob.point])) kept.push_back(ob);
-  if (kept.size() == c->ob.size() || kept.size() <= 10) return;
-  c->ob = kept;
-  PolishBundle(p.ba, &c->cams, &c->pts, c->ob, &c->summary);
-}
-
 // Every point's RMS over all its observations after the cut, and whether it
 // was kept ("track_rms" records, for diagnostics).
 void RecordTrackRms(const WindowProblem& p, const Candidate& c, Diagnostics* diagnostics) {
@@ -440,7 +413,7 @@ void RecordTrackRms(const WindowProblem& p, const Candidate& c, Diagnostics* dia
   for (const auto& ob : c.ob) kept[ob.point] = 1;
   nlohmann::json tracks = nlohmann::json::array();
   for (const auto& [id, k] : p.window_tracks.point_of_track)
-    if (cnt[k]) tracks.push_back({{"track", id}, {"rms_px", std::sqrt(sq[k] / cnt[k]) * 960}, {"kept", kept[k] != 0}});
+    if (cnt[k]) tracks.push_back({{"track", id}, {"rms_px", std::sqrt(sq[k] / cnt[k]) * kReferenceWidthPx}, {"kept", kept[k] != 0}});
   Record(diagnostics, "track_rms", {{"first_frame", p.in->first_frame}, {"tracks", std::move(tracks)}});
 }
 
@@ -457,7 +430,6 @@ void RejectTracks(const WindowProblem& p, Candidate* c, Diagnostics* diagnostics
   const WindowOptions& opt = *p.opt;
   const double cut_px = p.mostly_translating ? opt.track_rms_cut_px : opt.track_rms_cut_rotation_px;
   DropBadTracks(p.ba, cut_px, &c->cams, &c->pts, p.obs, &c->ob, &c->summary);
-  if (opt.depth_layer_cut && p.mostly_translating) DropBetweenLayers(p, c);
   if (Wants(diagnostics, "track_rms")) RecordTrackRms(p, *c, diagnostics);
 }
 
@@ -627,7 +599,7 @@ std::vector<MotionModel> PromotionLabels(const std::vector<WindowKeyframe>& keyf
 // drops the good tracks the first, bent solution puts far.
 void DropBadTracks(const BaOptions& ba, double cut_px, std::vector<BaCamera>* cams, std::vector<BaPoint>* points,
                    const std::vector<BaObservation>& all, std::vector<BaObservation>* kept, BaSummary* summary) {
-  DropInconsistentTracks(ba, cut_px / 960.0, cams, points, all, kept, summary);  // normalised units
+  DropInconsistentTracks(ba, cut_px / kReferenceWidthPx, cams, points, all, kept, summary);  // normalised units
 }
 
 WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagnostics* diagnostics) {

@@ -31,6 +31,7 @@
 
 #include "estimate/bundle_adjustment.h"
 #include "estimate/motion_model.h"
+#include "estimate/reference_width.h"
 #include "estimate/window_points.h"
 
 namespace hapcine {
@@ -71,11 +72,10 @@ struct WindowOptions {
   int ba_iterations = 40;
   double track_rms_cut_px = 0.2;           // whole-track cut, px at 960 px width
   double track_rms_cut_rotation_px = 0.4;  // the same where few intervals translate
-  bool depth_layer_cut = false;
   bool freedom_test = true;
   double blur_noise_per_speed = 0.04;
   bool motion_plane_prior = true;
-  double noise_floor = 0.25 / 960; // normalised units
+  double noise_floor = 0.25 / kReferenceWidthPx; // normalised units
   int num_threads = 1;
 };
 

@@ -22,7 +22,7 @@
 
 #include "core/diagnostics.h"
 #include "core/error.h"
-#include "extract/appearance_check.h"
+#include "core/statistics.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
 #include "extract/keep_tracks.h"
@@ -44,10 +44,6 @@ void TrackerOptions::Check() const {
     throw UsageError("klt_coarse_iterations must be 1..100");
   if (!(klt_coarse_step_px > 0 && klt_coarse_step_px <= 1))
     throw UsageError("klt_coarse_step_px must be in (0, 1]");
-  if (!(appearance_min_ncc >= 0 && appearance_min_ncc < 1))
-    throw UsageError("appearance_min_ncc must be in [0, 1)");
-  if (appearance_lag_frames < 0 || appearance_lag_frames > 100)
-    throw UsageError("appearance_lag_frames must be 0..100");
   if (!(cut_threshold > 0 && cut_threshold <= 1))
     throw UsageError("cut_threshold must be in (0, 1]");
   if (!(blank_luma >= 0 && blank_luma < 255)) throw UsageError("blank_luma must be in [0, 255)");
@@ -72,13 +68,14 @@ constexpr double kTransitionQualityCap = 0.25;
 // camera moving (a pan or tilt brings new colours into view), not a dissolve.
 // A dissolve on a still camera keeps tracks alive but does not move them.
 // A whip pan blurs the picture: only 20-35 % of the tracks pass the
-// forward-backward check each frame (measured on synth whip_pan), but they
+// forward-backward check each frame (measured on an 80 deg whip), but they
 // all agree on a large motion.
 constexpr double kMotionRunSurvival = 0.2;
 constexpr double kMotionRunShare = 0.05;
 // A cut between look-alike shots: at most this share of last frame's tracks
-// still verified (after the collapse's consistency check). Synth hard_cut:
-// 0 of 541; the blurred whip pan keeps 22-35 % (docs/extract.md).
+// still verified (after the collapse's consistency check). A cut between
+// two views of one set: 0 of 541; a blurred whip pan keeps 22-35 %
+// (docs/extract.md).
 constexpr double kCutSurvival = 0.1;
 
 }  // namespace
@@ -86,15 +83,12 @@ constexpr double kCutSurvival = 0.1;
 struct FeatureTracker::Impl {
   explicit Impl(const TrackerOptions& o)
       : options(o),
-        shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}),
-        appearance(11, o.appearance_lag_frames) {}
+        shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}) {}
 
   TrackerOptions options;
   Diagnostics* diagnostics = nullptr;  // "cut_cues" records
   ShotDetector shots;
   DescriptorRelinker relinker;
-  AppearanceCheck appearance;
-  std::vector<float> ncc;  // scratch for the appearance check
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -156,8 +150,7 @@ struct FeatureTracker::Impl {
       if (run_motion_px < kMotionRunShare * working_width) run_tracked = false;
       return;
     }
-    std::nth_element(disp.begin(), disp.begin() + disp.size() / 2, disp.end());
-    run_motion_px += disp[disp.size() / 2];
+    run_motion_px += Quantile(std::move(disp), 0.5);
   }
 
   bool RunWasCameraMotion(int working_width) const {
@@ -275,29 +268,12 @@ struct FeatureTracker::Impl {
     KeepTracksIf(points, ids, [&](size_t i) { return inlier[i] != 0; });
   }
 
-  // Ends the tracks whose patch no longer looks like their reference patch
-  // (appearance_check.h); the survivors keep their order.
-  void DropChangedAppearance(const cv::Mat& gray, std::vector<cv::Point2f>* points,
-                             std::vector<long>* ids) {
-    appearance.Score(gray, *points, *ids, &ncc);
-    // Relative to this frame's median NCC (~0.99 on ordinary frames): motion
-    // blur or a lighting change lowers every track's NCC at once.
-    std::vector<float> sorted = ncc;
-    float median = 1;
-    if (!sorted.empty()) {
-      std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-      median = sorted[sorted.size() / 2];
-    }
-    const double threshold = options.appearance_min_ncc * std::max(0.0f, median);
-    KeepTracksIf(points, ids, [&](size_t i) { return ncc[i] >= threshold; });
-  }
-
   // Constant velocity: each point is expected where its last displacement
   // takes it; points without one (new detections, re-links) move by the
   // median of the others. Why: KLT started at zero displacement has to find
   // a whip pan's 100+ px per frame through the pyramid alone, and on the
-  // blurred pictures it settles short (synth whip_pan at 1280 px lost 6 of
-  // its 80 degrees); the previous frame's motion is a far closer start.
+  // blurred pictures it settles short (an 80 deg whip at 1280 px lost 6
+  // degrees); the previous frame's motion is a far closer start.
   // False (KLT starts at zero motion, as without it) when the picture moved
   // less than a KLT window last frame (the pyramid finds that from zero, and
   // a start carrying last frame's tracking noise gains nothing), or when the
@@ -355,10 +331,7 @@ struct FeatureTracker::Impl {
         vy.push_back(v.y);
       }
     if (vx.empty()) return {kNoMotion, kNoMotion};
-    const size_t mid = vx.size() / 2;
-    std::nth_element(vx.begin(), vx.begin() + mid, vx.end());
-    std::nth_element(vy.begin(), vy.begin() + mid, vy.end());
-    return {vx[mid], vy[mid]};
+    return {Quantile(std::move(vx), 0.5), Quantile(std::move(vy), 0.5)};
   }
 
   // KLT from the previous pyramid to `pyramid`, forward then backward.
@@ -592,10 +565,7 @@ struct FeatureTracker::Impl {
     if (!(w->points.size() < 0.9 * options.max_tracks &&
           (!w->had_tracks || w->points.size() < 0.9 * tracks_after_detect || frames_since_detect >= 8)))
       return;
-    const size_t n0 = w->points.size();
     TopUp(frame.gray, w->pyramid, &w->points, &w->ids);
-    if (options.appearance_min_ncc > 0)
-      for (size_t i = n0; i < w->points.size(); ++i) appearance.Born(frame.gray, w->points[i], w->ids[i]);
     tracks_after_detect = w->points.size();
     frames_since_detect = 0;
   }
@@ -652,12 +622,6 @@ struct FeatureTracker::Impl {
     TrackFromLastFrame(frame, decision.transition, &w);
     Recover(frame, &out, &w);
     CheckCut(frame, decision, &out, &w);
-    // Not after a collapse (blur changes every patch; the references stay
-    // those of the last ordinary frame). Transition-flagged frames are
-    // checked: the flag is also raised by camera moves that bring new colours
-    // into view (synth crane_shot), where the check is needed.
-    if (options.appearance_min_ncc > 0 && !w.collapsed && w.relinked == 0)
-      DropChangedAppearance(frame.gray, &w.points, &w.ids);
     const size_t verified = w.points.size();
     TopUpIfThin(frame, &w);
     // Quality: verified (tracked or re-linked) share of the wanted tracks;

@@ -33,14 +33,6 @@ struct TrackerOptions {
   // motion: fast pans stay within the pyramid's reach.
   bool klt_predict = true;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
-  // Appearance check (extract/appearance_check.h): a track ends when the
-  // NCC of its 11x11 working-pixel patch with its patch
-  // appearance_lag_frames earlier (0: at birth) falls below
-  // appearance_min_ncc; occlusion-edge corners (T-junctions) change as the
-  // background slides behind the silhouette. appearance_min_ncc 0 turns the
-  // check off.
-  double appearance_min_ncc = 0;
-  int appearance_lag_frames = 8;
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
   double blank_luma = 16;          // mean luma (0..255) under which a frame is blank

@@ -271,7 +271,7 @@ TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
 // A cut between two views of the same set: the histograms stay close (under
 // the cut threshold), but tracking collapses at once and the descriptors find
 // nothing in common, on a frame whose histogram distance jumps well above the
-// pan's steady change. That is a cut (synth hard_cut).
+// pan's steady change. That is a cut.
 TEST(FeatureTrackerTest, CutBetweenTwoViewsOfTheSameSceneSplits) {
   const cv::Mat scene = NoiseTexture({3200, 800}, 23);
   const auto view = [&](int i) {
@@ -387,7 +387,7 @@ TEST(FeatureTrackerTest, BlurredWhipPanWithSkippedFramesIsTracked) {
   const cv::Mat wide = BlendedAcross(NoiseTexture({4000, 800}, 24, {-0.8, -0.6, -0.4}),
                                      NoiseTexture({4000, 800}, 25, {0.6, 0.8, 0.9}), 1000, 2000);
   // 0.4 of the whip above: at its fastest a decoded frame moves by ~30 % of
-  // the picture's width, as synth whip_pan's 80 deg with every other frame.
+  // the picture's width, as an 80 deg whip pan decoded every other frame.
   const auto position = [](double t) { return 0.4 * WhipPosition(t); };
   FeatureTracker tracker(SmallOptions());
   std::vector<FrameTracks> out;

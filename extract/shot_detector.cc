@@ -14,8 +14,8 @@ constexpr int kMinCalmBeforeCandidate = 3;
 constexpr int kMaxCandidateLen = 90;
 // Spikes: d >= kSpikeRatio x median of the last kLocalWindow distances (at
 // least kMinLocal of them) and d >= kSpikeFloor. Measured on the 17 synth
-// clips (docs/extract.md): the cut in hard_cut is 2.95x the median of the
-// pan before it; inside the whip pan's tracking collapse the ratio is
+// clips (docs/extract.md): a cut after a pan is 2.95x the median of the
+// pan before it; inside a whip pan's tracking collapse the ratio is
 // 0.75-0.92. The floor keeps compression flicker on a still picture (median
 // ~0) from counting.
 constexpr size_t kLocalWindow = 5;

@@ -1,4 +1,4 @@
-// The COLMAP text model reader (estimate/colmap_model.h). It reads a folder,
+// The COLMAP text model reader (datasets/colmap_text.h). It reads a folder,
 // so the input is split into its three files at lines "====":
 //   cameras.txt, "====", images.txt, "====", points3D.txt
 // A part that is absent leaves its file out (points3D.txt is optional).
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "estimate/colmap_model.h"
+#include "datasets/colmap_text.h"
 #include "fuzz/fuzz_input.h"
 
 namespace {

@@ -80,10 +80,11 @@ std::vector<EffectSegment> ReadKeyframesFile(const std::string& path) {
 }
 
 void WriteKeyframes(const std::vector<EffectSegment>& segs, std::ostream& out) {
-  out << "start_s,end_s,effect,intensity\n";
+  out << JoinCsvLine({"start_s", "end_s", "effect", "intensity"}) << "\n";
   for (const auto& s : segs) {
-    out << FormatDouble(s.start_s) << "," << FormatDouble(s.end_s) << "," << EffectName(s.effect)
-        << "," << FormatDouble(s.intensity) << "\n";
+    out << JoinCsvLine({FormatDouble(s.start_s), FormatDouble(s.end_s), EffectName(s.effect),
+                        FormatDouble(s.intensity)})
+        << "\n";
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "haptics/device_config.h"
 #include "haptics/falcon_firmware.h"
 #include "haptics/safety.h"
@@ -220,8 +221,7 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
   RunnerOptions ro;
   ro.realtime = o.realtime;
   ro.max_run_s = o.max_run_s;
-  const bool tty = isatty(STDERR_FILENO);
-  double last_print = -1e9;
+  Progress playing(log, isatty(STDERR_FILENO) ? ProgressMode::kBar : ProgressMode::kLines, "playing", "s");
   bool holding = wait_for_homing;
   if (holding) log << "home each Falcon: pull the grip fully out and push it back in "
                       "(red LED -> green); the film starts when all are homed\n";
@@ -234,19 +234,12 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
       if (mpv) mpv->SetPause(false);
       if (wall) wall->Start(now);
     }
-    const double t = loop.last_media_s();
-    if (tty) {
-      log << "\rplaying " << std::fixed << std::setprecision(1) << t << " / " << film_s << " s"
-          << std::flush;
-    } else if (now - last_print >= 10) {
-      log << "playing " << std::fixed << std::setprecision(1) << t << " / " << film_s << " s\n";
-      last_print = now;
-    }
+    playing.Update(loop.last_media_s(), film_s);
   };
   log << "playing " << track_path << " with " << (o.device == "none" ? "no device" : o.device)
       << " (k=" << lo.k_n_m << " N/m, d=" << lo.d_n_s_m << " N s/m)\n";
   const RunReport report = RunLoop(loop, ro, nullptr, progress, 0.1);
-  if (tty) log << "\n";
+  playing.Close();
   result.realtime = report.realtime;
   if (!report.realtime) log << "note: " << report.realtime_note << "\n";
   result.status = loop.status();

@@ -1,6 +1,6 @@
 #!/bin/bash
 # Estimates and scores every synthetic clip, two at a time, and prints a table
-# (docs/estimate.md, "All 17 clips before and after whole-track rejection").
+# (docs/estimate.md, "Accuracy").
 #   scripts/estimate_accuracy.sh HAPCINE_BINARY OUT_DIR [extra estimate options...]
 # Clips: /tmp/d/clips/<clip>.mp4 + <clip>.camera.csv (hapcine synth), or CLIPS=dir.
 set -u

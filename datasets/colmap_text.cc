@@ -1,4 +1,4 @@
-#include "estimate/colmap_model.h"
+#include "datasets/colmap_text.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/rotation.h"
+#include "core/statistics.h"
 
 namespace hapcine {
 namespace {
@@ -137,11 +138,7 @@ CameraPath ReadColmapTextModel(const std::string& dir, const ColmapReadOptions& 
     const double z = (R_ref * it->second + ref.translation).z();
     if (z > 0 && std::isfinite(z)) depths.push_back(z);
   }
-  double unit = 1;
-  if (!depths.empty()) {
-    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-    unit = depths[depths.size() / 2];
-  }
+  const double unit = depths.empty() ? 1.0 : Quantile(std::move(depths), 0.5);
   const Eigen::Vector3d C_ref = -R_ref.transpose() * ref.translation;
   const Eigen::Matrix3d F = Eigen::Vector3d(1, -1, -1).asDiagonal();
 

@@ -1,7 +1,7 @@
 #pragma once
 // Reads a COLMAP sparse model in text form (cameras.txt, images.txt,
 // points3D.txt, as written by `colmap model_converter --output_type TXT`)
-// and turns it into a camera path (../shared/spec/camera-path.md):
+// and turns it into a camera path (docs/formats.md, "Camera path specification"):
 //  - COLMAP stores cam_from_world with OpenCV camera axes (+Z forward,
 //    +Y down); the file wants world_from_cam with OpenGL axes, so Y and Z
 //    are flipped: R_gl = F R F, c_gl = F c, F = diag(1, -1, -1).

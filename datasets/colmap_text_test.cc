@@ -1,4 +1,4 @@
-#include "estimate/colmap_model.h"
+#include "datasets/colmap_text.h"
 
 #include <gtest/gtest.h>
 
