@@ -39,7 +39,7 @@
 #include "datasets/render.h"
 #include "datasets/synth_clip.h"
 #include "datasets/synth_presets.h"
-#include "estimate/depth_layers.h"
+#include "estimate/window/depth_layers.h"
 #include "estimate/track_estimator.h"
 #include "extract/feature_tracker.h"
 #include "extract/frame_source.h"

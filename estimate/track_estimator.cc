@@ -9,8 +9,8 @@
 #include "core/error.h"
 #include "core/rotation.h"
 #include "core/statistics.h"
-#include "estimate/smoothing.h"
-#include "estimate/two_view_geometry.h"
+#include "estimate/geometry/smoothing.h"
+#include "estimate/geometry/two_view_geometry.h"
 
 namespace hapcine {
 

@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "core/camera_path.h"
-#include "estimate/bundle_adjustment.h"
-#include "estimate/model_selection.h"
-#include "estimate/motion_model.h"
-#include "estimate/window_solver.h"
+#include "estimate/bundle/bundle_adjustment.h"
+#include "estimate/geometry/model_selection.h"
+#include "estimate/geometry/motion_model.h"
+#include "estimate/window/window_solver.h"
 #include "extract/tracks.h"
 
 namespace hapcine {

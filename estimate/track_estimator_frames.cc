@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/statistics.h"
-#include "estimate/reference_width.h"
+#include "estimate/geometry/reference_width.h"
 #include "estimate/track_estimator.h"
 
 namespace hapcine {
