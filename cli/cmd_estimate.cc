@@ -193,6 +193,8 @@ int RunEstimate(int argc, char** argv) {
     if (path.frames.size() < 2)
       throw Error(video, std::to_string(path.frames.size()) +
                              " video frame(s): camera motion needs at least two");
+    if (const auto w = path.metadata.find("warning"); w != path.metadata.end())
+      std::cerr << "hapcine estimate: " << video << ": warning: " << w->second << "\n";
     WriteCameraPathFile(path, output);
     if (!report.empty()) WriteReport(diagnostics, video, path, report);
     outputs.CommitAll();

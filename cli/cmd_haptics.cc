@@ -147,6 +147,8 @@ int RunHaptics(int argc, char** argv) {
       path = EstimateCameraPathFromFile(input, EstimatorOptions{},
                                         [&](long done, long total) { progress.Update(done, total); });
       progress.Close();
+      if (const auto w = path.metadata.find("warning"); w != path.metadata.end())
+        std::cerr << "hapcine haptics: " << input << ": warning: " << w->second << "\n";
     }
     const InputScope making(input);  // "INPUT: out of memory" if it comes to that
     const HapticTrack track = MakeHapticTrack(path, opt);

@@ -171,6 +171,10 @@ CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& optio
   }
   if (path.frames.empty()) throw Error(info.path, "no frames could be decoded");
   AddMetadata(source, options, &path);
+  // Kept in the path's header, so the file itself says what the decoder lost.
+  std::string warnings;
+  for (const std::string& w : source.Warnings()) warnings += (warnings.empty() ? "" : "; ") + w;
+  if (!warnings.empty()) path.metadata["warning"] = warnings;
   return path;
 }
 

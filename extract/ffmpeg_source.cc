@@ -71,6 +71,7 @@ class FfmpegSource : public FrameSource {
 
   const VideoInfo& info() const override { return info_; }
   std::vector<double> SkippedAtEnd() const override { return skipped_at_end_s_; }
+  std::vector<std::string> Warnings() const override { return warnings_; }
 
   bool Next(Frame* out) override {
     if (finished_) return false;
@@ -242,8 +243,8 @@ class FfmpegSource : public FrameSource {
   // some: the camera path would lose frames without a word. Against the
   // frame count the container declares (less the frames its edit list
   // leaves out), more than max(2 frames, 1 %) missing is an error; fewer,
-  // a warning on stderr.
-  void CheckFramesDecoded() const {
+  // a warning the caller reads (Warnings()).
+  void CheckFramesDecoded() {
     const int64_t listed = fmt_->streams[stream_index_]->nb_frames;
     if (listed <= 0) return;  // no frame count (Matroska): CheckNotTruncated's times
     const long declared = static_cast<long>(listed) - discarded_packets_;
@@ -259,7 +260,7 @@ class FfmpegSource : public FrameSource {
                   missing, declared);
     if (missing > std::max(2.0, 0.01 * static_cast<double>(declared)))
       throw Error(info_.path, buf);
-    std::fprintf(stderr, "%s: warning: %s\n", info_.path.c_str(), buf);
+    warnings_.push_back(buf);
   }
 
   // How far the demuxer got in the video stream (packets, and the end time of
@@ -496,6 +497,7 @@ class FfmpegSource : public FrameSource {
   long presented_ = 0;  // skip_nonref_frames: frames decoded or skipped so far
   bool skipping_ = false;  // the decoder skips non-reference frames now
   std::vector<double> skipped_at_end_s_;  // SkippedAtEnd()
+  std::vector<std::string> warnings_;     // Warnings()
   // skip_nonref_frames: timestamps of the packets read, not yet matched to
   // a decoded frame, smallest first.
   std::priority_queue<int64_t, std::vector<int64_t>, std::greater<int64_t>> unseen_pts_;

@@ -81,6 +81,10 @@ class FrameSource {
   // the presentation times of frames skipped after the last decoded one
   // (indices last index + 1, + 2, ...). Empty otherwise.
   virtual std::vector<double> SkippedAtEnd() const { return {}; }
+  // Once Next() returned false: what the caller should tell the user (frames
+  // the container declares that could not be decoded, too few to fail on).
+  // The source prints nothing itself.
+  virtual std::vector<std::string> Warnings() const { return {}; }
 };
 
 // Opens a video file (anything FFmpeg reads), an image folder, or a printf

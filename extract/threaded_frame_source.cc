@@ -79,4 +79,9 @@ std::vector<double> ThreadedFrameSource::SkippedAtEnd() const {
   return producer_done_ ? inner_->SkippedAtEnd() : std::vector<double>{};
 }
 
+std::vector<std::string> ThreadedFrameSource::Warnings() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return producer_done_ ? inner_->Warnings() : std::vector<std::string>{};
+}
+
 }  // namespace hapcine

@@ -39,6 +39,7 @@ class ThreadedFrameSource : public FrameSource {
   bool Next(Frame* frame) override;
   // The inner source's, once Next() returned false (the producer is done).
   std::vector<double> SkippedAtEnd() const override;
+  std::vector<std::string> Warnings() const override;
 
  private:
   void Produce();

@@ -4,6 +4,8 @@
 // directory) are refused at once instead of blocking or filling memory.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -231,9 +233,15 @@ TEST_F(MessagesTest, EstimateWithHugeThreadCountPrintsNoSolverWarnings) {
   const fs::path video = dir_ / "pan.mp4";
   ASSERT_TRUE(Ffmpeg("-f lavfi -i testsrc=size=320x240:rate=24 -t 1 -vf scroll=h=0.002 "
                      "-c:v libx264 -pix_fmt yuv420p " + Quote(video)));
-  const RunResult r =
-      Run("estimate -q " + Quote(video) + " -o " + Quote(dir_ / "pan.camera.csv") +
-          " --threads 100000");
+  // Beyond the option's range: one usage line naming it, before any work.
+  RunResult r = Run("estimate -q " + Quote(video) + " -o " + Quote(dir_ / "pan.camera.csv") +
+                    " --threads 100000");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 2) << r.err;  // the line and "Run ... --help"
+  // In range but more than the cores: the solver is given at most the cores,
+  // so it prints no warning of its own.
+  r = Run("estimate -q " + Quote(video) + " -o " + Quote(dir_ / "pan.camera.csv") + " --threads 256");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("num_threads"), std::string::npos) << r.err;
 }
