@@ -124,8 +124,9 @@ std::string CodecReason(const std::string& printed) {
 
 // cv::imread without the codec libraries' own lines on stderr: a bad image
 // becomes one hapcine line naming it, with the codec's reason in it. What a
-// codec prints about an image it did decode (a libjpeg warning) is passed on.
-cv::Mat ReadImageQuietly(const std::string& path) {
+// codec prints about an image it did decode (a libjpeg warning) goes to
+// `warnings`, for the caller to tell (FrameSource::Warnings).
+cv::Mat ReadImageQuietly(const std::string& path, std::vector<std::string>* warnings) {
   cv::Mat image;
   std::string printed;
   {
@@ -137,7 +138,8 @@ cv::Mat ReadImageQuietly(const std::string& path) {
     const std::string reason = CodecReason(printed);
     throw Error(path, "not an image OpenCV can read" + (reason.empty() ? "" : " (" + reason + ")"));
   }
-  if (!printed.empty()) std::fwrite(printed.data(), 1, printed.size(), stderr);
+  while (!printed.empty() && (printed.back() == '\n' || printed.back() == '\r')) printed.pop_back();
+  if (!printed.empty()) warnings->push_back(path + ": " + printed);
   return image;
 }
 
@@ -196,6 +198,7 @@ class ImageSequenceSource : public FrameSource {
   }
 
   const VideoInfo& info() const override { return info_; }
+  std::vector<std::string> Warnings() const override { return warnings_; }
 
   bool Next(Frame* out) override {
     cv::Mat image;
@@ -266,7 +269,7 @@ class ImageSequenceSource : public FrameSource {
     if (fs::file_size(p, ec) == 0) throw Error(p, "empty image file (0 bytes)");
     const std::string truncated = TruncatedImageReason(p);
     if (!truncated.empty()) throw Error(p, truncated);
-    *image = ReadImageQuietly(p);
+    *image = ReadImageQuietly(p, &warnings_);
     if (image->cols > kMaxFrameSidePx || image->rows > kMaxFrameSidePx)
       throw Error(p, "absurd image size");
     if (emitted_ + (have_first_ ? 1 : 0) > 0 && info_.width > 0 &&
@@ -278,6 +281,7 @@ class ImageSequenceSource : public FrameSource {
   }
 
   FrameSourceOptions options_;
+  std::vector<std::string> warnings_;  // Warnings()
   VideoInfo info_;
   std::string pattern_;
   long next_index_ = -1;
