@@ -31,7 +31,7 @@ class InputScope {
   InputScope& operator=(const InputScope&) = delete;
 
  private:
-  const std::string& path_;
+  const std::string path_;  // a copy: callers pass temporaries (fs::path::string())
   int exceptions_at_entry_;
 };
 
