@@ -1,6 +1,7 @@
 // hapcine plot: camera paths and haptic tracks as PNG (OpenCV) and SVG
 // (written by hand), from one Figure description (datasets/plot_figure.h).
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -21,16 +22,16 @@ namespace {
 
 // Both files are complete under temporary names before either is renamed
 // into place (the command's OutputSet): a failure leaves neither.
-void WriteOutputs(const Figure& fig, const std::string& prefix, const std::string& format) {
+void WriteOutputs(const Figure& fig, const std::string& png_path, const std::string& svg_path) {
   std::unique_ptr<AtomicFile> png, svg;
-  if (format == "png" || format == "both") {
-    const std::vector<unsigned char> bytes = EncodeFigurePng(fig, prefix + ".png");
-    png = std::make_unique<AtomicFile>(prefix + ".png");
+  if (!png_path.empty()) {
+    const std::vector<unsigned char> bytes = EncodeFigurePng(fig, png_path);
+    png = std::make_unique<AtomicFile>(png_path);
     png->stream().write(reinterpret_cast<const char*>(bytes.data()),
                         static_cast<std::streamsize>(bytes.size()));
   }
-  if (format == "svg" || format == "both") {
-    svg = std::make_unique<AtomicFile>(prefix + ".svg");
+  if (!svg_path.empty()) {
+    svg = std::make_unique<AtomicFile>(svg_path);
     svg->stream() << RenderFigureSvg(fig);
   }
   for (auto* f : {png.get(), svg.get()}) {
@@ -49,6 +50,26 @@ std::string FileStem(const std::string& path) {
   return name;
 }
 
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The file one format is written to. `-o fig` and `-o fig.png` both give
+// fig.png (and fig.svg); with one format, `-o /dev/stdout` or a FIFO is
+// written as named, since "/dev/null.png" is not what anyone asks for.
+std::string PlotOutputPath(const std::string& prefix, const std::string& ext, bool single_format) {
+  for (const char* known : {".png", ".svg"}) {
+    if (EndsWith(prefix, known)) return prefix.substr(0, prefix.size() - 4) + "." + ext;
+  }
+  std::error_code ec;
+  const auto status = std::filesystem::status(prefix, ec);
+  const bool special = !ec && std::filesystem::exists(status) &&
+                       !std::filesystem::is_regular_file(status) &&
+                       !std::filesystem::is_directory(status);
+  if (single_format && special) return prefix;
+  return prefix + "." + ext;
+}
+
 }  // namespace
 
 int RunPlot(int argc, char** argv) {
@@ -59,7 +80,9 @@ int RunPlot(int argc, char** argv) {
   std::string prefix, format = "both", title;
   int width_px = 1200;
   auto add_common = [&](CLI::App* sub) {
-    sub->add_option("-o,--output", prefix, "output prefix: writes PREFIX.png and/or PREFIX.svg")
+    sub->add_option("-o,--output", prefix,
+                    "output prefix: writes PREFIX.png and/or PREFIX.svg (a trailing .png or .svg "
+                    "is the prefix's; with one --format, a device or FIFO is written as named)")
         ->required();
     sub->add_option("--format", format, "png, svg or both")
         ->capture_default_str()->check(CLI::IsMember({"png", "svg", "both"}));
@@ -98,7 +121,9 @@ int RunPlot(int argc, char** argv) {
   add_common(haptic);
 
   return RunApp(app, argc, argv, [&]() {
-    const bool png = format != "svg", svg = format != "png";
+    const bool single = format != "both";
+    const std::string png = format != "svg" ? PlotOutputPath(prefix, "png", single) : "";
+    const std::string svg = format != "png" ? PlotOutputPath(prefix, "svg", single) : "";
     std::vector<NamedPath> inputs;
     if (camera->parsed()) {
       inputs = {{gt_file, "GT"}, {est_file, "EST"}};
@@ -106,7 +131,7 @@ int RunPlot(int argc, char** argv) {
       for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
     }
     OutputSet outputs(inputs,
-                      {{png ? prefix + ".png" : "", "-o"}, {svg ? prefix + ".svg" : "", "-o"}});
+                      {{png, "-o"}, {svg, "-o"}});
     Figure fig;
     if (camera->parsed()) {
       const CameraPath gt = ReadCameraPathFile(gt_file);
@@ -140,10 +165,11 @@ int RunPlot(int argc, char** argv) {
       fig = HapticTracksFigure(ptrs, title.empty() ? names : title, legend);
     }
     fig.width_px = width_px;
-    WriteOutputs(fig, prefix, format);
+    WriteOutputs(fig, png, svg);
     outputs.CommitAll();
-    if (png) std::cerr << "wrote " << prefix << ".png\n";
-    if (svg) std::cerr << "wrote " << prefix << ".svg\n";
+    for (const std::string& written : {png, svg}) {
+      if (!written.empty()) std::cerr << "wrote " << written << "\n";
+    }
     return kExitOk;
   });
 }

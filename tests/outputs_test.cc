@@ -230,12 +230,22 @@ TEST_F(OutputsTest, DeviceOutputsAreWrittenDirectly) {
             " --per-frame " + Q(null),
         "convert " + Q(Camera()) + " --to-tum " + Q(null),
         "preview " + Q(Video()) + " --max-side 96 -o " + Q(null),
-        "plot haptic " + Q(Track()) + " --format png -o " + Q(work_ / "null")}) {
+        "plot haptic " + Q(Track()) + " --format png -o " + Q(work_ / "null"),
+        "plot haptic " + Q(Track()) + " --format svg -o " + Q(null)}) {
     const CommandRun r = Hapcine(args, work_);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_TRUE(IsCharDevice(null)) << args;
   }
   EXPECT_TRUE(IsCharDevice(png));
+  EXPECT_FALSE(fs::exists(null.string() + ".svg"));  // the device, not a file beside it
+}
+
+TEST_F(OutputsTest, PlotPrefixMayCarryItsExtension) {
+  const CommandRun r = Hapcine("plot haptic " + Q(Track()) + " -o " + Q(work_ / "fig.png"), work_);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(work_ / "fig.png"));
+  EXPECT_TRUE(fs::exists(work_ / "fig.svg"));
+  EXPECT_FALSE(fs::exists(work_ / "fig.png.png"));
 }
 
 TEST_F(OutputsTest, LongOutputNamesAreWritten) {
