@@ -23,33 +23,15 @@
 
 #include "core/haptic_track.h"
 #include "study/plan.h"
+#include "tests/run_hapcine.h"
 
 namespace fs = std::filesystem;
+using hapcine_test::Quote;
+using hapcine_test::RunHapcine;
+using hapcine_test::RunResult;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string err;  // stderr
-};
-
-// Runs `hapcine ARGS` through the shell (stdin from /dev/null, stdout
-// discarded), capturing stderr.
-RunResult RunHapcine(const std::string& args, const fs::path& dir) {
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string cmd = std::string("'") + HAPCINE_EXE + "' " + args + " </dev/null >/dev/null 2>'" +
-                          err_file.string() + "'";
-  RunResult r;
-  const int status = std::system(cmd.c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file, std::ios::binary);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
-std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // A valid camera path of `n` frames at 8 fps from `t0` (a slow pan).
 std::string CameraPathText(int n, double t0) {

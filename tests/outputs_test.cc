@@ -19,37 +19,16 @@
 #include <sstream>
 #include <string>
 
+#include "tests/run_hapcine.h"
+
 namespace fs = std::filesystem;
+using hapcine_test::Quote;
+using hapcine_test::RunHapcine;
+using hapcine_test::RunResult;
+using hapcine_test::Slurp;
 
 namespace {
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string err;
-};
-
-CommandRun Hapcine(const std::string& args, const fs::path& dir) {
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string cmd = std::string("'") + HAPCINE_EXE + "' " + args + " >/dev/null 2>'" +
-                          err_file.string() + "'";
-  const int status = std::system(cmd.c_str());
-  CommandRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
-std::string Q(const fs::path& p) { return "'" + p.string() + "'"; }
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // Temporaries of the output helper, or of earlier versions, under dir.
 std::vector<std::string> Temps(const fs::path& dir) {
@@ -73,10 +52,10 @@ class OutputsTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = fs::temp_directory_path() / ("hapcine_outputs_" + std::to_string(getpid()));
     fs::create_directories(dir_);
-    ok_ = Hapcine("synth tilting --width 192 --height 108 --duration-s 1.5 -o " + Q(dir_), dir_)
+    ok_ = RunHapcine("synth tilting --width 192 --height 108 --duration-s 1.5 -o " + Quote(dir_), dir_)
                   .exit_code == 0 &&
-          Hapcine("haptics " + Q(dir_ / "tilting.camera.csv") + " -o " +
-                      Q(dir_ / "tilting.haptic.csv"),
+          RunHapcine("haptics " + Quote(dir_ / "tilting.camera.csv") + " -o " +
+                      Quote(dir_ / "tilting.haptic.csv"),
                   dir_)
                   .exit_code == 0;
   }
@@ -95,7 +74,7 @@ class OutputsTest : public ::testing::Test {
   }
   // Runs a command that must be refused as usage (exit 2) naming `names`.
   void ExpectUsage(const std::string& args, const std::vector<std::string>& names) {
-    const CommandRun r = Hapcine(args, work_);
+    const RunResult r = RunHapcine(args, work_);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     for (const std::string& n : names) EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
   }
@@ -121,31 +100,31 @@ TEST_F(OutputsTest, OutputThatIsAnInputIsRefusedAndTheInputKept) {
   const std::string video = Slurp(Video()), camera = Slurp(Camera()), track = Slurp(Track());
   fs::create_hard_link(Camera(), work_ / "hard.csv");
   fs::create_symlink(Track(), work_ / "soft.csv");
-  ExpectUsage("estimate -q " + Q(Video()) + " -o " + Q(Video()), {Video().string()});
-  ExpectUsage("haptics " + Q(Camera()) + " -o " + Q(Camera()), {Camera().string()});
-  ExpectUsage("haptics " + Q(Camera()) + " -o " + Q(work_ / "hard.csv"), {"hard.csv"});
-  ExpectUsage("haptics " + Q(Video()) + " -o " + Q(Video()), {Video().string()});
-  ExpectUsage("preview " + Q(Video()) + " -o " + Q(Video()), {Video().string()});
-  ExpectUsage("preview " + Q(Video()) + " --track " + Q(Track()) + " -o " + Q(work_ / "soft.csv"),
+  ExpectUsage("estimate -q " + Quote(Video()) + " -o " + Quote(Video()), {Video().string()});
+  ExpectUsage("haptics " + Quote(Camera()) + " -o " + Quote(Camera()), {Camera().string()});
+  ExpectUsage("haptics " + Quote(Camera()) + " -o " + Quote(work_ / "hard.csv"), {"hard.csv"});
+  ExpectUsage("haptics " + Quote(Video()) + " -o " + Quote(Video()), {Video().string()});
+  ExpectUsage("preview " + Quote(Video()) + " -o " + Quote(Video()), {Video().string()});
+  ExpectUsage("preview " + Quote(Video()) + " --track " + Quote(Track()) + " -o " + Quote(work_ / "soft.csv"),
               {"soft.csv", Track().string()});
-  ExpectUsage("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(Camera()),
+  ExpectUsage("eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " + Quote(Camera()),
               {Camera().string()});
-  ExpectUsage("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " --per-frame " +
-                  Q(work_ / "hard.csv"),
+  ExpectUsage("eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " --per-frame " +
+                  Quote(work_ / "hard.csv"),
               {"hard.csv"});
   fs::copy_file(Track(), work_ / "t.svg");
-  ExpectUsage("plot haptic " + Q(work_ / "t.svg") + " --format svg -o " + Q(work_ / "t"),
+  ExpectUsage("plot haptic " + Quote(work_ / "t.svg") + " --format svg -o " + Quote(work_ / "t"),
               {"t.svg"});
-  ExpectUsage("convert " + Q(Camera()) + " --to-tum " + Q(Camera()), {Camera().string()});
-  ExpectUsage("convert --from-tum " + Q(Camera()) + " --fov 60 -o " + Q(Camera()),
+  ExpectUsage("convert " + Quote(Camera()) + " --to-tum " + Quote(Camera()), {Camera().string()});
+  ExpectUsage("convert --from-tum " + Quote(Camera()) + " --fov 60 -o " + Quote(Camera()),
               {Camera().string()});
-  ExpectUsage("play " + Q(Video()) + " --track " + Q(Track()) + " --device none --no-video " +
-                  "--fault-log " + Q(Track()),
+  ExpectUsage("play " + Quote(Video()) + " --track " + Quote(Track()) + " --device none --no-video " +
+                  "--fault-log " + Quote(Track()),
               {Track().string()});
-  ExpectUsage("study plan " + Q(Video()) + " -o " + Q(Video()), {Video().string()});
+  ExpectUsage("study plan " + Quote(Video()) + " -o " + Quote(Video()), {Video().string()});
   fs::copy_file(Camera(), work_ / "r.json");
-  ExpectUsage("study analyze " + Q(work_ / "r.json") + " -o " + Q(work_ / "r"), {"r.json"});
-  ExpectUsage("batch " + Q(work_ / "r.json") + " -o " + Q(work_ / "r.json"), {"r.json"});
+  ExpectUsage("study analyze " + Quote(work_ / "r.json") + " -o " + Quote(work_ / "r"), {"r.json"});
+  ExpectUsage("batch " + Quote(work_ / "r.json") + " -o " + Quote(work_ / "r.json"), {"r.json"});
   EXPECT_EQ(Slurp(Video()), video);
   EXPECT_EQ(Slurp(Camera()), camera);
   EXPECT_EQ(Slurp(Track()), track);
@@ -153,11 +132,11 @@ TEST_F(OutputsTest, OutputThatIsAnInputIsRefusedAndTheInputKept) {
 
 TEST_F(OutputsTest, TwoOutputsOnOnePathAreRefused) {
   const fs::path out = work_ / "out";
-  ExpectUsage("haptics " + Q(Camera()) + " -o " + Q(out) + " --hjif " + Q(out), {"-o", "--hjif"});
-  ExpectUsage("haptics " + Q(Camera()) + " --effects-out " + Q(out) + " -o " + Q(work_ / "." / "out"),
+  ExpectUsage("haptics " + Quote(Camera()) + " -o " + Quote(out) + " --hjif " + Quote(out), {"-o", "--hjif"});
+  ExpectUsage("haptics " + Quote(Camera()) + " --effects-out " + Quote(out) + " -o " + Quote(work_ / "." / "out"),
               {"--effects-out", "-o"});
-  ExpectUsage("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(out) +
-                  " --per-frame " + Q(out),
+  ExpectUsage("eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " + Quote(out) +
+                  " --per-frame " + Quote(out),
               {"-o", "--per-frame"});
   EXPECT_FALSE(fs::exists(out));
 }
@@ -165,14 +144,14 @@ TEST_F(OutputsTest, TwoOutputsOnOnePathAreRefused) {
 TEST_F(OutputsTest, AFailingOutputLeavesNoneOfTheOthers) {
   fs::create_directories(work_ / "dir");
   // A directory as output: refused before any work, naming it; no z.csv.
-  CommandRun r = Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "z.csv") + " --hjif " +
-                      Q(work_ / "dir"),
+  RunResult r = RunHapcine("haptics " + Quote(Camera()) + " -o " + Quote(work_ / "z.csv") + " --hjif " +
+                      Quote(work_ / "dir"),
                   work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find((work_ / "dir").string()), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "z.csv"));
-  r = Hapcine("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(work_ / "e.json") +
-                  " --per-frame " + Q(work_ / "dir"),
+  r = RunHapcine("eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " + Quote(work_ / "e.json") +
+                  " --per-frame " + Quote(work_ / "dir"),
               work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "e.json"));
@@ -180,12 +159,12 @@ TEST_F(OutputsTest, AFailingOutputLeavesNoneOfTheOthers) {
   // outputs, complete by then, are not committed either.
   const fs::path full = DevNullCopy("full", 7);
   if (full.empty()) GTEST_SKIP() << "making a device node needs root";
-  r = Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "z.csv") + " --hjif " + Q(full),
+  r = RunHapcine("haptics " + Quote(Camera()) + " -o " + Quote(work_ / "z.csv") + " --hjif " + Quote(full),
               work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "z.csv"));
-  r = Hapcine("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(work_ / "e.json") +
-                  " --per-frame " + Q(full),
+  r = RunHapcine("eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " + Quote(work_ / "e.json") +
+                  " --per-frame " + Quote(full),
               work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(fs::exists(work_ / "e.json"));
@@ -197,19 +176,19 @@ TEST_F(OutputsTest, SymlinkOutputsReplaceTheirTargetAndStay) {
     std::ofstream(work_ / "real" / name) << "old";
     fs::create_symlink(fs::path("real") / name, work_ / name);
   }
-  EXPECT_EQ(Hapcine("estimate -q " + Q(Video()) + " -o " + Q(work_ / "est.csv"), work_).exit_code, 0);
-  EXPECT_EQ(Hapcine("haptics " + Q(Camera()) + " -o " + Q(work_ / "h.csv"), work_).exit_code, 0);
-  EXPECT_EQ(Hapcine("eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " +
-                        Q(work_ / "e.json"),
+  EXPECT_EQ(RunHapcine("estimate -q " + Quote(Video()) + " -o " + Quote(work_ / "est.csv"), work_).exit_code, 0);
+  EXPECT_EQ(RunHapcine("haptics " + Quote(Camera()) + " -o " + Quote(work_ / "h.csv"), work_).exit_code, 0);
+  EXPECT_EQ(RunHapcine("eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " +
+                        Quote(work_ / "e.json"),
                     work_)
                 .exit_code,
             0);
-  EXPECT_EQ(Hapcine("convert " + Q(Camera()) + " --to-tum " + Q(work_ / "t.txt"), work_).exit_code,
+  EXPECT_EQ(RunHapcine("convert " + Quote(Camera()) + " --to-tum " + Quote(work_ / "t.txt"), work_).exit_code,
             0);
-  EXPECT_EQ(Hapcine("preview " + Q(Video()) + " --max-side 96 -o " + Q(work_ / "p.mp4"), work_)
+  EXPECT_EQ(RunHapcine("preview " + Quote(Video()) + " --max-side 96 -o " + Quote(work_ / "p.mp4"), work_)
                 .exit_code,
             0);
-  EXPECT_EQ(Hapcine("plot haptic " + Q(Track()) + " --format png -o " + Q(work_ / "f"), work_)
+  EXPECT_EQ(RunHapcine("plot haptic " + Quote(Track()) + " --format png -o " + Quote(work_ / "f"), work_)
                 .exit_code,
             0);
   for (const std::string& name : {"est.csv", "h.csv", "e.json", "t.txt", "p.mp4", "f.png"}) {
@@ -224,15 +203,15 @@ TEST_F(OutputsTest, DeviceOutputsAreWrittenDirectly) {
   const fs::path png = DevNullCopy("null.png");
   ASSERT_FALSE(png.empty());
   for (const std::string& args :
-       {"estimate -q " + Q(Video()) + " -o " + Q(null),
-        "haptics " + Q(Camera()) + " -o " + Q(null) + " --hjif " + Q(null),
-        "eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(null) +
-            " --per-frame " + Q(null),
-        "convert " + Q(Camera()) + " --to-tum " + Q(null),
-        "preview " + Q(Video()) + " --max-side 96 -o " + Q(null),
-        "plot haptic " + Q(Track()) + " --format png -o " + Q(work_ / "null"),
-        "plot haptic " + Q(Track()) + " --format svg -o " + Q(null)}) {
-    const CommandRun r = Hapcine(args, work_);
+       {"estimate -q " + Quote(Video()) + " -o " + Quote(null),
+        "haptics " + Quote(Camera()) + " -o " + Quote(null) + " --hjif " + Quote(null),
+        "eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " + Quote(null) +
+            " --per-frame " + Quote(null),
+        "convert " + Quote(Camera()) + " --to-tum " + Quote(null),
+        "preview " + Quote(Video()) + " --max-side 96 -o " + Quote(null),
+        "plot haptic " + Quote(Track()) + " --format png -o " + Quote(work_ / "null"),
+        "plot haptic " + Quote(Track()) + " --format svg -o " + Quote(null)}) {
+    const RunResult r = RunHapcine(args, work_);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_TRUE(IsCharDevice(null)) << args;
   }
@@ -241,7 +220,7 @@ TEST_F(OutputsTest, DeviceOutputsAreWrittenDirectly) {
 }
 
 TEST_F(OutputsTest, PlotPrefixMayCarryItsExtension) {
-  const CommandRun r = Hapcine("plot haptic " + Q(Track()) + " -o " + Q(work_ / "fig.png"), work_);
+  const RunResult r = RunHapcine("plot haptic " + Quote(Track()) + " -o " + Quote(work_ / "fig.png"), work_);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(work_ / "fig.png"));
   EXPECT_TRUE(fs::exists(work_ / "fig.svg"));
@@ -252,13 +231,13 @@ TEST_F(OutputsTest, LongOutputNamesAreWritten) {
   const std::string stem(240, 'x');
   const fs::path base = work_ / stem;
   for (const std::string& args :
-       {"estimate -q " + Q(Video()) + " -o " + Q(base.string() + ".camera.csv"),
-        "haptics " + Q(Camera()) + " -o " + Q(base.string() + ".haptic.c") + " --hjif " +
-            Q(base.string() + ".hjif"),
-        "eval --gt " + Q(Camera()) + " --est " + Q(Camera()) + " -o " + Q(base.string() + ".json"),
-        "convert " + Q(Camera()) + " --to-tum " + Q(base.string() + ".tum.txt"),
-        "plot haptic " + Q(Track()) + " -o " + Q(base)}) {
-    const CommandRun r = Hapcine(args, work_);
+       {"estimate -q " + Quote(Video()) + " -o " + Quote(base.string() + ".camera.csv"),
+        "haptics " + Quote(Camera()) + " -o " + Quote(base.string() + ".haptic.c") + " --hjif " +
+            Quote(base.string() + ".hjif"),
+        "eval --gt " + Quote(Camera()) + " --est " + Quote(Camera()) + " -o " + Quote(base.string() + ".json"),
+        "convert " + Quote(Camera()) + " --to-tum " + Quote(base.string() + ".tum.txt"),
+        "plot haptic " + Quote(Track()) + " -o " + Quote(base)}) {
+    const RunResult r = RunHapcine(args, work_);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
   }
   for (const std::string& suffix : {".camera.csv", ".haptic.c", ".hjif", ".json", ".tum.txt",
@@ -273,7 +252,7 @@ TEST_F(OutputsTest, BatchRunsAFilmWithA240ByteStem) {
   fs::create_directories(lib);
   const std::string stem(240, 'f');
   fs::copy_file(Video(), lib / (stem + ".mp4"));
-  const CommandRun r = Hapcine("batch " + Q(lib) + " -o " + Q(work_ / "out") +
+  const RunResult r = RunHapcine("batch " + Quote(lib) + " -o " + Quote(work_ / "out") +
                             " --models cinematic --jobs 1 --progress quiet",
                         work_);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -288,7 +267,7 @@ TEST_F(OutputsTest, BatchRunsAFilmWithA240ByteStem) {
 // synth: a directory in the way of a clip is an error before any rendering.
 TEST_F(OutputsTest, SynthRefusesADirectoryInTheWay) {
   fs::create_directories(work_ / "tilting.mp4");
-  const CommandRun r = Hapcine("synth tilting --width 64 --height 36 --duration-s 0.5 -o " + Q(work_),
+  const RunResult r = RunHapcine("synth tilting --width 64 --height 36 --duration-s 0.5 -o " + Quote(work_),
                         work_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("tilting.mp4"), std::string::npos) << r.err;

@@ -20,38 +20,15 @@
 
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
+#include "tests/run_hapcine.h"
 
 namespace fs = std::filesystem;
+using hapcine_test::Quote;
+using hapcine_test::RunHapcine;
+using hapcine_test::RunResult;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
-
-// Runs `hapcine ARGS` through the shell, capturing stdout and stderr.
-RunResult RunHapcine(const std::string& args, const fs::path& dir) {
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string cmd =
-      std::string("'") + HAPCINE_EXE + "' " + args + " 2>'" + err_file.string() + "'";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
-std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // Last non-empty line of a text (progress output may come before an error).
 std::string LastLine(const std::string& text) {
