@@ -281,18 +281,23 @@ class FfmpegSource : public FrameSource {
     const int64_t pts = pkt_->pts != AV_NOPTS_VALUE ? pkt_->pts : pkt_->dts;
     if (pts == AV_NOPTS_VALUE) return;
     const int64_t start = fmt_->streams[stream_index_]->start_time;
-    const int64_t end =
-        pts + std::max<int64_t>(pkt_->duration, 0) - (start != AV_NOPTS_VALUE ? start : 0);
-    read_end_s_ = std::max(read_end_s_, end * time_base_s_);
+    const int64_t end = pts + std::max<int64_t>(pkt_->duration, 0);
+    read_end_s_ = std::max(read_end_s_, (end - (start != AV_NOPTS_VALUE ? start : 0)) * time_base_s_);
+    read_end_pts_s_ = std::max(read_end_pts_s_, end * time_base_s_);
   }
 
   // The video's length as the container declares it: the stream's duration,
   // else Matroska's per-track DURATION tag, else the file's duration when
   // video is its only stream (an audio track may outlast the video). 0 when
-  // unknown.
-  double DeclaredVideoDuration() const {
+  // unknown. `from_zero` says the length is an end time counted from
+  // timestamp 0 rather than from the stream's start: Matroska's tag and a
+  // file's duration count from 0, so a remux that kept a broadcast's
+  // timestamps (start 11.4 s) declares 15.4 s for 4 s of video.
+  double DeclaredVideoDuration(bool* from_zero) const {
     const AVStream* st = fmt_->streams[stream_index_];
+    *from_zero = false;
     if (st->duration != AV_NOPTS_VALUE && st->duration > 0) return st->duration * time_base_s_;
+    *from_zero = true;
     const AVDictionaryEntry* tag = av_dict_get(st->metadata, "DURATION", nullptr, 0);
     int h = 0, m = 0;
     double s = 0;
@@ -310,17 +315,21 @@ class FfmpegSource : public FrameSource {
   // headers count frames; a truncated AVI loses its index and with it the
   // right duration).
   void CheckNotTruncated() const {
-    const double declared = DeclaredVideoDuration();
+    bool from_zero = false;
+    const double declared = DeclaredVideoDuration(&from_zero);
     const double period = info_.fps > 0 ? 1 / info_.fps : 1.0 / 24;
     const int64_t declared_frames = fmt_->streams[stream_index_]->nb_frames;
-    const bool short_time = declared > 0 && read_end_s_ + std::max(0.5, 3 * period) < declared;
+    // A length counted from 0 is met by the packets' own end time; some
+    // muxers still count it from the start, so either reading passes.
+    const double read_end = from_zero ? std::max(read_end_s_, read_end_pts_s_) : read_end_s_;
+    const bool short_time = declared > 0 && read_end + std::max(0.5, 3 * period) < declared;
     const bool short_count =
         declared_frames > 0 && video_packets_ + 1 < 0.95 * static_cast<double>(declared_frames);
     if (!short_time && !short_count) return;
     char buf[160];
     if (short_time)
       std::snprintf(buf, sizeof buf, "truncated: the video ends at %.2f s of the %.2f s declared",
-                    read_end_s_, declared);
+                    read_end, declared);
     else
       std::snprintf(buf, sizeof buf, "truncated: %ld of the %ld frames declared", video_packets_,
                     static_cast<long>(declared_frames));
@@ -505,6 +514,7 @@ class FfmpegSource : public FrameSource {
   long video_packets_ = 0;  // read from the demuxer
   long discarded_packets_ = 0;  // of those, outside the edit list (AV_PKT_FLAG_DISCARD)
   double read_end_s_ = 0;   // end of the latest video packet read, from the stream start
+  double read_end_pts_s_ = 0;  // the same end as a timestamp (from time 0)
   bool draining_ = false;
   bool finished_ = false;
 };

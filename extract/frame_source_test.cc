@@ -317,6 +317,21 @@ TEST_F(FrameSourceTest, BadInputsNameTheFile) {
 // A file cut short decodes what it holds, then fails naming the file and
 // "truncated" (the header declares more), so no shortened camera path is
 // written as if it were the whole video.
+// A remux that kept a broadcast's timestamps starts at 10 s; Matroska then
+// declares its length as an end time from 0 (12 s for 2 s of video). Neither
+// container is "truncated", and the times count from the stream's start.
+TEST_F(FrameSourceTest, NonZeroStartTimeIsNotTruncation) {
+  for (const char* name : {"offset.mkv", "offset.mp4"}) {
+    const std::string path = Make(name,
+                                  "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
+                                  "-g 12 -pix_fmt yuv420p -output_ts_offset 10");
+    const auto frames = ReadAll(path);
+    ASSERT_EQ(frames.size(), 48u) << name;
+    EXPECT_NEAR(frames.front().time_s, 0.0, 1e-6) << name;
+    EXPECT_NEAR(frames.back().time_s, 47.0 / 24, 1e-3) << name;
+  }
+}
+
 TEST_F(FrameSourceTest, TruncatedFileIsAnErrorAfterItsFrames) {
   const std::string full = Make("long.mkv",
                                 "-f lavfi -i testsrc=size=320x240:rate=24 -t 2 -c:v libx264 "
