@@ -45,6 +45,25 @@ std::vector<MatchedPair> MatchByIndex(const CameraPath& gt, const CameraPath& es
   return pairs;
 }
 
+// Whether the same frame index is not the same instant in the two paths:
+// their frame rates differ (a 25 fps encode against 24 fps ground truth) or
+// the index pairs' times drift apart by over half a frame for more than a
+// tenth of them. A constant offset (an export that starts later) is no drift.
+bool IndexIsNotTime(const CameraPath& gt, const CameraPath& est,
+                    const std::vector<MatchedPair>& pairs) {
+  if (gt.fps() > 0 && est.fps() > 0 && std::abs(gt.fps() / est.fps() - 1) > 0.001) return true;
+  double period = FramePeriod(gt);
+  if (period <= 0) period = FramePeriod(est);
+  if (period <= 0 || pairs.size() < 2) return false;
+  std::vector<double> offset;
+  for (const MatchedPair& p : pairs) offset.push_back(est.frames[p.est].time_s - gt.frames[p.gt].time_s);
+  const double median = Quantile(offset, 0.5);
+  const auto drifting = std::count_if(offset.begin(), offset.end(), [&](double o) {
+    return std::abs(o - median) > 0.5 * period;
+  });
+  return 10 * static_cast<size_t>(drifting) > pairs.size();
+}
+
 // Nearest ground-truth time within half a frame; a GT frame claimed by two
 // estimated frames keeps the closer one.
 std::vector<MatchedPair> MatchByTime(const CameraPath& gt, const CameraPath& est) {
@@ -392,7 +411,7 @@ EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
       pairs = MatchByIndex(gt, est);
       report.matching_used = FrameMatching::kFrameIndex;
       const size_t shorter = std::min(gt.frames.size(), est.frames.size());
-      if (2 * pairs.size() < shorter) {
+      if (2 * pairs.size() < shorter || IndexIsNotTime(gt, est, pairs)) {
         pairs = MatchByTime(gt, est);
         report.matching_used = FrameMatching::kTime;
       }

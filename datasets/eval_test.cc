@@ -245,6 +245,41 @@ TEST(EvalTest, FallsBackToTimeWhenIndicesDiffer) {
   EXPECT_THROW(EvaluateCameraPaths(gt, est, by_index), Error);
 }
 
+// A 25 fps encode of 100 fps ground truth: index k is GT frame 4k. Auto must
+// match by time, from the fps headers or, without them, from the drift.
+TEST(EvalTest, MatchesByTimeWhenFrameRatesDiffer) {
+  const CameraPath gt = MovingPath(100, 100);
+  CameraPath est;
+  est.metadata["fps"] = "25";
+  for (size_t i = 0; i < gt.frames.size(); i += 4) {
+    est.frames.push_back(gt.frames[i]);
+    est.frames.back().frame = static_cast<int>(i / 4);
+  }
+  for (const bool headers : {true, false}) {
+    CameraPath g = gt, e = est;
+    if (!headers) {
+      g.metadata.erase("fps");
+      e.metadata.erase("fps");
+    }
+    const EvalReport r = EvaluateCameraPaths(g, e, {});
+    EXPECT_EQ(r.matching_used, FrameMatching::kTime) << headers;
+    EXPECT_EQ(r.matched, 25) << headers;
+    ExpectAllZero(r.overall);
+  }
+}
+
+// The same rate with all times shifted (an export that starts at 5 s): the
+// index still names the same frame.
+TEST(EvalTest, ConstantTimeOffsetKeepsIndexMatching) {
+  const CameraPath gt = MovingPath(40);
+  CameraPath est = gt;
+  for (auto& f : est.frames) f.time_s += 5;
+  const EvalReport r = EvaluateCameraPaths(gt, est, {});
+  EXPECT_EQ(r.matching_used, FrameMatching::kFrameIndex);
+  EXPECT_EQ(r.matched, 40);
+  ExpectAllZero(r.overall);
+}
+
 TEST(EvalTest, ModelAgreement) {
   CameraPath gt = MovingPath(10);
   CameraPath est = gt;
