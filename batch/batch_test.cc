@@ -299,6 +299,29 @@ TEST_F(BatchTest, ShardsPartitionTheLibraryAndMatchAnUnshardedRun) {
   EXPECT_EQ(OutputFiles(sharded.out_dir), unsharded);  // same relative names, same bytes
 }
 
+// A Linux file name is bytes: a film whose name is not UTF-8 is done, and the
+// plan and summary (JSON) keep its exact path.
+TEST_F(BatchTest, FilmNameThatIsNotUtf8IsDone) {
+  const std::string name = "b\xff\xfe.mp4";
+  WriteFile(lib_.root + "/" + name, "FAKEVIDEO b\n");
+  const BatchSummary s = RunLocalBatch(options_);
+  const FilmOutcome* film = Find(s, name);
+  ASSERT_NE(film, nullptr);
+  EXPECT_EQ(film->status, FilmStatus::kDone) << film->reason;
+  EXPECT_EQ(film->path, lib_.root + "/" + name);
+  EXPECT_TRUE(fs::is_regular_file(FilmDir(name) + "/b\xff\xfe.camera.csv"));
+  // A second run reads the state back and skips it.
+  EXPECT_EQ(Find(RunLocalBatch(options_), name)->status, FilmStatus::kSkipped);
+}
+
+// A single video file given as the library is a library of one.
+TEST_F(BatchTest, AVideoFileIsALibraryOfOne) {
+  options_.library = lib_.root + "/" + lib_.good.front();
+  const BatchSummary s = RunLocalBatch(options_);
+  ASSERT_EQ(s.films.size(), 1u);
+  EXPECT_EQ(s.films[0].status, FilmStatus::kDone) << s.films[0].reason;
+}
+
 TEST_F(BatchTest, ManifestLibraryIsEquivalentToFolder) {
   WriteFile(dir_.path() + "/lib.csv",
             "title,path\nA,library/a.mp4\nJP,library/日本.mkv\nGone,library/missing.mp4\n");

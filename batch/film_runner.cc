@@ -1,11 +1,13 @@
 #include "batch/film_runner.h"
 
+
 #include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
 
 #include "batch/content_hash.h"
+#include "batch/json_bytes.h"
 #include "batch/state_files.h"
 #include "batch/subprocess.h"
 #include "core/error.h"
@@ -73,7 +75,7 @@ void RecordFailure(const fs::path& dir, const FilmPlan& film, const std::string&
                    const std::string& step, const std::string& reason, double seconds) {
   WriteJsonAtomic((dir / kFailedFile).string(),
                   {{"id", film.id},
-                   {"path", film.path},
+                   {"path", JsonFromBytes(film.path)},
                    {"input_hash", film.input_hash},
                    {"settings_hash", settings_hash},
                    {"step", step},
@@ -108,7 +110,7 @@ nlohmann::json OutcomeToJson(const FilmOutcome& o) {
     steps.push_back({{"name", s.name}, {"seconds", s.seconds}, {"reused", s.reused}});
   }
   return {{"id", o.id},
-          {"path", o.path},
+          {"path", JsonFromBytes(o.path)},
           {"status", FilmStatusName(o.status)},
           {"reason", o.reason},
           {"duplicate_of", o.duplicate_of},
@@ -119,7 +121,7 @@ nlohmann::json OutcomeToJson(const FilmOutcome& o) {
 FilmOutcome OutcomeFromJson(const nlohmann::json& j) {
   FilmOutcome o;
   o.id = j.at("id").get<std::string>();
-  o.path = j.at("path").get<std::string>();
+  o.path = BytesFromJson(j.at("path"));
   const std::string s = j.at("status").get<std::string>();
   for (FilmStatus st : {FilmStatus::kDone, FilmStatus::kSkipped, FilmStatus::kFailed,
                         FilmStatus::kDuplicate, FilmStatus::kBusy}) {
@@ -158,11 +160,15 @@ bool FilmIsDone(const std::string& film_dir, const FilmPlan& film,
     return false;
   }
   std::error_code ec;
-  for (const auto& out : done->value("outputs", nlohmann::json::array())) {
-    const fs::path p = fs::path(film_dir) / out.value("file", "");
-    if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) != out.value("bytes", uint64_t{0})) {
-      return false;
+  try {
+    for (const auto& out : done->value("outputs", nlohmann::json::array())) {
+      const fs::path p = fs::path(film_dir) / BytesFromJson(out.at("file"));
+      if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) != out.value("bytes", uint64_t{0})) {
+        return false;
+      }
     }
+  } catch (const nlohmann::json::exception&) {
+    return false;  // a damaged record: the film is simply done again
   }
   return true;
 }
@@ -192,7 +198,7 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
     fs::remove(dir / kDoneFile, ec);
     fs::remove(dir / kFailedFile, ec);
     WriteJsonAtomic((dir / kDuplicateFile).string(), {{"id", film.id},
-                                                      {"path", film.path},
+                                                      {"path", JsonFromBytes(film.path)},
                                                       {"input_hash", film.input_hash},
                                                       {"duplicate_of", film.duplicate_of}});
     outcome.status = FilmStatus::kDuplicate;
@@ -270,7 +276,7 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
                        {"command", step.command}});
     }
     for (const std::string& out : step.outputs) {
-      outputs.push_back({{"file", out},
+      outputs.push_back({{"file", JsonFromBytes(out)},
                          {"step", step.name},
                          {"bytes", fs::file_size(dir / out, ec)},
                          {"hash", FullFileHash((dir / out).string())}});
@@ -282,8 +288,8 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
   outcome.seconds = SecondsSince(t0);
   nlohmann::json steps = OutcomeToJson(outcome)["steps"];
   WriteJsonAtomic((dir / kDoneFile).string(), {{"id", film.id},
-                                               {"path", film.path},
-                                               {"stem", film.stem},
+                                               {"path", JsonFromBytes(film.path)},
+                                               {"stem", JsonFromBytes(film.stem)},
                                                {"input_hash", film.input_hash},
                                                {"size_bytes", film.size_bytes},
                                                {"settings_hash", settings_hash},

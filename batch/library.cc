@@ -7,6 +7,7 @@
 #include <set>
 
 #include "batch/content_hash.h"
+#include "batch/json_bytes.h"
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/input_file.h"
@@ -45,6 +46,10 @@ std::vector<std::string> ReadManifest(const fs::path& manifest) {
   int path_column = -1;
   while (std::getline(in, line)) {
     ++line_no;
+    if (line.find('\0') != std::string::npos) {
+      throw Error(manifest.string() + ":" + std::to_string(line_no),
+                  "not a text manifest (binary data); give a folder, a video or a list of paths");
+    }
     if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line = line.substr(3);  // BOM
     if (csv) {
       if (Trim(line).empty()) continue;
@@ -107,6 +112,11 @@ std::vector<std::string> ListLibrary(const std::string& library) {
   std::error_code ec;
   const fs::path root(library);
   if (!fs::exists(root, ec)) throw Error(library, "no such file or folder");
+  // A single video is a library of one (its manifest would be binary data).
+  if (fs::is_regular_file(root, ec) && IsVideoExtension(root.extension().string().substr(
+                                         root.extension().empty() ? 0 : 1))) {
+    return {Absolute(root)};
+  }
   std::vector<std::string> paths =
       fs::is_directory(root, ec) ? ScanFolder(root) : ReadManifest(root);
   std::sort(paths.begin(), paths.end());
@@ -143,6 +153,11 @@ std::string FilmId(const std::string& absolute_path) {
   for (char c : stem) {
     const auto u = static_cast<unsigned char>(c);
     safe += (u < 0x20 || u == 0x7f || c == '/') ? '_' : c;
+  }
+  // The id names a folder and appears in JSON and logs: a name that is not
+  // UTF-8 keeps its ASCII only (the hash below still tells films apart).
+  if (!IsValidUtf8(safe)) {
+    for (char& c : safe) c = static_cast<unsigned char>(c) >= 0x80 ? '_' : c;
   }
   if (safe.empty()) safe = "film";
   if (safe[0] == '.') safe[0] = '_';

@@ -6,6 +6,7 @@
 //   - a folder: searched recursively (symbolic links to files are followed,
 //     hidden entries starting with '.' are skipped) for video files by
 //     extension, case-insensitive (see IsVideoExtension); or
+//   - a video file (by extension, as above): a library of that one film;
 //   - a manifest file:
 //       * "*.csv": a CSV with a header row holding a column named "path"
 //         (case-insensitive; other columns are ignored; fields may be

@@ -82,6 +82,24 @@ TEST(LibraryTest, CsvManifestWithoutPathColumnIsAnError) {
   EXPECT_THROW(ListLibrary(m), Error);
 }
 
+TEST(LibraryTest, AVideoFileIsALibraryOfOne) {
+  TempDir d;
+  const std::string film = d.Write("Film One.MKV", std::string("\x1a\x45\xdf\xa3\0\0", 6));
+  EXPECT_EQ(ListLibrary(film), std::vector<std::string>{film});
+}
+
+TEST(LibraryTest, BinaryManifestIsAnErrorNamingIt) {
+  TempDir d;
+  const std::string m = d.Write("films.bin", std::string("a.mp4\n\x89PNG\0\0\x7e", 14));
+  try {
+    ListLibrary(m);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), m + ":2");
+    EXPECT_NE(e.reason().find("not a text manifest"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LibraryTest, MissingLibraryIsAnError) {
   EXPECT_THROW(ListLibrary("/nonexistent/hapcine/library"), Error);
 }

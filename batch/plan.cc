@@ -3,6 +3,7 @@
 #include <map>
 
 #include "batch/content_hash.h"
+#include "batch/json_bytes.h"
 #include "batch/library.h"
 #include "core/error.h"
 
@@ -65,16 +66,16 @@ BatchPlan MakePlan(const BatchOptions& options) {
 nlohmann::json PlanToJson(const BatchPlan& plan) {
   nlohmann::json films = nlohmann::json::array();
   for (const FilmPlan& f : plan.films) {
-    films.push_back({{"path", f.path},
+    films.push_back({{"path", JsonFromBytes(f.path)},
                      {"id", f.id},
-                     {"stem", f.stem},
+                     {"stem", JsonFromBytes(f.stem)},
                      {"size_bytes", f.size_bytes},
                      {"input_hash", f.input_hash},
                      {"precheck_error", f.precheck_error},
                      {"duplicate_of", f.duplicate_of},
                      {"shard", f.shard}});
   }
-  return {{"library", plan.library},
+  return {{"library", JsonFromBytes(plan.library)},
           {"settings_hash", plan.settings_hash},
           {"shard_count", plan.shard_count},
           {"films", films}};
@@ -82,14 +83,14 @@ nlohmann::json PlanToJson(const BatchPlan& plan) {
 
 BatchPlan PlanFromJson(const nlohmann::json& j) {
   BatchPlan plan;
-  plan.library = j.at("library").get<std::string>();
+  plan.library = BytesFromJson(j.at("library"));
   plan.settings_hash = j.at("settings_hash").get<std::string>();
   plan.shard_count = j.at("shard_count").get<int>();
   for (const auto& jf : j.at("films")) {
     FilmPlan f;
-    f.path = jf.at("path").get<std::string>();
+    f.path = BytesFromJson(jf.at("path"));
     f.id = jf.at("id").get<std::string>();
-    f.stem = jf.at("stem").get<std::string>();
+    f.stem = BytesFromJson(jf.at("stem"));
     f.size_bytes = jf.at("size_bytes").get<uint64_t>();
     f.input_hash = jf.at("input_hash").get<std::string>();
     f.precheck_error = jf.at("precheck_error").get<std::string>();

@@ -50,7 +50,10 @@ int RemoveTempFilesIn(const fs::path& dir, bool only_dead) {
 
 void WriteJsonAtomic(const std::string& path, const nlohmann::json& j) {
   AtomicFile out(path);
-  out.stream() << j.dump(2) << "\n";
+  // Paths are stored exactly (json_bytes.h); a text only shown to people (a
+  // child's error message quoting a file name) gets U+FFFD for bytes that are
+  // not UTF-8 rather than failing the whole batch.
+  out.stream() << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   out.Commit();
 }
 

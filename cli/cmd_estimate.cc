@@ -27,7 +27,9 @@ void WriteReport(const JsonDiagnostics& diagnostics, const std::string& video, c
                            {"windows", nlohmann::json::array()}};
   for (const auto& [key, value] : path.metadata) header["metadata"][key] = value;
   AtomicFile out(report);
-  out.stream() << diagnostics.Document(header).dump(1) << "\n";
+  out.stream() << diagnostics.Document(header).dump(1, ' ', false,
+                                                   nlohmann::json::error_handler_t::replace)
+               << "\n";
   out.Commit();
 }
 

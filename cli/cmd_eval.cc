@@ -104,13 +104,13 @@ int RunEval(int argc, char** argv) {
     }
     if (!json_out.empty()) {
       AtomicFile out(json_out);
-      out.stream() << j.dump(2) << "\n";
+      out.stream() << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
       out.Commit();
     }
     if (!per_frame_out.empty()) WritePerFrameErrorsFile(report, per_frame_out);
     outputs.CommitAll();
     if (json) {
-      std::cout << j.dump(2) << "\n";
+      std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     } else {
       std::cout << FormatEvalTable(report);
       if (haptic_report) std::cout << "\n" << FormatHapticEvalTable(*haptic_report);

@@ -205,7 +205,9 @@ void WriteHjif(const HapticTrack& track, const HjifOptions& o, std::ostream& out
     return std::string(1, '\0') + "hapcine keyframes " + std::to_string(a) + " " +
            std::to_string(k);
   });
-  std::istringstream text(skeleton.dump(1));
+  // A file name in the description may hold bytes that are not UTF-8: they
+  // become U+FFFD (JSON text is UTF-8) rather than failing the export.
+  std::istringstream text(skeleton.dump(1, ' ', false, json::error_handler_t::replace));
   std::string line;
   while (std::getline(text, line)) {
     size_t indent;
