@@ -1,21 +1,25 @@
 // hapcine convert: camera paths to and from other tools' formats.
 //   IN.camera.csv --to-tum OUT.txt                    (for evo)
+//   IN.camera.csv --to-kitti|--to-nuke-chan|--to-blender OUT   (post-production)
 //   --from-tum IN.txt --fov DEG -o OUT.camera.csv     (back from evo/SLAM tools)
 //   --from-colmap DIR --times-from VIDEO_OR_CAMERA_CSV -o OUT.camera.csv
 // Formats and the COLMAP axis mapping: docs/formats.md.
 
 
 #include <cstdio>
+#include <optional>
 #include <iostream>
 #include <vector>
 
 #include "cli/command.h"
 #include "cli/option_checks.h"
+#include "core/atomic_file.h"
 #include "core/camera_path.h"
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/output_files.h"
 #include "core/progress.h"
+#include "datasets/camera_exports.h"
 #include "datasets/tum_format.h"
 #include "datasets/colmap_text.h"
 #include "extract/frame_source.h"
@@ -75,19 +79,155 @@ FrameTimes ReadFrameTimes(const std::string& file) {
   return times;
 }
 
+
+struct ExportRequest {
+  std::string input;
+  std::string to_tum, to_kitti, to_chan, to_blender;
+  std::optional<int> shot;
+  std::optional<double> sensor_width_mm;  // --sensor-width-mm, else the header, else 36
+  int start_frame = 1;
+};
+
+// The file each shot goes to: the name as given for one shot, else one
+// file per shot (OUT.shot003.txt) so that no trajectory jumps at a cut.
+std::vector<std::string> PerShotTargets(const std::string& file,
+                                        const std::vector<ShotFrames>& shots) {
+  if (shots.size() == 1) return {file};
+  if (ResolveOutputTarget(file).direct) {
+    throw UsageError(file + " is a device or FIFO and the path has " +
+                     std::to_string(shots.size()) + " shots: choose one with --shot N");
+  }
+  std::vector<std::string> names;
+  for (const ShotFrames& s : shots) names.push_back(PerShotFileName(file, s.shot));
+  return names;
+}
+
+double SensorWidthMm(const ExportRequest& request, const CameraPath& path) {
+  if (request.sensor_width_mm) return *request.sensor_width_mm;
+  const auto it = path.metadata.find("sensor_width_mm");
+  if (it == path.metadata.end()) return 36;
+  char* end = nullptr;
+  const double mm = std::strtod(it->second.c_str(), &end);
+  if (end == it->second.c_str() || *end != '\0' || !(mm > 0 && mm <= 1000)) {
+    throw Error(request.input, "header sensor_width_mm='" + it->second +
+                                   "' is not a width in (0, 1000] mm");
+  }
+  return mm;
+}
+
+// Writes one shot's file in the format of the request.
+void WriteShotFile(const ExportRequest& request, const CameraPath& path, const ShotFrames& shot,
+                   const std::string& file) {
+  AtomicFile out(file);
+  if (!request.to_tum.empty()) {
+    CameraPath one;
+    one.frames = shot.frames;
+    WriteTumTrajectory(one, out.stream());
+  } else if (!request.to_kitti.empty()) {
+    WriteKittiPoses(KittiPoses(shot), out.stream());
+  } else {
+    if (path.width() <= 0 || path.height() <= 0) {
+      throw Error(request.input, "no width/height in the header: a .chan's vertical field of "
+                                 "view needs the frame's aspect ratio");
+    }
+    WriteNukeChan(NukeChanRows(shot, static_cast<double>(path.height()) / path.width(),
+                               request.start_frame),
+                  out.stream());
+  }
+  out.Commit();
+}
+
+// hapcine convert IN.camera.csv --to-...: every output is declared (and
+// checked against the input) before any is written; all commit together.
+int RunExport(const ExportRequest& request) {
+  const CameraPath path = ReadCameraPathFile(request.input);
+  const std::vector<ShotFrames> shots = SelectShots(path, request.shot, request.input);
+  std::vector<std::string> files;
+  if (!request.to_blender.empty()) {
+    files = {request.to_blender};
+  } else {
+    const std::string& target = !request.to_tum.empty()     ? request.to_tum
+                                : !request.to_kitti.empty() ? request.to_kitti
+                                                            : request.to_chan;
+    files = PerShotTargets(target, shots);
+  }
+  const char* option = !request.to_tum.empty()      ? "--to-tum"
+                       : !request.to_kitti.empty()  ? "--to-kitti"
+                       : !request.to_chan.empty()   ? "--to-nuke-chan"
+                                                    : "--to-blender";
+  std::vector<NamedPath> outputs;
+  for (const std::string& f : files) outputs.push_back({f, option});
+  OutputSet output_set({{request.input, "INPUT"}}, outputs);
+  if (!request.to_blender.empty()) {
+    BlenderExportOptions options;
+    options.sensor_width_mm = SensorWidthMm(request, path);
+    options.start_frame = request.start_frame;
+    options.source = request.input;
+    AtomicFile out(request.to_blender);
+    WriteBlenderScript(path, shots, options, out.stream());
+    out.Commit();
+  } else {
+    for (size_t i = 0; i < shots.size(); ++i) WriteShotFile(request, path, shots[i], files[i]);
+  }
+  output_set.CommitAll();
+  for (const std::string& f : files) std::cerr << "wrote " << f << "\n";
+  return kExitOk;
+}
+
+// A COLMAP text model as a camera path, timed by `times_from`.
+CameraPath ImportColmap(const std::string& from_colmap, const std::string& times_from) {
+  if (times_from.empty()) throw UsageError("--from-colmap needs --times-from");
+  const FrameTimes times = ReadFrameTimes(times_from);
+  ColmapReadOptions colmap;
+  colmap.frame_times = times.time_s;
+  colmap.decoded_width = times.width;
+  if (times.fps > 0) colmap.fps = times.fps;
+  CameraPath path = ReadColmapTextModel(from_colmap, colmap);
+  if (times.width > 0) path.metadata["width"] = std::to_string(times.width);
+  if (times.height > 0) path.metadata["height"] = std::to_string(times.height);
+  if (times.fps > 0) path.metadata["fps"] = FormatDouble(times.fps);
+  path.metadata["source"] = from_colmap;
+  return path;
+}
+
 }  // namespace
 
 int RunConvert(int argc, char** argv) {
   CLI::App app{"Convert camera paths to and from other tools' formats (docs/formats.md):\n"
                "  hapcine convert IN.camera.csv --to-tum OUT.txt\n"
+               "  hapcine convert IN.camera.csv --to-kitti OUT.txt | --to-nuke-chan OUT.chan\n"
+               "  hapcine convert IN.camera.csv --to-blender OUT.py [--sensor-width-mm 36]\n"
                "  hapcine convert --from-tum IN.txt --fov 60 -o OUT.camera.csv\n"
                "  hapcine convert --from-colmap DIR --times-from VIDEO|CAMERA_CSV -o OUT.camera.csv",
                argv[0]};
-  std::string input, to_tum, from_tum, from_colmap, times_from, output;
+  ExportRequest request;
+  std::string& input = request.input;
+  std::string from_tum, from_colmap, times_from, output;
   double fov_deg = 0;
-  app.add_option("input", input, "camera path to convert (*.camera.csv), with --to-tum");
-  app.add_option("--to-tum", to_tum,
-                 "write the TUM trajectory format (timestamp tx ty tz qx qy qz qw), for evo");
+  int shot = -1;
+  double sensor_width_mm = 36;
+  app.add_option("input", input, "camera path to export (*.camera.csv), with --to-*");
+  app.add_option("--to-tum", request.to_tum,
+                 "write the TUM trajectory format (timestamp tx ty tz qx qy qz qw), for evo; "
+                 "one file per shot (OUT.shot003.txt) when the path has several");
+  app.add_option("--to-kitti", request.to_kitti,
+                 "write KITTI odometry poses (3x4 camera-to-world per row, camera x right, "
+                 "y down, z forward, each shot from its first frame); one file per shot");
+  app.add_option("--to-nuke-chan", request.to_chan,
+                 "write a Nuke .chan (frame tx ty tz rx ry rz vertical_fov, rotation order "
+                 "ZXY, Nuke's Camera default); one file per shot");
+  app.add_option("--to-blender", request.to_blender,
+                 "write a Python script for `blender --background --python OUT.py`: one "
+                 "animated camera per shot, lens per frame, the scene's fps");
+  app.add_option("--shot", shot, "export only this shot (its `shot` column value), to OUT as named")
+      ->check(FiniteRange(0, 1e9));
+  auto* sensor_option = app.add_option(
+      "--sensor-width-mm", sensor_width_mm,
+      "sensor width for the Blender lens (mm); default: the header's sensor_width_mm, else 36")
+      ->check(FiniteRange(0.1, 1000));
+  app.add_option("--start-frame", request.start_frame,
+                 "frame number of the camera path's frame 0 in Blender and .chan exports")
+      ->check(FiniteRange(-1e8, 1e8));
   app.add_option("--from-tum", from_tum, "read a TUM trajectory (needs --fov and -o)");
   app.add_option("--fov", fov_deg,
                  "horizontal field of view (degrees) for every frame of a TUM import "
@@ -103,25 +243,26 @@ int RunConvert(int argc, char** argv) {
   app.add_option("-o,--output", output, "output camera path (*.camera.csv) for the imports");
 
   return RunApp(app, argc, argv, [&]() {
-    const int modes = !to_tum.empty() + !from_tum.empty() + !from_colmap.empty();
+    const int exports = !request.to_tum.empty() + !request.to_kitti.empty() +
+                        !request.to_chan.empty() + !request.to_blender.empty();
+    const int modes = exports + !from_tum.empty() + !from_colmap.empty();
     if (modes != 1) {
-      throw UsageError("choose exactly one of --to-tum, --from-tum, --from-colmap");
+      throw UsageError("choose exactly one of --to-tum, --to-kitti, --to-nuke-chan, "
+                       "--to-blender, --from-tum, --from-colmap");
     }
-    std::vector<NamedPath> inputs = {
-        {input, "INPUT"}, {from_tum, "--from-tum"}, {times_from, "--times-from"}};
+    if (exports == 1) {
+      if (input.empty()) throw UsageError("exports need an input camera path");
+      if (shot >= 0) request.shot = shot;
+      if (sensor_option->count() > 0) request.sensor_width_mm = sensor_width_mm;
+      return RunExport(request);
+    }
+    std::vector<NamedPath> inputs = {{from_tum, "--from-tum"}, {times_from, "--times-from"}};
     if (!from_colmap.empty()) {
       for (const char* f : {"cameras.txt", "images.txt", "points3D.txt"})
         inputs.push_back({from_colmap + "/" + f, "--from-colmap"});
     }
-    OutputSet outputs(inputs, {{to_tum, "--to-tum"}, {output, "-o"}});
-    if (!to_tum.empty()) {
-      if (input.empty()) throw UsageError("--to-tum needs an input camera path");
-      WriteTumTrajectoryFile(ReadCameraPathFile(input), to_tum);
-      outputs.CommitAll();
-      std::cerr << "wrote " << to_tum << "\n";
-      return kExitOk;
-    }
-    if (!input.empty()) throw UsageError("an input camera path is only used with --to-tum");
+    OutputSet outputs(inputs, {{output, "-o"}});
+    if (!input.empty()) throw UsageError("an input camera path is only used with --to-*");
     if (output.empty()) throw UsageError("imports need -o OUT.camera.csv");
     if (!from_tum.empty()) {
       if (!(fov_deg > 0 && fov_deg < 180)) throw UsageError("--fov must be in (0, 180) degrees");
@@ -130,17 +271,7 @@ int RunConvert(int argc, char** argv) {
       WriteCameraPathFile(path, output);
       outputs.CommitAll();
     } else {
-      if (times_from.empty()) throw UsageError("--from-colmap needs --times-from");
-      const FrameTimes times = ReadFrameTimes(times_from);
-      ColmapReadOptions colmap;
-      colmap.frame_times = times.time_s;
-      colmap.decoded_width = times.width;
-      if (times.fps > 0) colmap.fps = times.fps;
-      CameraPath path = ReadColmapTextModel(from_colmap, colmap);
-      if (times.width > 0) path.metadata["width"] = std::to_string(times.width);
-      if (times.height > 0) path.metadata["height"] = std::to_string(times.height);
-      if (times.fps > 0) path.metadata["fps"] = FormatDouble(times.fps);
-      path.metadata["source"] = from_colmap;
+      const CameraPath path = ImportColmap(from_colmap, times_from);
       WriteCameraPathFile(path, output);
       outputs.CommitAll();
       int registered = 0;

@@ -30,7 +30,9 @@ const Subcommand kSubcommands[] = {
     {"plot", "draw camera paths and haptic tracks as PNG and SVG", hapcine::cli::RunPlot},
     {"batch", "process a whole video library, locally or on Slurm", hapcine::cli::RunBatch},
     {"study", "plan, run and analyse a pairwise user study", hapcine::cli::RunStudy},
-    {"convert", "convert camera paths to and from TUM and COLMAP formats", hapcine::cli::RunConvert},
+    {"convert",
+     "convert camera paths to and from TUM and COLMAP; export to KITTI, Nuke .chan, Blender",
+     hapcine::cli::RunConvert},
 };
 
 void PrintUsage(std::ostream& out) {

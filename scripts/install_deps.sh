@@ -18,6 +18,9 @@ PACKAGES=(
   colmap
   # Slurm test (batch issue): a real single-node cluster.
   slurmctld slurmd slurm-client munge
+  # Camera exports: the Blender test runs the exported script headless
+  # (about 1.5 min to install; the test is skipped without it).
+  blender
   # Headless playback tests and screenshots.
   xvfb
   # Benchmarks (bench/run.sh): /usr/bin/time for wall time and peak RSS.
