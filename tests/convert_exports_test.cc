@@ -57,7 +57,7 @@ class ConvertExportsTest : public ::testing::Test {
 
 TEST_F(ConvertExportsTest, TumAndKittiWriteOneFilePerShot) {
   const fs::path in = ThreeShots();
-  for (const std::string& option : {"--to-tum", "--to-kitti", "--to-nuke-chan"}) {
+  for (const std::string option : {"--to-tum", "--to-kitti", "--to-nuke-chan"}) {
     const RunResult r = RunHapcine("convert " + Quote(in) + " " + option + " " +
                                        Quote(work_ / "out.txt"), work_);
     ASSERT_EQ(r.exit_code, 0) << option << "\n" << r.err;
@@ -105,7 +105,7 @@ TEST_F(ConvertExportsTest, ShotOptionWritesOneShotAsNamed) {
 TEST_F(ConvertExportsTest, BadInputsAreOneLine) {
   const fs::path empty = work_ / "empty.camera.csv";
   std::ofstream(empty) << "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n";
-  for (const std::string& option : {"--to-tum", "--to-kitti", "--to-nuke-chan", "--to-blender"}) {
+  for (const std::string option : {"--to-tum", "--to-kitti", "--to-nuke-chan", "--to-blender"}) {
     const RunResult r = RunHapcine("convert " + Quote(empty) + " " + option + " " +
                                        Quote(work_ / "o"), work_);
     EXPECT_EQ(r.exit_code, 1) << option;
