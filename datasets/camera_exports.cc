@@ -268,6 +268,15 @@ def add_keys(action, data_path, index, frames, values, group):
     curve.update()
 
 
+def parse_rows(text):
+    rows = []
+    for line in text.split('\n'):
+        v = line.split()
+        if v:
+            rows.append((int(v[0]),) + tuple(float(x) for x in v[1:]))
+    return rows
+
+
 def make_camera(scene, shot, rows):
     name = 'hapcine_shot%03d' % shot
     old = bpy.data.objects.get(name)
@@ -309,7 +318,9 @@ def main():
         scene.render.resolution_y = HEIGHT
         scene.render.resolution_percentage = 100
     first_frames = []
-    for shot, rows in SHOTS:
+    last_frame = None
+    for shot, text in SHOTS:
+        rows = parse_rows(text)
         camera = make_camera(scene, shot, rows)
         # A marker bound to a camera makes it the scene camera from that frame on.
         marker = scene.timeline_markers.new('shot%03d' % shot, frame=rows[0][0])
@@ -317,8 +328,9 @@ def main():
         if not first_frames:
             scene.camera = camera
         first_frames.append(rows[0][0])
+        last_frame = rows[-1][0] if last_frame is None else max(last_frame, rows[-1][0])
     scene.frame_start = min(first_frames)
-    scene.frame_end = max(rows[-1][0] for _, rows in SHOTS)
+    scene.frame_end = last_frame
     scene.frame_set(scene.frame_start)
     args = sys.argv[sys.argv.index('--') + 1:] if '--' in sys.argv else []
     if '--save' in args:
@@ -343,23 +355,26 @@ void WriteBlenderScript(const CameraPath& path, const std::vector<ShotFrames>& s
   out << "FPS = " << FormatDouble(ExportFps(path)) << "\n";
   out << "WIDTH = " << path.width() << "\nHEIGHT = " << path.height() << "\n";
   out << "SENSOR_WIDTH_MM = " << FormatDouble(options.sensor_width_mm) << "\n";
-  out << "# Per shot: (shot, [(frame, x, y, z, qw, qx, qy, qz, lens_mm), ...]); location and\n"
-         "# rotation (matrix_world) in Blender's Z-up world, lens in mm for SENSOR_WIDTH_MM.\n"
+  // Rows as text, parsed when the script runs: a literal of tuples would
+  // make Python build a syntax tree of every number (gigabytes for a film).
+  out << "# Per shot: (shot, rows), one row per frame: frame x y z qw qx qy qz lens_mm, with\n"
+         "# location and rotation (matrix_world) in Blender's Z-up world, lens in mm for\n"
+         "# SENSOR_WIDTH_MM.\n"
          "SHOTS = [\n";
   for (const ShotFrames& shot : shots) {
-    out << "(" << shot.shot << ", [\n";
+    out << "(" << shot.shot << ", '''\n";
     for (const CameraFrame& f : shot.frames) {
       CheckFrame(f);
       const BlenderPose pose = BlenderPoseFromFrame(f);
       const Eigen::Quaterniond& q = pose.rotation;
-      out << "(" << f.frame + options.start_frame;
+      out << f.frame + options.start_frame;
       for (double v : {pose.location.x(), pose.location.y(), pose.location.z(), q.w(), q.x(),
                        q.y(), q.z(), LensMmFromFovDeg(f.fov_deg, options.sensor_width_mm)}) {
-        out << ", " << FormatDouble(v);
+        out << ' ' << FormatDouble(v);
       }
-      out << "),\n";
+      out << '\n';
     }
-    out << "]),\n";
+    out << "'''),\n";
   }
   out << "]\n" << kBlenderScriptBody;
 }

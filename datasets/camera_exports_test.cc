@@ -229,8 +229,8 @@ TEST(CameraExportsTest, BlenderScriptHasOneCameraPerShot) {
   EXPECT_NE(text.find("FPS = 25\n"), std::string::npos);
   EXPECT_NE(text.find("WIDTH = 1920\nHEIGHT = 1080\n"), std::string::npos);
   EXPECT_NE(text.find("SENSOR_WIDTH_MM = 36\n"), std::string::npos);
-  EXPECT_NE(text.find("(0, [\n(1, 0, 0, 0, "), std::string::npos);  // frame 0 -> Blender 1
-  EXPECT_NE(text.find("(1, [\n(4, 0, 0, 0, "), std::string::npos);  // one-frame shot
+  EXPECT_NE(text.find("(0, '''\n1 0 0 0 "), std::string::npos);  // frame 0 -> Blender 1
+  EXPECT_NE(text.find("(1, '''\n4 0 0 0 "), std::string::npos);  // one-frame shot
   EXPECT_NE(text.find("\nmain()\n"), std::string::npos);
 }
 

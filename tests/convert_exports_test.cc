@@ -132,7 +132,7 @@ TEST_F(ConvertExportsTest, BlenderScriptHoldsEveryShot) {
   const std::string script = Slurp(work_ / "film.py");
   EXPECT_NE(script.find("SENSOR_WIDTH_MM = 24.89\n"), std::string::npos);
   EXPECT_NE(script.find("FPS = 24\n"), std::string::npos);
-  for (const char* shot : {"(0, [\n(1,", "(1, [\n(3,", "(2, [\n(4,"}) {
+  for (const char* shot : {"(0, '''\n1 ", "(1, '''\n3 ", "(2, '''\n4 "}) {
     EXPECT_NE(script.find(shot), std::string::npos) << shot;
   }
 }
