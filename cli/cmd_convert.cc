@@ -227,7 +227,7 @@ int RunConvert(int argc, char** argv) {
       ->check(FiniteRange(0.1, 1000));
   app.add_option("--start-frame", request.start_frame,
                  "frame number of the camera path's frame 0 in Blender and .chan exports")
-      ->check(FiniteRange(-1e8, 1e8));
+      ->check(FiniteRange(0, 1e6));  // Blender's frames run from 0 to about 1e6
   app.add_option("--from-tum", from_tum, "read a TUM trajectory (needs --fov and -o)");
   app.add_option("--fov", fov_deg,
                  "horizontal field of view (degrees) for every frame of a TUM import "

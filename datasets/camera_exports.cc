@@ -323,6 +323,9 @@ def main():
         rows = parse_rows(text)
         camera = make_camera(scene, shot, rows)
         # A marker bound to a camera makes it the scene camera from that frame on.
+        old = scene.timeline_markers.get('shot%03d' % shot)
+        if old is not None:
+            scene.timeline_markers.remove(old)
         marker = scene.timeline_markers.new('shot%03d' % shot, frame=rows[0][0])
         marker.camera = camera
         if not first_frames:

@@ -9,7 +9,8 @@ one-frame shot), exports it with `hapcine convert --to-blender` and
 .chan with Blender's own Nuke importer (rotation order ZXY, Y up -> Z up),
 and reads every camera's matrix_world and lens back per frame. Both must
 match the path mapped independently here (docs/formats.md, "Camera
-exports"). Exits 77 (ctest: skipped) when `blender` is not installed.
+exports"). The script runs twice, as a user re-running it would. Exits 77
+(ctest: skipped) when `blender` is not installed.
 """
 import json
 import math
@@ -46,6 +47,7 @@ result = {'fps': scene.render.fps, 'fps_base': scene.render.fps_base,
           'cameras': {}}
 for obj in bpy.data.objects:
     if obj.name.startswith('hapcine_shot'):
+        result.setdefault('objects', []).append(obj.name)
         keys = obj.animation_data.action.fcurves.find('location', index=0).keyframe_points
         result['cameras'][obj.name] = sample(obj, [int(k.co[0]) for k in keys])
 
@@ -149,6 +151,8 @@ def check_result(result, failures):
     want_markers = [[1, 'shot000', 'hapcine_shot000'], [7, 'shot001', 'hapcine_shot001']]
     if result['markers'] != want_markers or result['scene_camera'] != 'hapcine_shot000':
         failures.append('markers %s, scene camera %s' % (result['markers'], result['scene_camera']))
+    if sorted(result.get('objects', [])) != ['hapcine_shot000', 'hapcine_shot001']:
+        failures.append('camera objects %s' % result.get('objects'))
     check_camera('hapcine_shot000', result['cameras'].get('hapcine_shot000', {}), shot0, failures)
     check_camera('hapcine_shot001', result['cameras'].get('hapcine_shot001', {}),
                  [f for f in frames if f[1] == 1], failures)
@@ -190,7 +194,8 @@ def main():
             f.write(READBACK)
         out_json = os.path.join(tmp, 'result.json')
         run([blender, '--background', '--factory-startup', '--python-exit-code', '1',
-             '--python', script, '--python', readback, '--', out_json,
+             # Twice: a second run replaces the cameras and markers.
+             '--python', script, '--python', script, '--python', readback, '--', out_json,
              os.path.join(tmp, 'film.shot000.chan')])
         with open(out_json) as f:
             result = json.load(f)
