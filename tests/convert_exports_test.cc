@@ -33,10 +33,11 @@ class ConvertExportsTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(work_); }
 
   // Shots 0, 1, 2 of 2, 1 and 3 frames, each starting at the origin.
-  fs::path ThreeShots(bool with_size = true) const {
+  fs::path ThreeShots(bool with_size = true, const std::string& extra_header = "") const {
     const fs::path p = work_ / "film.camera.csv";
     std::ofstream out(p);
     if (with_size) out << "# width=1280\n# height=720\n";
+    out << extra_header;
     out << "# fps=24\nframe,time_s,x,y,z,qw,qx,qy,qz,fov_deg,shot\n";
     const int shot_of[] = {0, 0, 1, 2, 2, 2};
     for (int i = 0; i < 6; ++i) {
@@ -135,6 +136,24 @@ TEST_F(ConvertExportsTest, BlenderScriptHoldsEveryShot) {
   for (const char* shot : {"(0, '''\n1 ", "(1, '''\n3 ", "(2, '''\n4 "}) {
     EXPECT_NE(script.find(shot), std::string::npos) << shot;
   }
+}
+
+TEST_F(ConvertExportsTest, BlenderSensorWidthFromTheHeader) {
+  RunResult r = RunHapcine("convert " + Quote(ThreeShots(true, "# sensor_width_mm=23.5\n")) +
+                               " --to-blender " + Quote(work_ / "a.py"), work_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(Slurp(work_ / "a.py").find("SENSOR_WIDTH_MM = 23.5\n"), std::string::npos);
+  // The option wins over the header.
+  r = RunHapcine("convert " + Quote(work_ / "film.camera.csv") + " --to-blender " +
+                     Quote(work_ / "b.py") + " --sensor-width-mm 36", work_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(Slurp(work_ / "b.py").find("SENSOR_WIDTH_MM = 36\n"), std::string::npos);
+  r = RunHapcine("convert " + Quote(ThreeShots(true, "# sensor_width_mm=wide\n")) +
+                     " --to-blender " + Quote(work_ / "c.py"), work_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(OneLine(r.err)) << r.err;
+  EXPECT_NE(r.err.find("sensor_width_mm='wide'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(work_ / "c.py"));
 }
 
 }  // namespace
