@@ -53,11 +53,18 @@ cv::Point2f Apply(const cv::Matx33d& h, const cv::Point2f& p) {
 }
 
 // Candidates restricted by the predicted motion: each current keypoint is
-// compared only with the keyframe keypoints the prediction puts within
-// `radius_px` of it, and must pass the ratio test among those. Each
-// keyframe keypoint keeps its best match only.
+// compared only with the keyframe keypoints the prediction puts near it
+// (`near`), and its best one there must pass a relaxed ratio test against
+// the nearest *other* descriptor of the whole keyframe (`global_ratio`):
+// the restriction alone would let any descriptor win among a few
+// candidates, and two unrelated pictures would verify the prediction they
+// were matched by. Each keyframe keypoint keeps its best match only.
 template <typename Near>
-DescriptorMatches GuidedDescriptorMatches(const DescribedFrame& key, const DescribedFrame& cur, double ratio, Near near) {
+DescriptorMatches GuidedMatches(const DescribedFrame& key, const DescribedFrame& cur, double global_ratio,
+                                Near near) {
+  cv::BFMatcher matcher(cv::NORM_L2);
+  std::vector<std::vector<cv::DMatch>> nearest;
+  matcher.knnMatch(cur.descriptors, key.descriptors, nearest, 2);
   std::vector<int> best_cur(key.keypoints.size(), -1);
   std::vector<float> best_cur_distance(key.keypoints.size(), std::numeric_limits<float>::infinity());
   for (size_t c = 0; c < cur.keypoints.size(); ++c) {
@@ -75,7 +82,10 @@ DescriptorMatches GuidedDescriptorMatches(const DescribedFrame& key, const Descr
         d2 = d;
       }
     }
-    if (k1 < 0 || !(d1 < ratio * d2) || d1 >= best_cur_distance[k1]) continue;
+    if (k1 < 0 || d1 >= best_cur_distance[k1]) continue;
+    const auto& n = nearest[c];
+    const float other = n.empty() ? d2 : (n[0].trainIdx != k1 ? n[0].distance : n.size() > 1 ? n[1].distance : d2);
+    if (!(d1 < global_ratio * other)) continue;
     best_cur[k1] = static_cast<int>(c);
     best_cur_distance[k1] = d1;
   }
@@ -110,7 +120,7 @@ LinkResult DescriptorLinker::Link(const DescribedFrame& key, const DescribedFram
   if (!result.ok() && predicted && predicted->ok()) {
     const double r = options_.guided_px;
     const LinkResult& p = *predicted;
-    const DescriptorMatches guided = GuidedDescriptorMatches(key, current, options_.ratio, [&](const cv::Point2f& a, const cv::Point2f& b) {
+    const DescriptorMatches guided = GuidedMatches(key, current, options_.guided_ratio, [&](const cv::Point2f& a, const cv::Point2f& b) {
       if (p.model == LinkModel::kFundamental) return EpipolarDistance(cv::Matx33d(p.fundamental), a, b) <= r;
       return cv::norm(Apply(cv::Matx33d(p.current_from_key), a) - b) <= r;
     });
@@ -187,9 +197,13 @@ void DescriptorLinker::GuidedKlt(const DescribedFrame& key, const DescribedFrame
   const cv::Matx33d h(result->current_from_key);
   cv::Mat warped;  // warped(x) = current(h x)
   cv::warpPerspective(current.gray, warped, h, key.gray.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                      cv::BORDER_CONSTANT, 0);
+                      cv::BORDER_REPLICATE);
+  // After the warp only the residual (parallax, the warp's error) is left:
+  // two levels reach ~2 windows. The coarse levels of a zoom-in's warp
+  // would see mostly the border outside the current view and wander off.
   std::vector<cv::Mat> key_pyramid, warped_pyramid;
-  const PyramidLkOptions& lk = options_.lk;
+  PyramidLkOptions lk = options_.lk;
+  lk.max_level = std::min(lk.max_level, 1);
   cv::buildOpticalFlowPyramid(key.gray, key_pyramid, lk.window, lk.max_level, true);
   cv::buildOpticalFlowPyramid(warped, warped_pyramid, lk.window, lk.max_level, true);
   std::vector<cv::Point2f> forward = from, backward;

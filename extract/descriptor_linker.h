@@ -71,6 +71,7 @@ struct DescriptorLinkerOptions {
   // transfer) the predicted motion gives are candidates, and the ratio test
   // runs among them.
   double guided_px = 6.0;
+  double guided_ratio = 0.9;  // the ratio test there, against the whole keyframe
   int min_verified = 15;      // fewer verified matches: no link
   double ratio = 0.8;         // Lowe's ratio test
   // RANSAC thresholds, working px: SIFT keypoints are located to a few

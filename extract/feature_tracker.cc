@@ -742,8 +742,10 @@ struct FeatureTracker::Impl {
   }
 
   // Descriptor mode: the frame is linked to the last one by SIFT (else to
-  // the last well-linked one); no link to either splits the shot. Video
-  // returns to KLT once a link's motion is within KLT's reach.
+  // the last well-linked one). Stills: no link to either splits the shot.
+  // Video returns to KLT once a link's motion is within KLT's reach or when
+  // no link is found (as after a KLT collapse: a blurred whip pan defeats
+  // descriptors too; cuts in video are the shot detector's to find).
   void DescribedStep(const Frame& frame, const ShotDecision& decision, FrameTracks* out, FrameWork* w) {
     w->size = frame.gray.size();
     if (!options.stills) {
@@ -761,7 +763,7 @@ struct FeatureTracker::Impl {
       link = linker.Link(good_described, cur);
     last_link = link;
     RecordLink(frame, "stills", link, link.points.size());
-    if (w->had_tracks && !link.ok()) {
+    if (w->had_tracks && !link.ok() && options.stills) {
       StartShotAtThisFrame(out, &w->points, &w->ids);
       w->had_tracks = false;
       descriptor_mode = true;  // this frame is described; KLT (video) from the next
