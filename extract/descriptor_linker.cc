@@ -131,6 +131,27 @@ LinkResult DescriptorLinker::Link(const DescribedFrame& key, const DescribedFram
   return result;
 }
 
+// Torr's GRIC over all the matches, sum_i min(e_i^2 / sigma^2, 2 (r - d)) +
+// n d ln r + k ln(r n), r = 4: a homography (d = 2, k = 8; e^2 half the
+// squared transfer error) against a fundamental matrix (d = 3, k = 7; e
+// the distance from the epipolar line). A fundamental matrix also fits
+// every match of a plane or a rotation, and on a plane RANSAC finds one
+// that takes in wrong matches along their epipolar lines as well; the
+// homography wins unless parallax pays for the extra dimension.
+bool DescriptorLinker::GricPrefersHomography(const cv::Mat& h, const cv::Mat& f, const DescriptorMatches& m) const {
+  const double sigma2 = options_.sigma_px * options_.sigma_px, r = 4;
+  const double n = static_cast<double>(m.cur.size());
+  const cv::Matx33d hm(h), fm(f);
+  double gric_h = n * 2 * std::log(r) + 8 * std::log(r * n), gric_f = n * 3 * std::log(r) + 7 * std::log(r * n);
+  for (size_t i = 0; i < m.cur.size(); ++i) {
+    const cv::Point2f t = Apply(hm, m.key_pts[i]) - m.cur_pts[i];
+    const double e_h = 0.5 * (t.x * t.x + t.y * t.y), e_f = std::pow(EpipolarDistance(fm, m.key_pts[i], m.cur_pts[i]), 2);
+    gric_h += std::min(e_h / sigma2, 2 * (r - 2));
+    gric_f += std::min(e_f / sigma2, 2 * (r - 3));
+  }
+  return gric_h <= gric_f;
+}
+
 // The model the matches verify (homography or fundamental matrix), and the
 // keyframe tracks that matched keypoints carry.
 LinkResult DescriptorLinker::Verify(const DescribedFrame& key, const DescribedFrame& current, const DescriptorMatches& m) const {
@@ -142,7 +163,7 @@ LinkResult DescriptorLinker::Verify(const DescribedFrame& key, const DescribedFr
   const cv::Mat h = cv::findHomography(m.key_pts, m.cur_pts, cv::RANSAC, options_.homography_px, in_h, 5000, 0.999);
   const int n_f = f.rows == 3 ? Count(in_f) : 0, n_h = h.empty() ? 0 : Count(in_h);
   const std::vector<unsigned char>* inlier = nullptr;
-  if (n_h >= options_.min_verified && n_h >= options_.homography_share * n_f) {
+  if (n_h >= options_.min_verified && (n_f < options_.min_verified || GricPrefersHomography(h, f, m))) {
     result.model = LinkModel::kHomography;
     result.current_from_key = h;
     inlier = &in_h;

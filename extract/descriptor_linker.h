@@ -3,10 +3,9 @@
 // (stills, low frame rates, crash zooms, whip pans, fast orbits, large
 // rolls): SIFT keypoints and descriptors (rotation- and scale-invariant) in
 // both frames, Lowe's ratio test and a cross check, then geometric
-// verification with the model that holds: a homography when it explains
-// (nearly) every match a fundamental matrix explains (a rotation, a plane,
-// a far scene), else the fundamental matrix (parallax: an orbit, a
-// traveling). Track ids continue two ways:
+// verification with the model that holds, chosen by GRIC: a homography
+// (a rotation, a plane, a far scene) unless parallax pays for the
+// fundamental matrix (an orbit, a traveling). Track ids continue two ways:
 //   - a keyframe track point that is itself one of the keyframe's SIFT
 //     keypoints follows its verified match;
 //   - the other keyframe tracks (KLT corners) follow a guided KLT: the
@@ -79,11 +78,9 @@ struct DescriptorLinkerOptions {
   // error for the homography.
   double fundamental_px = 1.5;
   double homography_px = 3.0;
-  // A homography is the model when its inliers reach this share of the
-  // fundamental matrix's: within RANSAC's noise it explains every match,
-  // and a homography is the stronger constraint (GRIC's reasoning: one
-  // point per match instead of a line).
-  double homography_share = 0.9;
+  // Localisation noise of a matched keypoint (px), for GRIC's choice
+  // between the homography and the fundamental matrix.
+  double sigma_px = 1.0;
   PyramidLkOptions lk;        // guided KLT
   double fb_threshold_px = 0.5;
 };
@@ -109,6 +106,7 @@ class DescriptorLinker {
 
  private:
   LinkResult Verify(const DescribedFrame& key, const DescribedFrame& current, const DescriptorMatches& m) const;
+  bool GricPrefersHomography(const cv::Mat& h, const cv::Mat& f, const DescriptorMatches& m) const;
   void GuidedKlt(const DescribedFrame& key, const DescribedFrame& current, LinkResult* result) const;
   DescriptorLinkerOptions options_;
   cv::Ptr<cv::SIFT> sift_;
