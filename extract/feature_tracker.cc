@@ -743,15 +743,13 @@ struct FeatureTracker::Impl {
 
   // Descriptor mode: the frame is linked to the last one by SIFT (else to
   // the last well-linked one). Stills: no link to either splits the shot.
-  // Video returns to KLT once a link's motion is within KLT's reach or when
-  // no link is found (as after a KLT collapse: a blurred whip pan defeats
-  // descriptors too; cuts in video are the shot detector's to find).
+  // KLT takes over once a link's motion is within its reach; in a video
+  // also when no link is found (as after a KLT collapse: a blurred whip pan
+  // defeats descriptors too; cuts in video are the shot detector's to find).
   void DescribedStep(const Frame& frame, const ShotDecision& decision, FrameTracks* out, FrameWork* w) {
     w->size = frame.gray.size();
-    if (!options.stills) {
-      w->pyramid = std::move(spare_pyramid);
-      cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
-    }
+    w->pyramid = std::move(spare_pyramid);  // KLT may take the next frame
+    cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
     w->had_tracks = !last_described.empty() || !good_described.empty();
     w->before = last_described.points.size();
     DescribedFrame cur;
@@ -782,7 +780,11 @@ struct FeatureTracker::Impl {
     last_described = cur;
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
-    if (!options.stills && (!link.ok() || link.median_motion_px < options.klt_window)) descriptor_mode = false;
+    // Frames as close as a video's (a folder of a video's frames too): KLT,
+    // far more precise than keypoints, takes the next frame; the probe
+    // brings the descriptors back where it fails.
+    if ((!options.stills && !link.ok()) || (link.ok() && link.median_motion_px < options.klt_window))
+      descriptor_mode = false;
   }
 
   FrameTracks Process(const Frame& frame) {

@@ -296,6 +296,30 @@ TEST(FeatureTrackerTest, StillsContinueTheirTrackIds) {
   }
 }
 
+// Stills as close as a video's frames (a folder of a video's frames): the
+// first link measures a motion within KLT's reach, and KLT (sub-pixel, no
+// keypoint noise) takes the following frames, keeping the ids.
+TEST(FeatureTrackerTest, StillsAsCloseAsVideoFramesGoBackToKlt) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 45);
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  FrameTracks last;
+  for (int i = 0; i < 5; ++i) {
+    const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 0, 2.7 * i, 0.4 * i), i, 0.5));
+    EXPECT_EQ(t.shot, 0);
+    if (i == 1) EXPECT_TRUE(t.recovered);  // linked by descriptors
+    if (i >= 2) {
+      EXPECT_FALSE(t.recovered) << i;  // tracked by KLT
+      const auto before = ById(last);
+      int continued = 0;
+      for (const auto& p : t.points) continued += before.count(p.track_id) > 0;
+      EXPECT_GE(continued, 100) << i;
+    }
+    last = t;
+  }
+}
+
 // A still that shares nothing with the one before starts a new shot.
 TEST(FeatureTrackerTest, StillsThatCannotBeLinkedSplitTheShot) {
   TrackerOptions o = SmallOptions();
