@@ -147,8 +147,9 @@ int RunEstimate(int argc, char** argv) {
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
   app.add_flag("--stills", opt.tracker.stills,
-               "every frame is a still: link each pair of frames by descriptors (SIFT), never by "
-               "KLT, and do not smooth the path (automatic for image folders and patterns)");
+               "every frame is a still: link frames by descriptors (SIFT; KLT only where they are as "
+               "close as a video's), split shots only where nothing links, do not smooth the path "
+               "(automatic for image folders and patterns)");
   app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
       ->check(FiniteRange(1, 8));
   app.add_option("--klt-coarse-iterations", opt.tracker.klt_coarse_iterations,

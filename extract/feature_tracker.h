@@ -39,10 +39,10 @@ struct TrackerOptions {
   // disagree with the verified two-view geometry; the following frames are
   // then linked by descriptors until the motion is back within KLT's reach.
   bool descriptor_linking = true;
-  // Every frame is a still (image folders and patterns; `--stills`): every
-  // pair of consecutive frames is linked by descriptors, never by KLT, and
-  // only a failed link (to the last frame or the last well-linked one), not
-  // the histogram, splits a shot.
+  // Every frame is a still (image folders and patterns; `--stills`): frames
+  // are linked by descriptors from the first (KLT takes over where a link
+  // measures a motion within its reach), and only a failed link (to the last
+  // frame or the last well-linked one), not the histogram, splits a shot.
   bool stills = false;
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
