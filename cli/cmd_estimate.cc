@@ -148,6 +148,10 @@ int RunEstimate(int argc, char** argv) {
   app.add_flag("--no-klt-predict", no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
+  app.add_flag("--stills", opt.tracker.stills,
+               "every frame is a still: link frames by descriptors (SIFT; KLT only where they are as "
+               "close as a video's), split shots only where nothing links, do not smooth the path "
+               "(automatic for image folders and patterns)");
   app.add_option("--pyramid-levels", opt.tracker.pyramid_levels, "KLT pyramid levels")
       ->check(FiniteRange(1, 8));
   app.add_option("--klt-coarse-iterations", opt.tracker.klt_coarse_iterations,
@@ -174,7 +178,7 @@ int RunEstimate(int argc, char** argv) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--no-klt-predict", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations"})
     app.get_option(name)->group("Tuning");
 
@@ -186,7 +190,7 @@ int RunEstimate(int argc, char** argv) {
     opt.Check();
     OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}, {report, "--report"}});
     std::set<std::string> kinds{"stage", "window"};
-    if (report_detail) kinds.insert({"track_rms", "cut_cues"});
+    if (report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links"});
     JsonDiagnostics diagnostics(kinds);
     if (!report.empty()) opt.diagnostics = &diagnostics;
     Progress progress(std::cerr, ProgressModeFor(quiet), "estimate", "frames");

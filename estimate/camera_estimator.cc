@@ -90,11 +90,24 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
     path->metadata["tracks"] = std::to_string(options.tracker.max_tracks);
     path->metadata["window_frames"] = std::to_string(options.estimator.window_frames);
     path->metadata["prior_hfov_deg"] = Num(options.estimator.prior_hfov_deg);
-    path->metadata["smooth_sigma_frames"] =
-        options.estimator.smooth ? Num(options.estimator.smooth_sigma_frames) : "0";
+    const bool smooth = options.estimator.smooth && !options.tracker.stills && !info.stills;
+    path->metadata["smooth_sigma_frames"] = smooth ? Num(options.estimator.smooth_sigma_frames) : "0";
     // Readers of the path should know its in-between frames were not seen.
     if (options.frames.skip_nonref_frames) path->metadata["skip_nonref"] = "1";
   }
+}
+
+// Still images (a folder, a pattern, or --stills) are linked pair by pair
+// by descriptors; their path is not smoothed: a Gaussian over frames would
+// blur one view's pose into its neighbours', which are whole steps away.
+TrackerOptions StillsAware(TrackerOptions tracker, const VideoInfo& info) {
+  tracker.stills = tracker.stills || info.stills;
+  return tracker;
+}
+TrackEstimatorOptions StillsAware(const EstimatorOptions& options, const VideoInfo& info) {
+  TrackEstimatorOptions estimator = options.estimator;
+  if (options.tracker.stills || info.stills) estimator.smooth = false;
+  return estimator;
 }
 
 // Tracking runs on its own thread, estimation (bundle-adjustment windows,
@@ -105,8 +118,8 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
 CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options,
                             const ProgressFn& progress) {
   const VideoInfo& info = source.info();
-  FeatureTracker tracker(options.tracker, options.diagnostics);
-  TrackCameraEstimator estimator(info.width, info.height, options.estimator, options.diagnostics);
+  FeatureTracker tracker(StillsAware(options.tracker, info), options.diagnostics);
+  TrackCameraEstimator estimator(info.width, info.height, StillsAware(options, info), options.diagnostics);
   // Which stage of the estimation thread is on the critical path after
   // tracking ends (docs/estimate.md "Speed").
   StageLog stages(options.diagnostics);

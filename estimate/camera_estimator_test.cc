@@ -54,8 +54,9 @@ TEST(DraftPreset, IsTheFastPresetWithTheDecoderSkipping) {
 // of frame `fail_at` (if >= 0).
 class PanSource : public FrameSource {
  public:
-  PanSource(int count, int fail_at = -1) : count_(count), fail_at_(fail_at) {
+  PanSource(int count, int fail_at = -1, bool stills = false) : count_(count), fail_at_(fail_at) {
     info_.path = "pan";
+    info_.stills = stills;
     info_.width = 320;
     info_.height = 180;
     info_.fps = 24;
@@ -102,6 +103,22 @@ TEST(EstimateCameraPath, EveryFrameInOrderWithProgressOnTheCallersThread) {
     EXPECT_EQ(path.frames[i].center, path2.frames[i].center) << i;
     EXPECT_EQ(path.frames[i].world_from_cam.coeffs(), path2.frames[i].world_from_cam.coeffs()) << i;
   }
+}
+
+// Still images (an image folder's VideoInfo::stills) are linked by
+// descriptors and their path is not smoothed: the header says so, and the
+// pan still comes out as a pan.
+TEST(EstimateCameraPath, StillsAreNotSmoothed) {
+  EstimatorOptions options;
+  options.tracker.max_tracks = 150;
+  PanSource video(12), stills(12, -1, true);
+  const CameraPath smoothed = EstimateCameraPath(video, options);
+  const CameraPath unsmoothed = EstimateCameraPath(stills, options);
+  EXPECT_EQ(smoothed.metadata.at("smooth_sigma_frames"), "1.5");
+  EXPECT_EQ(unsmoothed.metadata.at("smooth_sigma_frames"), "0");
+  ASSERT_EQ(unsmoothed.frames.size(), 12u);
+  EXPECT_EQ(unsmoothed.frames.back().shot, 0);
+  EXPECT_GT(Eigen::AngleAxisd(unsmoothed.frames.back().world_from_cam).angle(), 0.0);
 }
 
 // PanSource as a decoder that skipped every other frame (--skip-nonref):

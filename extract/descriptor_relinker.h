@@ -32,6 +32,8 @@ class DescriptorRelinker {
   void Clear();
   bool has_keyframe() const { return !key_gray_.empty(); }
   const cv::Mat& key_gray() const { return key_gray_; }
+  const std::vector<cv::Point2f>& key_points() const { return key_points_; }
+  const std::vector<long>& key_ids() const { return key_ids_; }
   // Matches `gray` against the keyframe. Empty result when fewer than
   // min_matches survive the checks.
   RelinkResult Relink(const cv::Mat& gray, int max_features);

@@ -23,6 +23,7 @@
 #include "core/diagnostics.h"
 #include "core/error.h"
 #include "core/statistics.h"
+#include "extract/descriptor_linker.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
 #include "extract/keep_tracks.h"
@@ -83,12 +84,20 @@ constexpr double kCutSurvival = 0.1;
 struct FeatureTracker::Impl {
   explicit Impl(const TrackerOptions& o)
       : options(o),
-        shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}) {}
+        shots(ShotDetectorOptions{o.cut_threshold, o.blank_luma, o.blank_stddev}),
+        linker(LinkerOptions(o)),
+        descriptor_mode(o.stills) {}
 
   TrackerOptions options;
   Diagnostics* diagnostics = nullptr;  // "cut_cues" records
   ShotDetector shots;
   DescriptorRelinker relinker;
+  DescriptorLinker linker;
+  // Linking every frame by descriptors (stills, or KLT could not bridge).
+  bool descriptor_mode = false;
+  DescribedFrame last_described;  // the last frame, in descriptor mode
+  DescribedFrame good_described;  // the last well-linked one (or a shot's first)
+  LinkResult last_link;           // the last link's motion: the next one's prediction
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -121,6 +130,23 @@ struct FeatureTracker::Impl {
     prev_velocity.clear();
     motion_last = motion_before = {kNoMotion, kNoMotion};
     relinker.Clear();
+    last_described = good_described = {};
+    last_link = {};
+    descriptor_mode = options.stills;
+  }
+
+  // The guided KLT of the descriptor linker: the tracker's window and
+  // criteria, the pyramid's coarse levels for the residual of the warp.
+  static DescriptorLinkerOptions LinkerOptions(const TrackerOptions& o) {
+    DescriptorLinkerOptions l;
+    l.max_features = 2 * o.max_tracks;
+    l.lk.window = {o.klt_window, o.klt_window};
+    l.lk.max_level = o.pyramid_levels - 1;
+    l.lk.fine = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01);
+    l.lk.coarse = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, o.klt_coarse_iterations,
+                                   o.klt_coarse_step_px);
+    l.fb_threshold_px = o.fb_threshold_px;
+    return l;
   }
 
   cv::Size Window() const { return {options.klt_window, options.klt_window}; }
@@ -426,6 +452,8 @@ struct FeatureTracker::Impl {
     if (first) {
       out->boundary = ShotBoundary::kStart;
       first = false;
+    } else if (options.stills) {
+      // Stills: a new view changes the histogram; the descriptor link decides.
     } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.cols)) {
       // Gradual change explained by tracked motion: same shot, keep tracking.
     } else if (decision.boundary == ShotBoundary::kFade && after_blank &&
@@ -562,6 +590,7 @@ struct FeatureTracker::Impl {
   // this they would pay for a full detection every frame.
   void TopUpIfThin(const Frame& frame, FrameWork* w) {
     ++frames_since_detect;
+    if (descriptor_mode) return;  // DescribedTopUp added the frame's SIFT keypoints
     if (!(w->points.size() < 0.9 * options.max_tracks &&
           (!w->had_tracks || w->points.size() < 0.9 * tracks_after_detect || frames_since_detect >= 8)))
       return;
@@ -601,6 +630,163 @@ struct FeatureTracker::Impl {
     prev_ids = std::move(w->ids);
   }
 
+  // One "descriptor_links" record per descriptor link tried (report detail).
+  void RecordLink(const Frame& frame, const char* step, const LinkResult& link, size_t taken) const {
+    static const char* kModel[] = {"none", "homography", "fundamental"};
+    Record(diagnostics, "descriptor_links",
+           {{"frame", frame.index}, {"step", step}, {"model", kModel[static_cast<int>(link.model)]},
+            {"verified_matches", link.verified_matches}, {"carried", link.points.size()},
+            {"median_motion_px", link.median_motion_px}, {"tracks_taken", taken}, {"guided", link.guided}});
+  }
+
+  // New tracks on the current frame's SIFT keypoints (strongest first, not
+  // on a track: SIFT repeats a keypoint with a second orientation), so that
+  // the next frame's descriptors can continue every one of them (up to the
+  // linker's 2 x max_tracks keypoints: still images are few, and a pair of
+  // views far apart shares only a fraction of them); `cur` learns which
+  // keypoint each track sits on.
+  void DescribedTopUp(DescribedFrame* cur, FrameWork* w) {
+    std::vector<int> order(cur->keypoints.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return cur->keypoints[a].response > cur->keypoints[b].response; });
+    cv::Mat taken(w->size, CV_8U, cv::Scalar(0));
+    const int radius = 1;
+    for (const cv::Point2f& p : w->points) cv::circle(taken, p, radius, cv::Scalar(255), cv::FILLED);
+    for (int k : order) {
+      if (cur->point_of_keypoint[k] >= 0) continue;
+      const cv::Point2f& p = cur->keypoints[k].pt;
+      const cv::Point q(std::clamp(static_cast<int>(std::lround(p.x)), 0, w->size.width - 1),
+                        std::clamp(static_cast<int>(std::lround(p.y)), 0, w->size.height - 1));
+      if (taken.at<unsigned char>(q)) continue;
+      cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
+      w->points.push_back(p);
+      w->ids.push_back(next_id++);
+      cv::circle(taken, p, radius, cv::Scalar(255), cv::FILLED);
+    }
+    cur->points = w->points;
+    cur->ids = w->ids;
+  }
+
+  // The link's tracks become this frame's: the descriptor-carried ones
+  // first (their indices are the link's point_of_keypoint), then the
+  // frame's own tracks that agree with the verified geometry.
+  void TakeLink(const LinkResult& link, const std::unordered_map<long, cv::Point2f>& key_by_id, FrameWork* w) {
+    std::vector<cv::Point2f> points = link.points;
+    std::vector<long> ids = link.ids;
+    std::unordered_set<long> taken(ids.begin(), ids.end());
+    size_t agreeing = 0;
+    for (size_t i = 0; i < w->points.size(); ++i) {
+      const auto it = key_by_id.find(w->ids[i]);
+      if (taken.count(w->ids[i]) || it == key_by_id.end() || !linker.Agrees(link, it->second, w->points[i]))
+        continue;
+      points.push_back(w->points[i]);
+      ids.push_back(w->ids[i]);
+      ++agreeing;
+    }
+    w->points = std::move(points);
+    w->ids = std::move(ids);
+    w->survived = agreeing;
+    w->relinked = link.points.size();
+  }
+
+  // KLT kept under 70 % of the tracks: link the frame to the last one (else
+  // to the relinker's keyframe) by SIFT descriptors. When KLT's survivors
+  // disagree with the verified geometry (under half agree: LK settled on
+  // look-alikes, or nothing survived), the link's tracks replace them; if
+  // its motion is beyond KLT's reach from zero motion (a KLT window), the
+  // next frames are linked by descriptors too. Ordinary footage never gets
+  // here (no SIFT cost); a whip pan that KLT follows keeps KLT's answer.
+  void ProbeDescriptors(const Frame& frame, FrameTracks* out, FrameWork* w) {
+    if (!options.descriptor_linking || !w->had_tracks || out->boundary == ShotBoundary::kCut ||
+        w->before < kMinTracksForCollapse ||
+        static_cast<double>(w->survived + w->relinked) >= kGoodSurvival * w->before || prev_pyramid.empty())
+      return;
+    DescribedFrame cur;
+    cur.gray = frame.gray;
+    linker.Describe(&cur);
+    DescribedFrame key;
+    key.gray = prev_pyramid[0];
+    key.points = prev_points;
+    key.ids = prev_ids;
+    linker.Describe(&key);
+    LinkResult link = linker.Link(key, cur);
+    if (!link.ok() && relinker.has_keyframe() && relinker.key_gray().data != key.gray.data) {
+      key.gray = relinker.key_gray();
+      key.points = relinker.key_points();
+      key.ids = relinker.key_ids();
+      linker.Describe(&key);
+      link = linker.Link(key, cur);
+    }
+    if (!link.ok()) return;
+    std::unordered_map<long, cv::Point2f> key_by_id;
+    for (size_t i = 0; i < key.ids.size(); ++i) key_by_id.emplace(key.ids[i], key.points[i]);
+    size_t checked = 0, agree = 0;
+    for (size_t i = 0; i < w->points.size(); ++i) {
+      const auto it = key_by_id.find(w->ids[i]);
+      if (it == key_by_id.end()) continue;
+      ++checked;
+      agree += linker.Agrees(link, it->second, w->points[i]);
+    }
+    const bool klt_right = checked >= kMinTracksForCollapse && 2 * agree >= checked;
+    RecordLink(frame, "probe", link, klt_right ? 0 : link.points.size());
+    if (klt_right) return;
+    TakeLink(link, key_by_id, w);
+    out->recovered = w->relinked > 0;
+    if (link.median_motion_px < options.klt_window) return;
+    descriptor_mode = true;
+    cur.point_of_keypoint = link.point_of_keypoint;
+    DescribedTopUp(&cur, w);
+    last_described = good_described = cur;
+    last_link = link;
+  }
+
+  // Descriptor mode: the frame is linked to the last one by SIFT (else to
+  // the last well-linked one). Stills: no link to either splits the shot.
+  // KLT takes over once a link's motion is within its reach; in a video
+  // also when no link is found (as after a KLT collapse: a blurred whip pan
+  // defeats descriptors too; cuts in video are the shot detector's to find).
+  void DescribedStep(const Frame& frame, const ShotDecision& decision, FrameTracks* out, FrameWork* w) {
+    w->size = frame.gray.size();
+    w->pyramid = std::move(spare_pyramid);  // KLT may take the next frame
+    cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
+    w->had_tracks = !last_described.empty() || !good_described.empty();
+    w->before = last_described.points.size();
+    DescribedFrame cur;
+    cur.gray = frame.gray;
+    linker.Describe(&cur);
+    LinkResult link;
+    if (!last_described.empty()) link = linker.Link(last_described, cur, &last_link);
+    if (!link.ok() && !good_described.empty() && good_described.gray.data != last_described.gray.data)
+      link = linker.Link(good_described, cur);
+    last_link = link;
+    RecordLink(frame, "stills", link, link.points.size());
+    if (w->had_tracks && !link.ok() && options.stills) {
+      StartShotAtThisFrame(out, &w->points, &w->ids);
+      w->had_tracks = false;
+      descriptor_mode = true;  // this frame is described; KLT (video) from the next
+    } else if (link.ok()) {
+      TakeLink(link, {}, w);
+      out->recovered = w->relinked > 0;
+      cur.point_of_keypoint = link.point_of_keypoint;
+      if (decision.transition) {
+        std::vector<float> disp;
+        for (size_t i = 0; i < link.points.size(); ++i)
+          disp.push_back(static_cast<float>(cv::norm(link.points[i] - link.key_points[i])));
+        AccumulateRun(w->before, w->relinked, std::move(disp), frame.gray.cols);
+      }
+    }
+    DescribedTopUp(&cur, w);
+    last_described = cur;
+    // Well linked: twice the matches a link needs (a shot's first frame too).
+    if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
+    // Frames as close as a video's (a folder of a video's frames too): KLT,
+    // far more precise than keypoints, takes the next frame; the probe
+    // brings the descriptors back where it fails.
+    if ((!options.stills && !link.ok()) || (link.ok() && link.median_motion_px < options.klt_window))
+      descriptor_mode = false;
+  }
+
   FrameTracks Process(const Frame& frame) {
     if (frame.gray.empty() || frame.gray.type() != CV_8UC1)
       throw Error("frame " + std::to_string(frame.index), "tracker needs a CV_8UC1 gray image");
@@ -619,10 +805,15 @@ struct FeatureTracker::Impl {
     after_blank = false;
     step = out.step;
     FrameWork w;
-    TrackFromLastFrame(frame, decision.transition, &w);
-    Recover(frame, &out, &w);
-    CheckCut(frame, decision, &out, &w);
-    const size_t verified = w.points.size();
+    if (descriptor_mode) {
+      DescribedStep(frame, decision, &out, &w);
+    } else {
+      TrackFromLastFrame(frame, decision.transition, &w);
+      Recover(frame, &out, &w);
+      CheckCut(frame, decision, &out, &w);
+      ProbeDescriptors(frame, &out, &w);
+    }
+    const size_t verified = w.had_tracks ? w.survived + w.relinked : w.points.size();
     TopUpIfThin(frame, &w);
     // Quality: verified (tracked or re-linked) share of the wanted tracks;
     // on a shot's first tracked frame nothing can be verified yet, so the

@@ -3,7 +3,8 @@
 //   pyramidal KLT with a forward-backward check (started from each track's
 //   last motion when the picture moves fast), detections spread over a
 //   grid and topped up as tracks die, descriptor (ORB) matching to re-link
-//   when tracking collapses (whip pans, blur); hard cuts and fades split shots;
+//   when tracking collapses (whip pans, blur), SIFT linking where KLT cannot
+//   bridge (stills, jumps, fast orbits); hard cuts and fades split shots;
 //   blank frames are flagged and not tracked.
 
 #include <memory>
@@ -33,6 +34,16 @@ struct TrackerOptions {
   // motion: fast pans stay within the pyramid's reach.
   bool klt_predict = true;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
+  // SIFT linking where KLT cannot bridge (descriptor_linker.h): tried when
+  // fewer than 70 % of the tracks survive KLT, taken when KLT's survivors
+  // disagree with the verified two-view geometry; the following frames are
+  // then linked by descriptors until the motion is back within KLT's reach.
+  bool descriptor_linking = true;
+  // Every frame is a still (image folders and patterns; `--stills`): frames
+  // are linked by descriptors from the first (KLT takes over where a link
+  // measures a motion within its reach), and only a failed link (to the last
+  // frame or the last well-linked one), not the histogram, splits a shot.
+  bool stills = false;
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
   double blank_luma = 16;          // mean luma (0..255) under which a frame is blank

@@ -230,6 +230,7 @@ TEST(FeatureTrackerTest, RecoversAfterALargeJumpWithTheOldIds) {
   // Without recovery the old ids are gone.
   TrackerOptions no_recovery = SmallOptions();
   no_recovery.descriptor_recovery = false;
+  no_recovery.descriptor_linking = false;
   FeatureTracker plain(no_recovery);
   FrameTracks last;
   for (int i = 0; i < 4; ++i)
@@ -244,6 +245,125 @@ TEST(FeatureTrackerTest, RecoversAfterALargeJumpWithTheOldIds) {
     if (it != ids_before.end() && std::abs(p.px.x() - it->second.x() - jump) > 2) ++wrongly_kept;
   }
   EXPECT_LE(wrongly_kept, 3);
+}
+
+// Decoded view of `texture` turned by `deg` about the decoded centre and
+// shifted by (dx, dy) from the view at `origin`.
+cv::Mat Turned(const cv::Mat& texture, double deg, double dx, double dy, cv::Point2d origin = {500, 300}) {
+  cv::Mat m = cv::getRotationMatrix2D({(kDecoded.width - 1) / 2.0f, (kDecoded.height - 1) / 2.0f}, deg, 1.0);
+  m.at<double>(0, 2) += dx - origin.x * m.at<double>(0, 0) - origin.y * m.at<double>(0, 1);
+  m.at<double>(1, 2) += dy - origin.x * m.at<double>(1, 0) - origin.y * m.at<double>(1, 1);
+  return testing::Warp(texture, m, kDecoded);
+}
+
+// Where a point of the view (0, 0, 0) is in the view (deg, dx, dy).
+Eigen::Vector2d TurnedPoint(const Eigen::Vector2d& p, double deg, double dx, double dy) {
+  const double c = std::cos(deg * M_PI / 180), s = std::sin(deg * M_PI / 180);
+  const Eigen::Vector2d centre((kDecoded.width - 1) / 2.0, (kDecoded.height - 1) / 2.0);
+  const Eigen::Vector2d q = p - centre;
+  return centre + Eigen::Vector2d(c * q.x() + s * q.y(), -s * q.x() + c * q.y()) + Eigen::Vector2d(dx, dy);
+}
+
+// Still images far apart (20 degrees of roll and 70 px a step): every pair
+// is linked by descriptors, the track ids continue from frame to frame and
+// the tracks follow the true motion.
+TEST(FeatureTrackerTest, StillsContinueTheirTrackIds) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 41);
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  std::map<long, Eigen::Vector2d> first;  // in view 0's coordinates
+  for (int i = 0; i < 5; ++i) {
+    const double deg = 20.0 * i, dx = 70.0 * i, dy = -30.0 * i;
+    const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, deg, dx, dy), i, 0.5));
+    EXPECT_EQ(t.shot, 0);
+    if (i == 0) {
+      EXPECT_EQ(t.boundary, ShotBoundary::kStart);
+      for (const auto& p : t.points) first[p.track_id] = p.px;
+      EXPECT_GE(first.size(), 100u);
+      continue;
+    }
+    EXPECT_TRUE(t.recovered);
+    int continued = 0, off = 0;
+    for (const auto& p : t.points) {
+      const auto it = first.find(p.track_id);
+      if (it == first.end()) continue;
+      ++continued;
+      if ((TurnedPoint(it->second, deg, dx, dy) - p.px).norm() > 2.0) ++off;
+    }
+    EXPECT_GE(continued, 40) << "frame " << i;  // ids from frame 0 still alive
+    EXPECT_LE(off, continued / 20 + 1) << "frame " << i;
+  }
+}
+
+// Stills as close as a video's frames (a folder of a video's frames): the
+// first link measures a motion within KLT's reach, and KLT (sub-pixel, no
+// keypoint noise) takes the following frames, keeping the ids.
+TEST(FeatureTrackerTest, StillsAsCloseAsVideoFramesGoBackToKlt) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 45);
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  FrameTracks last;
+  for (int i = 0; i < 5; ++i) {
+    const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 0, 2.7 * i, 0.4 * i), i, 0.5));
+    EXPECT_EQ(t.shot, 0);
+    if (i == 1) EXPECT_TRUE(t.recovered);  // linked by descriptors
+    if (i >= 2) {
+      EXPECT_FALSE(t.recovered) << i;  // tracked by KLT
+      const auto before = ById(last);
+      int continued = 0;
+      for (const auto& p : t.points) continued += before.count(p.track_id) > 0;
+      EXPECT_GE(continued, 100) << i;
+    }
+    last = t;
+  }
+}
+
+// A still that shares nothing with the one before starts a new shot.
+TEST(FeatureTrackerTest, StillsThatCannotBeLinkedSplitTheShot) {
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  const cv::Mat a = NoiseTexture({1600, 1200}, 42), b = NoiseTexture({1600, 1200}, 43);
+  tracker.Process(MakeFrame(Turned(a, 0, 0, 0), 0, 0.5));
+  const FrameTracks same = tracker.Process(MakeFrame(Turned(a, 10, 40, 0), 1, 0.5));
+  EXPECT_EQ(same.boundary, ShotBoundary::kNone);
+  const FrameTracks other = tracker.Process(MakeFrame(Turned(b, 0, 0, 0), 2, 0.5));
+  EXPECT_EQ(other.boundary, ShotBoundary::kCut);
+  EXPECT_EQ(other.shot, 1);
+}
+
+// A video that rolls 60 degrees from one frame to the next (KLT loses it,
+// the upright ORB re-linker too): the descriptor link carries the old ids
+// onto the true positions; without it they are gone.
+TEST(FeatureTrackerTest, SuddenRollIsLinkedByDescriptors) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 44);
+  for (const bool linking : {true, false}) {
+    TrackerOptions o = SmallOptions();
+    o.descriptor_linking = linking;
+    FeatureTracker tracker(o);
+    FrameTracks last;
+    for (int i = 0; i < 3; ++i) last = tracker.Process(MakeFrame(Turned(texture, 0, 2.0 * i, 0), i, 0.5));
+    const FrameTracks rolled = tracker.Process(MakeFrame(Turned(texture, 60, 4.0, 0), 3, 0.5));
+    const auto before = ById(last);
+    int continued = 0, off = 0;
+    for (const auto& p : rolled.points) {
+      const auto it = before.find(p.track_id);
+      if (it == before.end()) continue;
+      ++continued;
+      const Eigen::Vector2d at_zero = it->second - Eigen::Vector2d(4.0, 0);
+      if ((TurnedPoint(at_zero, 60, 4.0, 0) - p.px).norm() > 2.0) ++off;
+    }
+    if (linking) {
+      EXPECT_TRUE(rolled.recovered);
+      EXPECT_EQ(rolled.shot, 0);
+      EXPECT_GE(continued, 40);
+      EXPECT_LE(off, continued / 20 + 1);
+    } else {
+      EXPECT_LE(continued - off, 3);
+    }
+  }
 }
 
 TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {

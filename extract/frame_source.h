@@ -23,6 +23,9 @@ struct VideoInfo {
   // Note ffprobe prints the matrix angle counter-clockwise: "rotation=90"
   // (phone held one way, or `-metadata:s:v rotate=90`) is 270 here.
   int rotation_deg = 0;
+  // Still images (a folder or pattern): consecutive frames need not be close
+  // in time or viewpoint, so the tracker links them by descriptors.
+  bool stills = false;
 };
 
 struct Frame {

@@ -169,6 +169,7 @@ class ImageSequenceSource : public FrameSource {
     info_.path = path;
     info_.fps = options.image_sequence_fps;
     info_.codec = "image";
+    info_.stills = true;
     if (path.find('%') != std::string::npos) {
       pattern_ = path;
       ValidatePattern();
