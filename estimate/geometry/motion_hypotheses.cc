@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/error.h"
 #include "estimate/geometry/two_view_estimators.h"
@@ -105,6 +103,35 @@ TwoViewResult OverAll(TwoViewResult fit, const std::vector<double>& sq, double t
 
 }  // namespace
 
+namespace {
+
+// Is the border's motion the camera's rather than the majority's? (See the
+// header.) Two cases:
+//  - the majority's motion nests the border's (a static border inside a
+//    translating majority: a subject sliding over a still background is
+//    exactly a camera sliding the other way with the background at
+//    infinity). Only `static` is preferred then, and only if it explains
+//    the border better by GRIC: a turning or zooming border around a
+//    region with parallax is as often a rigid scene (a pan with a nodal
+//    offset past a near object, the subject of a dolly zoom, which keeps
+//    its size) as a subject moving on its own;
+//  - otherwise the majority's motion must not hold the border (at most half
+//    of its tracks): a large subject outnumbers the background, which
+//    keeps the rest of the border.
+bool BorderMotionWins(const TwoViewResult& all, const TwoViewResult& edge, const std::vector<double>& sq_all,
+                      const std::vector<double>& sq_edge, const std::vector<char>& in_edge,
+                      const std::vector<int>& border, double sigma) {
+  // The border must hold one dominant motion to be evidence: where its best
+  // motion does not explain the majority of it, it says nothing.
+  if (2 * Count(in_edge, border) <= static_cast<int>(border.size())) return false;
+  const bool nested = IsAtLeastAsGeneral(all.model, edge.model) && all.model != edge.model;
+  if (nested)
+    return edge.model == MotionModel::kStatic && GricOn(edge, sq_edge, border, sigma) < GricOn(all, sq_all, border, sigma);
+  return 2 * Count(all.inliers, border) <= static_cast<int>(border.size());
+}
+
+}  // namespace
+
 CameraMotion SelectCameraMotion(const std::vector<Eigen::Vector2d>& u1, const std::vector<Eigen::Vector2d>& u2,
                                 double f1, double half_height, const TwoViewOptions& options,
                                 const MoverOptions& movers) {
@@ -119,27 +146,17 @@ CameraMotion SelectCameraMotion(const std::vector<Eigen::Vector2d>& u1, const st
   out.border_tracks = static_cast<int>(border.size());
   // A still majority that also holds the border: nothing else to try (the
   // common still shot costs no second fit).
-  if (all.model == MotionModel::kStatic && 2 * Count(all.inliers, border) >= out.border_tracks) return out;
+  if (all.model == MotionModel::kStatic && 2 * Count(all.inliers, border) > out.border_tracks) return out;
   const TwoViewResult edge = SelectTwoViewModel(Pick(u1, border), Pick(u2, border), f1, options);
   if (!edge.valid) return out;
   const std::vector<double> sq_all = TwoViewResiduals(all, u1, u2);
   const std::vector<double> sq_edge = TwoViewResiduals(edge, u1, u2);
   const std::vector<char> in_edge = TwoViewInliers(edge, sq_edge, TwoViewThreshold(edge, options));
-  // The border must hold one dominant motion to be evidence: a subject
-  // covers part of it, the background the rest; where the border's best
-  // motion does not explain the majority of it, it says nothing.
   int moving = 0;
   for (int i = 0; i < n; ++i) moving += all.inliers[i] && !in_edge[i];
-  if (std::getenv("MOVERS_DEBUG"))
-    std::fprintf(stderr, "cand: all %s (%d/%d in, border %d/%d) edge %s (border %d in) moving %d gric edge %.1f all %.1f\n",
-                 MotionModelName(all.model).c_str(), all.num_inliers, n, Count(all.inliers, border), out.border_tracks,
-                 MotionModelName(edge.model).c_str(), Count(in_edge, border), moving,
-                 GricOn(edge, sq_edge, border, std::max(all.sigma, options.noise_floor)), GricOn(all, sq_all, border, std::max(all.sigma, options.noise_floor)));
-  if (2 * Count(in_edge, border) <= out.border_tracks) return out;
   // One noise level for both (the majority's: measured on more tracks).
   const double sigma = std::max(all.sigma, options.noise_floor);
-  if (moving < options.min_correspondences ||
-      !(GricOn(edge, sq_edge, border, sigma) < GricOn(all, sq_all, border, sigma)))
+  if (moving < options.min_correspondences || !BorderMotionWins(all, edge, sq_all, sq_edge, in_edge, border, sigma))
     return out;
   // The border's motion is the camera's: refit it on every match it
   // explains (more tracks, a better pose), the rest are movers.
@@ -150,11 +167,6 @@ CameraMotion SelectCameraMotion(const std::vector<Eigen::Vector2d>& u1, const st
   if (!cam.valid || cam.model != edge.model) cam = edge;
   out.camera = OverAll(cam, TwoViewResiduals(cam, u1, u2), TwoViewThreshold(cam, options));
   out.border_motion = true;
-  if (std::getenv("MOVERS_DEBUG"))
-    std::fprintf(stderr, "override: all %s (%d/%d in, border %d/%d) edge %s (border %d in) cam %s moving %d gric edge %.1f all %.1f\n",
-                 MotionModelName(all.model).c_str(), all.num_inliers, n, Count(all.inliers, border), out.border_tracks,
-                 MotionModelName(edge.model).c_str(), edge.num_inliers, MotionModelName(cam.model).c_str(), moving,
-                 GricOn(edge, sq_edge, border, sigma), GricOn(all, sq_all, border, sigma));
   out.mover.assign(n, 0);
   for (int i = 0; i < n; ++i) out.mover[i] = all.inliers[i] && !out.camera.inliers[i];
   out.movers = static_cast<int>(std::count(out.mover.begin(), out.mover.end(), 1));
