@@ -183,6 +183,12 @@ SceneCamera Pan(int i, int frames, double deg) {
   return c;
 }
 
+MoverRun WithoutSeparation(int frames, const std::function<SceneCamera(int)>& camera_at, MoverScene scene) {
+  TrackEstimatorOptions opt;
+  opt.movers.enabled = false;
+  return Simulate(frames, camera_at, std::move(scene), opt);
+}
+
 // A head (ellipsoid 9 x 12 x 10 cm) whose outline fills `area` of the frame,
 // turning (+-25 deg) and nodding (+-12 deg) about the neck.
 Mover Head(double area) {
@@ -215,6 +221,9 @@ TEST(TrackEstimatorMovers, HeadFillingHalfTheFrameDoesNotMoveAStillCamera) {
     EXPECT_LE(run.mean_rot_err_deg, 0.3);
     EXPECT_EQ(run.max_abs_translation, 0.0);
   }
+  MoverRun before = WithoutSeparation(150, [](int) { return Still(); }, MoverScene(Wall(700, 4, 0.6, 1), {Head(0.55)}));
+  Print("head 0.55, one motion", before);
+  EXPECT_LT(before.models["static"], 150);  // what the border corrects
 }
 
 // A person (ellipsoid 25 x 90 x 20 cm) at `depth` m walking along x at
@@ -229,12 +238,6 @@ Mover Person(double depth, double x0, double speed, unsigned seed, double size =
   };
   p.surface = SurfacePoints(p.radii, static_cast<int>(2000 * density * size * size / (depth * depth)), seed);
   return p;
-}
-
-MoverRun WithoutSeparation(int frames, const std::function<SceneCamera(int)>& camera_at, MoverScene scene) {
-  TrackEstimatorOptions opt;
-  opt.movers.enabled = false;
-  return Simulate(frames, camera_at, std::move(scene), opt);
 }
 
 // Two people crossing (in opposite directions, 2.2 m away) during a pan and
