@@ -10,31 +10,33 @@
 // covers part of the frame, the background the rest, and in particular the
 // frame's border. So a second hypothesis is fitted on the tracks of the
 // border band alone (Chebyshev radius >= `border_radius` from the centre,
-// the outer ring of the picture), with the same model selection. The two
-// hypotheses are compared where the camera's evidence is, on the border:
-// the border's own fit replaces the majority's only when
-//   - it explains the border better by GRIC (the same criterion, with the
-//     majority's motion evaluated on the border tracks: a simpler model
-//     that leaves the subject's border tracks as outliers wins only if it
-//     pays for them), and
-//   - the tracks it leaves out that the majority explained (the movers) are
-//     a group of their own (at least `min_correspondences`): otherwise the
-//     two are the same motion seen through fewer tracks.
-// Static is the first beneficiary: a compact moving region over a still
-// background gives a border whose best model is static, and the movers are
-// then outliers. A camera that follows a subject keeps its motion: the
-// subject is still in the picture, the border slides, and the border's fit
-// is the camera's.
+// the outer ring of the picture), with the same model selection. It
+// replaces the majority's when the border holds one dominant motion (its
+// fit explains more than half of the border's tracks), the tracks it leaves
+// out that the majority explained (the movers) are a group of their own (at
+// least `min_correspondences`), and either
+//   - the majority's motion does not hold the border (at most half of its
+//     tracks): a subject outnumbers the background. A camera that follows a
+//     subject keeps its motion: the subject is still in the picture, the
+//     border slides, and the border's fit is the camera's; or
+//   - the majority's motion nests the border's, the border's is `static`
+//     and explains the border better by GRIC (the majority's motion
+//     evaluated on the border tracks with the same sigma). *Static* is
+//     preferred when the only coherent motion is a region inside the
+//     border; a turning or zooming border is not (BorderMotionWins).
 //
 // The tracks the camera's motion does not explain are outliers of the
-// interval (TwoViewResult::inliers): the estimator keeps them out of the
-// window's points and of the in-between frames' solves.
+// interval (TwoViewResult::inliers); CameraMotion::mover marks those the
+// majority explained, which the estimator keeps out of the window's points
+// (and so of the in-between frames' solves) when they moved on their own in
+// most of the window's intervals.
 //
-// What it cannot tell: a subject that fills the border as well (more than
-// about a third of the border band moving with it), and a traveling whose
-// background is at infinity, with only a compact near subject showing the
-// parallax (a lateral move past a person in front of a distant landscape
-// reads as a still camera or a pan with a mover).
+// What it cannot tell: a subject that also holds most of the border; people
+// crossing during a pan or a traveling (their motion is consistent with the
+// pan plus a small sideways move, or with the traveling: the majority's
+// motion nests the border's, which is not still); a traveling whose
+// background is at infinity with only a compact near subject showing the
+// parallax (it reads as a still camera with a mover).
 
 #include <Eigen/Core>
 #include <vector>
