@@ -34,6 +34,7 @@ void TrackEstimatorOptions::Check() const {
   if (ba_iterations < 1) throw UsageError("BA iterations must be >= 1");
   if (num_threads < 1 || num_threads > 256) throw UsageError("threads must be in [1, 256]");
   two_view.Check();
+  movers.Check();
 }
 
 namespace {
@@ -89,6 +90,7 @@ void TrackCameraEstimator::StartShot(int shot) {
   keyframes_.clear();
   raw_.clear();
   outlier_tracks_.clear();
+  mover_intervals_.clear();
   focal_samples_.clear();
   focal_observed_ = false;
   scale_set_ = false;
@@ -205,7 +207,9 @@ TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyfra
     u2.push_back(u);
   }
   const double fa_norm = std::exp(a.cam.log_focal);
-  const TwoViewResult tv = SelectTwoViewModel(u1, u2, fa_norm, options_.two_view);
+  const CameraMotion motion =
+      SelectCameraMotion(u1, u2, fa_norm, 0.5 * height_ / width_, options_.two_view, options_.movers);
+  const TwoViewResult& tv = motion.camera;
   k.cam = a.cam;
   k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
   if (!tv.valid) {
@@ -213,10 +217,19 @@ TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyfra
     k.inlier_ratio = 0;
     return k;
   }
-  for (size_t i = 0; i < ids.size(); ++i)
-    if (!tv.inliers[i]) outlier_tracks_.insert(ids[i]);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    if (motion.border_motion && motion.mover[i]) {
+      ++mover_intervals_[ids[i]].first;
+    } else if (!tv.inliers[i]) {
+      outlier_tracks_.insert(ids[i]);
+    } else {
+      ++mover_intervals_[ids[i]].second;
+    }
+  }
   k.model = tv.model;
-  k.inlier_ratio = tv.num_points ? static_cast<double>(tv.num_inliers) / tv.num_points : 0;
+  // Movers are no sign of a poor fit: the ratio is over the tracks that are not theirs.
+  const int candidates = tv.num_points - motion.movers;
+  k.inlier_ratio = candidates > 0 ? static_cast<double>(tv.num_inliers) / candidates : 0;
   k.two_view_model = tv.model;
   k.correspondences = tv.num_points;
   k.inliers = tv.num_inliers;

@@ -31,6 +31,7 @@
 #include "core/camera_path.h"
 #include "estimate/bundle/bundle_adjustment.h"
 #include "estimate/geometry/model_selection.h"
+#include "estimate/geometry/motion_hypotheses.h"
 #include "estimate/geometry/motion_model.h"
 #include "estimate/window/window_solver.h"
 #include "extract/tracks.h"
@@ -84,6 +85,9 @@ struct TrackEstimatorOptions {
   bool motion_plane_prior = true;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
+  // The camera's motion told from a large subject's (motion_hypotheses.h):
+  // the frame's border, where the background is, decides.
+  MoverOptions movers;
   void Check() const;                // throws UsageError
 };
 
@@ -164,6 +168,12 @@ class TrackCameraEstimator {
   std::vector<Keyframe> keyframes_;  // of the current window
   std::vector<RawPose> raw_;         // emitted raw poses of the shot
   std::set<long> outlier_tracks_;
+  // Per track, the window's intervals in which it moved on its own (the
+  // border's motion was the camera's and not its) and in which it followed
+  // the camera: it is kept out of the window's points when the first
+  // outnumber the second (a near track read as a mover once, at the slow
+  // start of a traveling, stays in).
+  std::map<long, std::pair<int, int>> mover_intervals_;
   std::vector<double> focal_samples_;  // log f from rotation pairs with enough turn
   bool focal_observed_ = false;
   bool scale_set_ = false;

@@ -139,6 +139,7 @@ void TrackCameraEstimator::StartNextWindow() {
   frames_.erase(frames_.begin(), frames_.begin() + drop);
   buffer_start_ = keyframes_.front().pos;
   outlier_tracks_.clear();
+  mover_intervals_.clear();
 }
 
 }  // namespace hapcine

@@ -732,7 +732,9 @@ TEST(TrackEstimator, WalkerAcrossTheViewDoesNotMoveTheCamera) {
     return c;
   }, 300);
   EXPECT_LT(traveling.mean_rot_err_deg, 0.05);
-  EXPECT_GT(traveling.models["general"], 60);
+  // The camera moves on frames 10-70, eased: its still ends, where only the
+  // walker moves, are static (motion_hypotheses.h) or general.
+  EXPECT_GE(traveling.models["general"], 55);
   const Eigen::Vector3d end = traveling.path.frames[89].center;
   EXPECT_GT(end.x(), 0);
   EXPECT_LT(std::abs(end.y()) + std::abs(end.z()), 0.05 * end.x());

@@ -42,6 +42,8 @@ WindowInput TrackCameraEstimator::WindowInputOf(bool labels_revised) const {
     in.keyframes.push_back({k.pos, k.cam, k.model, k.fixed, k.fixed_focal, k.chain_start, &At(k.pos).u});
   for (int pos = keyframes_.front().pos; pos <= keyframes_.back().pos; ++pos) in.frames.push_back(&At(pos).u);
   in.outlier_tracks = outlier_tracks_;
+  for (const auto& [id, n] : mover_intervals_)
+    if (n.first > n.second) in.outlier_tracks.insert(id);
   in.shot = shot_;
   in.first_frame = At(keyframes_.front().pos).tracks.index;
   in.width = width_;
