@@ -18,6 +18,7 @@
 #include "core/rotation.h"
 #include "core/statistics.h"
 #include "estimate/window/axial_ambiguity.h"
+#include "estimate/window/focal_search.h"
 #include "estimate/window/occlusion_order.h"
 #include "estimate/window/plane_prior.h"
 #include "estimate/geometry/reference_width.h"
@@ -44,6 +45,7 @@ struct WindowProblem {
   // the window, and the frames already written take the same change.
   bool recalibrate_lead_in = false;
   double lead_in_log_focal = 0;
+  double chain_focal_shift = 0;  // the chain rebuilt at the prior focal x exp(this) (focal_search.h)
   int held = 0;                 // the last held keyframe (the lead-in): the motion before it is decided
   bool scale_pinned = false;    // two held keyframes with distinct centres fix the scale
   bool mostly_translating = false;
@@ -122,6 +124,15 @@ void SetSolveOptions(WindowProblem* p) {
   }
 }
 
+// The window calibrates the shot's focal: the first that observes it.
+bool CalibratesFocal(const WindowInput& in, bool focal_observable, bool recalibrate_lead_in) {
+  const auto& kf = in.keyframes;
+  if (in.focal_observed || !focal_observable || kf.size() < 2) return false;
+  return (kf[0].pos == 0 && !kf[1].fixed) || recalibrate_lead_in;
+}
+
+bool StartAtBestFocal(WindowProblem* p);
+
 WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   WindowProblem p;
   p.in = &in;
@@ -137,13 +148,21 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   p.focal_observable = FocalObservable(in, opt.min_rotation_for_focal_deg);
   p.recalibrate_lead_in = p.focal_observable && !in.focal_observed && in.frames_written;
   p.lead_in_log_focal = in.keyframes[0].cam.log_focal;
-  if (const std::optional<double> shift = InitialFocalShift(in, p.recalibrate_lead_in))
+  const std::optional<double> shift = InitialFocalShift(in, p.recalibrate_lead_in);
+  if (shift)
     for (auto& k : p.keyframes) k.cam.log_focal += *shift;
   while (p.held + 1 < p.n && p.keyframes[p.held + 1].fixed) ++p.held;
   ChooseWindowPoints(&p);
   p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
   InitPoints(p, p.cams, &p.points, &p.obs);
   SetSolveOptions(&p);
+  // Not again in the re-solve with revised labels: it starts from the first solve's keyframes.
+  if (p.has_translation && !in.labels_revised && CalibratesFocal(in, p.focal_observable, p.recalibrate_lead_in) &&
+      StartAtBestFocal(&p)) {
+    p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
+    InitPoints(p, p.cams, &p.points, &p.obs);
+    SetSolveOptions(&p);
+  }
   // The tight track cut is for windows with parallax throughout: where a
   // few intervals among rotation read as general (the blur of a whip pan),
   // the tracks' RMS is mostly tracking noise, as without translation.
@@ -169,6 +188,43 @@ Candidate SolveFrom(const WindowProblem& p, std::vector<BaCamera> init) {
   InitPoints(p, c.cams, &c.pts, &c.ob);
   c.summary = SolveDroppingOutliers(p.ba, &c.cams, &c.pts, &c.ob);
   return c;
+}
+
+// The shot's first calibrating window with translation: the constant-focal
+// solve from the two-view chain rebuilt at a few focal lengths, on their own
+// threads (focal_search.h); the keyframes start from the best solve (the
+// chain rebuilt at the prior too: its least-squares fits on every match
+// start the solve better than the two-view selection's). Also
+// where rotation pairs gave a focal: among translating intervals a pair read
+// as a rotation is often a short move whose parallax biased that fit.
+// Returns whether a start was solved.
+bool StartAtBestFocal(WindowProblem* p) {
+  const std::vector<double> shifts = FocalStartShifts();
+  std::vector<std::future<Candidate>> solves;
+  for (double shift : shifts) {
+    std::vector<WindowKeyframe> kf = p->keyframes;
+    const std::vector<BaCamera> chain = ChainAtFocal(kf, shift, p->in->outlier_tracks, p->in->scene_depth);
+    for (int i = 0; i < p->n; ++i) kf[i].cam = chain[i];
+    solves.push_back(std::async(std::launch::async, SolveFrom, std::cref(*p),
+                                WindowCameras(kf, false, p->recalibrate_lead_in)));
+  }
+  std::vector<Candidate> solved;
+  std::vector<std::vector<double>> errors;
+  for (auto& f : solves) {
+    solved.push_back(f.get());
+    const Candidate& c = solved.back();
+    errors.push_back(c.summary.success ? ObservationErrors(c.cams, c.pts, p->obs, true)
+                                       : std::vector<double>(p->obs.size(), HUGE_VAL));
+  }
+  const int best = BestFocalStart(errors, p->opt->noise_floor);
+  if (!solved[best].summary.success) return false;
+  p->chain_focal_shift = shifts[best];
+  for (int i = 0; i < p->n; ++i) {
+    p->keyframes[i].cam.world_from_cam = solved[best].cams[i].world_from_cam;
+    p->keyframes[i].cam.center = solved[best].cams[i].center;
+    p->keyframes[i].cam.log_focal = solved[best].cams[i].log_focal;
+  }
+  return true;
 }
 
 // The window without the freedoms under test: bearings (the solve ignores
@@ -327,6 +383,12 @@ bool RuleOutBranches(const WindowProblem& p, const Candidate& constant, const st
   return by_occlusion;
 }
 
+// The first and last keyframe's focal of a candidate, for the report.
+void RecordFocal(const WindowProblem& p, const std::vector<BaCamera>& cams, WindowCandidate* report) {
+  report->focal_first_px = std::exp(cams.front().log_focal) * p.in->width;
+  report->focal_last_px = std::exp(cams.back().log_focal) * p.in->width;
+}
+
 // The other branch of the axial dolly/zoom ambiguity (axial_ambiguity.h),
 // from the constant-focal solution with the zoom variant's sharing.
 Candidate SolveMirroredBranch(const WindowProblem& p, const Candidate& constant,
@@ -370,6 +432,8 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   std::vector<WindowCandidate*> solved_reports{&reports[0]};  // [c + 1]: zoomed[c]'s
   for (size_t r = 1; r < reports.size(); ++r)
     if (reports[r].solved) solved_reports.push_back(&reports[r]);
+  for (size_t c = 0; c < solved_reports.size(); ++c)
+    RecordFocal(p, c == 0 ? chosen->cams : zoomed[c - 1].cams, solved_reports[c]);
   std::vector<char> ruled_out(zoomed.size() + 1, 0);
   if (axial) {
     std::vector<WindowCandidate> branch(solved_reports.size());
@@ -611,6 +675,7 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   report.labels_revised = in.labels_revised;
   const WindowProblem p = SetUpWindow(in, opt);
   report.focal_observable = p.focal_observable;
+  report.chain_focal_shift = p.chain_focal_shift;
   report.timings_s.emplace_back("setup", clock.Lap());
   const bool test_labels = opt.freedom_test && !in.labels_revised;
   const FreedomTestPlan plan = test_labels ? FreedomTestLabels(p.keyframes) : FreedomTestPlan{};
