@@ -182,13 +182,15 @@ std::vector<BaCamera> CamerasOf(const WindowProblem& p, bool zoom_in_general,
 }
 
 // Every solve drops what the fit cannot explain and polishes (robust_bundle.h).
-Candidate SolveFrom(const WindowProblem& p, std::vector<BaCamera> init) {
+Candidate SolveFromWith(const WindowProblem& p, const BaOptions& ba, std::vector<BaCamera> init) {
   Candidate c;
   c.cams = std::move(init);
   InitPoints(p, c.cams, &c.pts, &c.ob);
-  c.summary = SolveDroppingOutliers(p.ba, &c.cams, &c.pts, &c.ob);
+  c.summary = SolveDroppingOutliers(ba, &c.cams, &c.pts, &c.ob);
   return c;
 }
+
+Candidate SolveFrom(const WindowProblem& p, std::vector<BaCamera> init) { return SolveFromWith(p, p.ba, std::move(init)); }
 
 // The shot's first calibrating window with translation: the constant-focal
 // solve from the two-view chain rebuilt at a few focal lengths, on their own
@@ -200,12 +202,16 @@ Candidate SolveFrom(const WindowProblem& p, std::vector<BaCamera> init) {
 // Returns whether a start was solved.
 bool StartAtBestFocal(WindowProblem* p) {
   const std::vector<double> shifts = FocalStartShifts();
+  // Half the iterations: the basin a start falls in shows early, and the
+  // start taken is solved in full after.
+  BaOptions ba = p->ba;
+  ba.max_iterations = std::max(1, ba.max_iterations / 2);
   std::vector<std::future<Candidate>> solves;
   for (double shift : shifts) {
     std::vector<WindowKeyframe> kf = p->keyframes;
     const std::vector<BaCamera> chain = ChainAtFocal(kf, shift, p->in->outlier_tracks, p->in->scene_depth);
     for (int i = 0; i < p->n; ++i) kf[i].cam = chain[i];
-    solves.push_back(std::async(std::launch::async, SolveFrom, std::cref(*p),
+    solves.push_back(std::async(std::launch::async, SolveFromWith, std::cref(*p), std::cref(ba),
                                 WindowCameras(kf, false, p->recalibrate_lead_in)));
   }
   std::vector<Candidate> solved;
