@@ -35,8 +35,9 @@ std::vector<BaCamera> ChainAtFocal(const std::vector<WindowKeyframe>& keyframes,
 
 // The starts a shot's first calibrating window is solved from: the chain at
 // the prior focal (shift 0) and at the prior x 2^(-1/2) and x 2^(1/2)
-// (log shifts). Between them the solve reaches lenses from about 25 to 100
-// degrees of horizontal view with the prior at 50.
+// (log shifts). Measured reach with the prior at 50 degrees: a real car's
+// 82 degrees is found (2 % long); a synthetic street at 88 degrees is not
+// (the solve stays near its 67 degree start) but invents no zoom either.
 std::vector<double> FocalStartShifts();
 
 // Which start's solve to take: `errors[s]` its reprojection errors on the

@@ -156,13 +156,6 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
   InitPoints(p, p.cams, &p.points, &p.obs);
   SetSolveOptions(&p);
-  // Not again in the re-solve with revised labels: it starts from the first solve's keyframes.
-  if (p.has_translation && !in.labels_revised && CalibratesFocal(in, p.focal_observable, p.recalibrate_lead_in) &&
-      StartAtBestFocal(&p)) {
-    p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
-    InitPoints(p, p.cams, &p.points, &p.obs);
-    SetSolveOptions(&p);
-  }
   // The tight track cut is for windows with parallax throughout: where a
   // few intervals among rotation read as general (the blur of a whip pan),
   // the tracks' RMS is mostly tracking noise, as without translation.
@@ -173,6 +166,16 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
     translating += HasTranslation(p.keyframes[i].model);
   }
   p.mostly_translating = p.has_translation && 2 * translating >= free_keyframes;
+  // Not again in the re-solve with revised labels: it starts from the first
+  // solve's keyframes. Not where few intervals translate: there a pair read
+  // as translating is most often blur among a pan, the freedom test's to
+  // judge, and the rotation pairs calibrate the focal.
+  if (p.mostly_translating && !in.labels_revised && CalibratesFocal(in, p.focal_observable, p.recalibrate_lead_in) &&
+      StartAtBestFocal(&p)) {
+    p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
+    InitPoints(p, p.cams, &p.points, &p.obs);
+    SetSolveOptions(&p);
+  }
   return p;
 }
 
