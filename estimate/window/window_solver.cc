@@ -124,11 +124,13 @@ void SetSolveOptions(WindowProblem* p) {
   }
 }
 
-// The window calibrates the shot's focal: the first that observes it.
-bool CalibratesFocal(const WindowInput& in, bool focal_observable, bool recalibrate_lead_in) {
+// The shot's first window, and it calibrates the focal. Not a later window
+// that calibrates it for the first time: its held lead-in was solved at the
+// old focal and stays, so a chain rebuilt at another focal would contradict it.
+bool FirstWindowCalibratesFocal(const WindowInput& in, bool focal_observable) {
   const auto& kf = in.keyframes;
   if (in.focal_observed || !focal_observable || kf.size() < 2) return false;
-  return (kf[0].pos == 0 && !kf[1].fixed) || recalibrate_lead_in;
+  return kf[0].pos == 0 && !kf[1].fixed;
 }
 
 bool StartAtBestFocal(WindowProblem* p);
@@ -170,7 +172,7 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   // solve's keyframes. Not where few intervals translate: there a pair read
   // as translating is most often blur among a pan, the freedom test's to
   // judge, and the rotation pairs calibrate the focal.
-  if (p.mostly_translating && !in.labels_revised && CalibratesFocal(in, p.focal_observable, p.recalibrate_lead_in) &&
+  if (p.mostly_translating && !in.labels_revised && FirstWindowCalibratesFocal(in, p.focal_observable) &&
       StartAtBestFocal(&p)) {
     p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
     InitPoints(p, p.cams, &p.points, &p.obs);
