@@ -28,6 +28,7 @@ nlohmann::json CandidateJson(const WindowCandidate& c, int width) {
   if (c.test == "focal") j["ruled_out"] = c.ruled_out;
   if (c.occlusion_agree >= 0) j["occlusion_votes"] = {{"agree", c.occlusion_agree}, {"disagree", c.occlusion_disagree}};
   if (c.plane_support >= 0) j["plane_support"] = c.plane_support;
+  if (c.focal_first_px > 0) j["focal_px"] = {c.focal_first_px, c.focal_last_px};
   return j;
 }
 
@@ -121,6 +122,7 @@ void TrackCameraEstimator::Report(WindowReport r) {
                                     {"branch_by_occlusion", r.branch_by_occlusion},
                                     {"plane_prior", r.plane_prior},
                                     {"focal_observable", r.focal_observable},
+                                    {"chain_focal_shift", r.chain_focal_shift},
                                     {"points", r.points},
                                     {"points_kept", r.points_kept},
                                     {"observations", r.observations},

@@ -18,6 +18,7 @@
 #include "core/rotation.h"
 #include "core/statistics.h"
 #include "estimate/window/axial_ambiguity.h"
+#include "estimate/window/focal_search.h"
 #include "estimate/window/occlusion_order.h"
 #include "estimate/window/plane_prior.h"
 #include "estimate/geometry/reference_width.h"
@@ -44,6 +45,7 @@ struct WindowProblem {
   // the window, and the frames already written take the same change.
   bool recalibrate_lead_in = false;
   double lead_in_log_focal = 0;
+  double chain_focal_shift = 0;  // the chain rebuilt at the prior focal x exp(this) (focal_search.h)
   int held = 0;                 // the last held keyframe (the lead-in): the motion before it is decided
   bool scale_pinned = false;    // two held keyframes with distinct centres fix the scale
   bool mostly_translating = false;
@@ -122,6 +124,17 @@ void SetSolveOptions(WindowProblem* p) {
   }
 }
 
+// The shot's first window, and it calibrates the focal. Not a later window
+// that calibrates it for the first time: its held lead-in was solved at the
+// old focal and stays, so a chain rebuilt at another focal would contradict it.
+bool FirstWindowCalibratesFocal(const WindowInput& in, bool focal_observable) {
+  const auto& kf = in.keyframes;
+  if (in.focal_observed || !focal_observable || kf.size() < 2) return false;
+  return kf[0].pos == 0 && !kf[1].fixed;
+}
+
+bool StartAtBestFocal(WindowProblem* p);
+
 WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   WindowProblem p;
   p.in = &in;
@@ -137,7 +150,8 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   p.focal_observable = FocalObservable(in, opt.min_rotation_for_focal_deg);
   p.recalibrate_lead_in = p.focal_observable && !in.focal_observed && in.frames_written;
   p.lead_in_log_focal = in.keyframes[0].cam.log_focal;
-  if (const std::optional<double> shift = InitialFocalShift(in, p.recalibrate_lead_in))
+  const std::optional<double> shift = InitialFocalShift(in, p.recalibrate_lead_in);
+  if (shift)
     for (auto& k : p.keyframes) k.cam.log_focal += *shift;
   while (p.held + 1 < p.n && p.keyframes[p.held + 1].fixed) ++p.held;
   ChooseWindowPoints(&p);
@@ -154,6 +168,16 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
     translating += HasTranslation(p.keyframes[i].model);
   }
   p.mostly_translating = p.has_translation && 2 * translating >= free_keyframes;
+  // Not again in the re-solve with revised labels: it starts from the first
+  // solve's keyframes. Not where few intervals translate: there a pair read
+  // as translating is most often blur among a pan, the freedom test's to
+  // judge, and the rotation pairs calibrate the focal.
+  if (p.mostly_translating && !in.labels_revised && FirstWindowCalibratesFocal(in, p.focal_observable) &&
+      StartAtBestFocal(&p)) {
+    p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
+    InitPoints(p, p.cams, &p.points, &p.obs);
+    SetSolveOptions(&p);
+  }
   return p;
 }
 
@@ -163,12 +187,55 @@ std::vector<BaCamera> CamerasOf(const WindowProblem& p, bool zoom_in_general,
 }
 
 // Every solve drops what the fit cannot explain and polishes (robust_bundle.h).
-Candidate SolveFrom(const WindowProblem& p, std::vector<BaCamera> init) {
+Candidate SolveFromWith(const WindowProblem& p, const BaOptions& ba, std::vector<BaCamera> init) {
   Candidate c;
   c.cams = std::move(init);
   InitPoints(p, c.cams, &c.pts, &c.ob);
-  c.summary = SolveDroppingOutliers(p.ba, &c.cams, &c.pts, &c.ob);
+  c.summary = SolveDroppingOutliers(ba, &c.cams, &c.pts, &c.ob);
   return c;
+}
+
+Candidate SolveFrom(const WindowProblem& p, std::vector<BaCamera> init) { return SolveFromWith(p, p.ba, std::move(init)); }
+
+// The shot's first calibrating window with translation: the constant-focal
+// solve from the two-view chain rebuilt at a few focal lengths, on their own
+// threads (focal_search.h); the keyframes start from the best solve (the
+// chain rebuilt at the prior too: its least-squares fits on every match
+// start the solve better than the two-view selection's). Also
+// where rotation pairs gave a focal: among translating intervals a pair read
+// as a rotation is often a short move whose parallax biased that fit.
+// Returns whether a start was solved.
+bool StartAtBestFocal(WindowProblem* p) {
+  const std::vector<double> shifts = FocalStartShifts();
+  // Half the iterations: the basin a start falls in shows early, and the
+  // start taken is solved in full after.
+  BaOptions ba = p->ba;
+  ba.max_iterations = std::max(1, ba.max_iterations / 2);
+  std::vector<std::future<Candidate>> solves;
+  for (double shift : shifts) {
+    std::vector<WindowKeyframe> kf = p->keyframes;
+    const std::vector<BaCamera> chain = ChainAtFocal(kf, shift, p->in->outlier_tracks, p->in->scene_depth);
+    for (int i = 0; i < p->n; ++i) kf[i].cam = chain[i];
+    solves.push_back(std::async(std::launch::async, SolveFromWith, std::cref(*p), std::cref(ba),
+                                WindowCameras(kf, false, p->recalibrate_lead_in)));
+  }
+  std::vector<Candidate> solved;
+  std::vector<std::vector<double>> errors;
+  for (auto& f : solves) {
+    solved.push_back(f.get());
+    const Candidate& c = solved.back();
+    errors.push_back(c.summary.success ? ObservationErrors(c.cams, c.pts, p->obs, true)
+                                       : std::vector<double>(p->obs.size(), HUGE_VAL));
+  }
+  const int best = BestFocalStart(errors, p->opt->noise_floor);
+  if (!solved[best].summary.success) return false;
+  p->chain_focal_shift = shifts[best];
+  for (int i = 0; i < p->n; ++i) {
+    p->keyframes[i].cam.world_from_cam = solved[best].cams[i].world_from_cam;
+    p->keyframes[i].cam.center = solved[best].cams[i].center;
+    p->keyframes[i].cam.log_focal = solved[best].cams[i].log_focal;
+  }
+  return true;
 }
 
 // The window without the freedoms under test: bearings (the solve ignores
@@ -327,6 +394,12 @@ bool RuleOutBranches(const WindowProblem& p, const Candidate& constant, const st
   return by_occlusion;
 }
 
+// The first and last keyframe's focal of a candidate, for the report.
+void RecordFocal(const WindowProblem& p, const std::vector<BaCamera>& cams, WindowCandidate* report) {
+  report->focal_first_px = std::exp(cams.front().log_focal) * p.in->width;
+  report->focal_last_px = std::exp(cams.back().log_focal) * p.in->width;
+}
+
 // The other branch of the axial dolly/zoom ambiguity (axial_ambiguity.h),
 // from the constant-focal solution with the zoom variant's sharing.
 Candidate SolveMirroredBranch(const WindowProblem& p, const Candidate& constant,
@@ -370,6 +443,8 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   std::vector<WindowCandidate*> solved_reports{&reports[0]};  // [c + 1]: zoomed[c]'s
   for (size_t r = 1; r < reports.size(); ++r)
     if (reports[r].solved) solved_reports.push_back(&reports[r]);
+  for (size_t c = 0; c < solved_reports.size(); ++c)
+    RecordFocal(p, c == 0 ? chosen->cams : zoomed[c - 1].cams, solved_reports[c]);
   std::vector<char> ruled_out(zoomed.size() + 1, 0);
   if (axial) {
     std::vector<WindowCandidate> branch(solved_reports.size());
@@ -611,6 +686,7 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   report.labels_revised = in.labels_revised;
   const WindowProblem p = SetUpWindow(in, opt);
   report.focal_observable = p.focal_observable;
+  report.chain_focal_shift = p.chain_focal_shift;
   report.timings_s.emplace_back("setup", clock.Lap());
   const bool test_labels = opt.freedom_test && !in.labels_revised;
   const FreedomTestPlan plan = test_labels ? FreedomTestLabels(p.keyframes) : FreedomTestPlan{};

@@ -91,6 +91,7 @@ struct WindowCandidate {
   bool ruled_out = false;       // the occlusion order or the floor contradicts it (focal)
   int occlusion_agree = -1, occlusion_disagree = -1;  // votes (-1: not counted)
   int plane_support = -1;       // points on a plane parallel to the move (-1: not counted)
+  double focal_first_px = 0, focal_last_px = 0;  // its first and last keyframe's focal (focal; 0: not recorded)
   BaSummary ba;
 };
 
@@ -105,6 +106,7 @@ struct WindowReport {
   bool labels_revised = false;       // re-run with the labels the window-level tests revised (window_freedoms.h)
   bool plane_prior = false;          // depths shifted to put a floor or wall parallel to an axial move (plane_prior.h)
   bool branch_by_occlusion = false;  // the occlusion order ruled out a dolly/zoom branch
+  double chain_focal_shift = 0;      // the two-view chain rebuilt at the focal x exp(this) (focal_search.h)
   std::string model = "constant_focal";  // the candidate taken
   std::vector<MotionModel> labels;   // the keyframe intervals' models after the solve
   std::vector<WindowCandidate> candidates;
