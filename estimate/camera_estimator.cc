@@ -82,6 +82,11 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
   const VideoInfo& info = source.info();
   path->metadata["width"] = std::to_string(info.width);
   path->metadata["height"] = std::to_string(info.height);
+  // Anamorphic video: width is the display width (stored width x this), the
+  // pixels the path's focal_px and FOV are in.
+  if (info.sample_aspect_num != info.sample_aspect_den)
+    path->metadata["sample_aspect_ratio"] =
+        std::to_string(info.sample_aspect_num) + ":" + std::to_string(info.sample_aspect_den);
   if (info.fps > 0) path->metadata["fps"] = Num(info.fps);
   path->metadata["source"] = info.path;
   path->metadata["estimator"] = "hapcine-" + options.backend;
