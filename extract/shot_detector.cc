@@ -152,6 +152,24 @@ bool ShotDetector::IsSpike(double d, double calm_limit) const {
   return d >= kSpikeRatio * Median(std::vector<double>(local_.begin(), local_.end()));
 }
 
+double ShotDetector::UpdateLayout(const cv::Mat& gray_thumb) {
+  const cv::Mat layout = Layout(gray_thumb);
+  const double continuity =
+      !in_blank_run_ && !prev_layout_.empty() ? Continuity(prev_layout_, layout) : 1.0;
+  prev_layout_ = layout;
+  layout_ = layout;
+  return continuity;
+}
+
+void ShotDetector::RecentStatistics(double* mean, double* stddev) const {
+  *mean = *stddev = 0;
+  if (recent_.empty()) return;
+  for (double x : recent_) *mean += x;
+  *mean /= recent_.size();
+  for (double x : recent_) *stddev += (x - *mean) * (x - *mean);
+  *stddev = std::sqrt(*stddev / recent_.size());
+}
+
 void ShotDetector::StartShot() {
   recent_.clear();
   local_.clear();
@@ -177,10 +195,7 @@ ShotDecision ShotDetector::Update(const Frame& frame) {
     return out;
   }
   const cv::Mat hist = Histogram(frame, gray_thumb);
-  const cv::Mat layout = Layout(gray_thumb);
-  if (!in_blank_run_ && !prev_layout_.empty()) out.continuity = Continuity(prev_layout_, layout);
-  prev_layout_ = layout;
-  layout_ = layout;
+  out.continuity = UpdateLayout(gray_thumb);
   if (in_blank_run_ || prev_hist_.empty()) {
     // First content after black (or the very first frame).
     if (in_blank_run_ && shot_has_content_) out.boundary = ShotBoundary::kFade;
@@ -198,12 +213,7 @@ ShotDecision ShotDetector::Update(const Frame& frame) {
   out.distance = d;
   prev_hist_ = hist;
   double mean_d = 0, std_d = 0;
-  if (!recent_.empty()) {
-    for (double x : recent_) mean_d += x;
-    mean_d /= recent_.size();
-    for (double x : recent_) std_d += (x - mean_d) * (x - mean_d);
-    std_d = std::sqrt(std_d / recent_.size());
-  }
+  RecentStatistics(&mean_d, &std_d);
   const bool stats_ok = recent_.size() >= 5;
   const double t_cut =
       stats_ok ? std::max(options_.cut_threshold, mean_d + 6 * std_d) : options_.cut_threshold;

@@ -107,6 +107,10 @@ class ShotDetector {
  private:
   void StartShot();
   bool IsSpike(double d, double calm_limit) const;
+  // The layout thumbnail of this frame; returns its continuity with the last.
+  double UpdateLayout(const cv::Mat& gray_thumb);
+  // Mean and std-dev of the shot's calm distances (0 without any).
+  void RecentStatistics(double* mean, double* stddev) const;
 
   ShotDetectorOptions options_;
   cv::Mat prev_hist_;              // last non-blank frame's histogram
