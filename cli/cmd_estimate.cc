@@ -103,6 +103,10 @@ int RunEstimate(int argc, char** argv) {
                "keep the two-view labels: no window-level BIC test of a few translating (or "
                "zooming) intervals, nor of zoom intervals among translating ones "
                "(docs/estimate.md, step 4)");
+  app.add_flag("--lens-distortion", opt.lens_distortion,
+               "estimate one radial distortion coefficient k1 from the first shot's first frames "
+               "and undistort the tracks with it where it pays for itself (header k1=; "
+               "docs/estimate.md \"Lens distortion\")");
   bool no_plane_prior = false;
   app.add_flag("--no-plane-prior", no_plane_prior,
                "a dolly with a zoom along the optical axis keeps the depths its fit started from "
