@@ -187,7 +187,7 @@ int RunEstimate(int argc, char** argv) {
     if (no_klt_predict) opt.tracker.klt_predict = false;
     opt.Check();
     OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}, {report, "--report"}});
-    std::set<std::string> kinds{"stage", "window"};
+    std::set<std::string> kinds{"stage", "window", "lens_distortion"};
     if (report_detail) kinds.insert({"track_rms", "cut_cues"});
     JsonDiagnostics diagnostics(kinds);
     if (!report.empty()) opt.diagnostics = &diagnostics;

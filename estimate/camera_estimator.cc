@@ -72,10 +72,10 @@ constexpr int kDecodeQueueFrames = 3;
 // as long as tracking a few dozen frames, and FrameTracks are small (a few
 // hundred points), so this is generous and still flat.
 constexpr size_t kTrackQueueFrames = 48;
-// Frames of the first shot held back for the lens distortion estimate: 4 s
+// Frames of the first shot held back for the lens distortion estimate: 6 s
 // at 24 fps, enough for its frame pairs on any but the slowest move (the
 // estimator then catches up; memory: a few hundred points a frame).
-constexpr size_t kDistortionFrames = 96;
+constexpr size_t kDistortionFrames = 144;
 
 std::string Num(double v) {
   std::ostringstream s;

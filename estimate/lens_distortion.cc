@@ -26,6 +26,11 @@ constexpr double kGricR = 4;
 // under the chosen k1: a coefficient whose effect is under the noise is
 // not a finding, whatever the sum of many small gains says.
 constexpr double kMinCornerEffectSigmas = 2;
+// Nor one that moves the corner by under 1 % of the half-diagonal: that
+// costs the estimator ~0.15 deg at most (the error grows about linearly
+// with |k1|, 0.3 deg at 0.02: docs/estimate.md), less than a wrong k1
+// (motion blur along a whip pan fitted so: -0.004, 0.36 -> 1.1 deg).
+constexpr double kMinAbsK1 = 0.01;
 // At least this share of the frame pairs must fit better with k1 (and at
 // least 3 pairs in all).
 constexpr double kConsistentShare = 0.75;
@@ -237,7 +242,7 @@ RadialDistortionEstimate EstimateRadialDistortion(const std::vector<FrameTracks>
   out.gric_gain = cost_at_zero - best_cost;
   out.penalty = std::log(kGricR * out.correspondences);
   // The corner (r = 1) moves by |k1| half-diagonals.
-  const bool visible = std::abs(best) >= kMinCornerEffectSigmas * sigma;
+  const bool visible = std::abs(best) >= std::max(kMinCornerEffectSigmas * sigma, kMinAbsK1);
   // At the end of the search range: no lens, a model the data break.
   const bool inside = std::abs(best) < max_abs_k1 - step;
   const bool consistent = PairsImproved(pairs, best, sigma) >= kConsistentShare * out.pairs;
