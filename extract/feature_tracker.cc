@@ -83,6 +83,8 @@ constexpr double kCutSurvival = 0.1;
 // before it, moved as the tracks moved: a dissolve changes every cell, a
 // mover the cells it covers (a head filling half the frame: half of them).
 constexpr double kDissolvedShare = 0.75;
+// Correspondences a run frame's homography is fitted to (ChainRunMotion).
+constexpr size_t kChainPoints = 100;
 
 }  // namespace
 
@@ -463,8 +465,14 @@ struct FeatureTracker::Impl {
       run_chain = false;
       return;
     }
-    const std::vector<cv::Point2f> from(w.from.begin(), w.from.begin() + w.survived);
-    const std::vector<cv::Point2f> to(w.points.begin(), w.points.begin() + w.survived);
+    // At most ~kChainPoints of them, spread along the list (the grid
+    // detector's order): plenty for 8 parameters, a third of RANSAC's cost.
+    std::vector<cv::Point2f> from, to;
+    const size_t stride = std::max<size_t>(1, w.survived / kChainPoints);
+    for (size_t i = 0; i < w.survived; i += stride) {
+      from.push_back(w.from[i]);
+      to.push_back(w.points[i]);
+    }
     const cv::Mat h = cv::findHomography(from, to, cv::RANSAC, 3.0);
     if (h.empty()) {
       run_chain = false;
