@@ -105,6 +105,10 @@ int RunEstimate(int argc, char** argv) {
                "keep the two-view labels: no window-level BIC test of a few translating (or "
                "zooming) intervals, nor of zoom intervals among translating ones "
                "(docs/estimate.md, step 4)");
+  app.add_flag("--lens-distortion", opt.lens_distortion,
+               "estimate one radial distortion coefficient k1 from the first shot's first frames "
+               "and undistort the tracks with it where it pays for itself (header k1=; "
+               "docs/estimate.md \"Lens distortion\")");
   bool no_plane_prior = false;
   app.add_flag("--no-plane-prior", no_plane_prior,
                "a dolly with a zoom along the optical axis keeps the depths its fit started from "
@@ -189,7 +193,7 @@ int RunEstimate(int argc, char** argv) {
     if (no_klt_predict) opt.tracker.klt_predict = false;
     opt.Check();
     OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}, {report, "--report"}});
-    std::set<std::string> kinds{"stage", "window"};
+    std::set<std::string> kinds{"stage", "window", "lens_distortion"};
     if (report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links"});
     JsonDiagnostics diagnostics(kinds);
     if (!report.empty()) opt.diagnostics = &diagnostics;

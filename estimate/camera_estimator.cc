@@ -6,6 +6,7 @@
 #include "core/diagnostics.h"
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "estimate/lens_distortion.h"
 #include "estimate/skipped_frames.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
@@ -71,6 +72,10 @@ constexpr int kDecodeQueueFrames = 3;
 // as long as tracking a few dozen frames, and FrameTracks are small (a few
 // hundred points), so this is generous and still flat.
 constexpr size_t kTrackQueueFrames = 48;
+// Frames of the first shot held back for the lens distortion estimate: 6 s
+// at 24 fps, enough for its frame pairs on any but the slowest move (the
+// estimator then catches up; memory: a few hundred points a frame).
+constexpr size_t kDistortionFrames = 144;
 
 std::string Num(double v) {
   std::ostringstream s;
@@ -82,6 +87,11 @@ void AddMetadata(const FrameSource& source, const EstimatorOptions& options, Cam
   const VideoInfo& info = source.info();
   path->metadata["width"] = std::to_string(info.width);
   path->metadata["height"] = std::to_string(info.height);
+  // Anamorphic video: width is the display width (stored width x this), the
+  // pixels the path's focal_px and FOV are in.
+  if (info.sample_aspect_num != info.sample_aspect_den)
+    path->metadata["sample_aspect_ratio"] =
+        std::to_string(info.sample_aspect_num) + ":" + std::to_string(info.sample_aspect_den);
   if (info.fps > 0) path->metadata["fps"] = Num(info.fps);
   path->metadata["source"] = info.path;
   path->metadata["estimator"] = "hapcine-" + options.backend;
@@ -109,6 +119,49 @@ TrackEstimatorOptions StillsAware(const EstimatorOptions& options, const VideoIn
   if (options.tracker.stills || info.stills) estimator.smooth = false;
   return estimator;
 }
+
+// Holds back the first frames of the first shot, estimates k1 from them
+// (when asked), then passes every frame on undistorted.
+class LensUndistorter {
+ public:
+  LensUndistorter(bool enabled, int width, int height, Diagnostics* diagnostics)
+      : deciding_(enabled), width_(width), height_(height), diagnostics_(diagnostics) {}
+
+  // The frames ready for the estimator (none while deciding).
+  std::vector<FrameTracks> Add(FrameTracks tracks) {
+    if (deciding_ && held_.size() < kDistortionFrames &&
+        (held_.empty() || tracks.shot == held_.front().shot)) {
+      held_.push_back(std::move(tracks));
+      return {};
+    }
+    std::vector<FrameTracks> ready = Finish();
+    UndistortTracks(k1_, width_, height_, &tracks);
+    ready.push_back(std::move(tracks));
+    return ready;
+  }
+
+  // Decides (if still deciding) and returns the frames held.
+  std::vector<FrameTracks> Finish() {
+    if (!deciding_) return {};
+    deciding_ = false;
+    const RadialDistortionEstimate e = EstimateRadialDistortion(held_, width_, height_);
+    k1_ = e.k1;
+    Record(diagnostics_, "lens_distortion",
+           {{"k1", e.k1}, {"best_k1", e.best_k1}, {"gric_gain", e.gric_gain}, {"penalty", e.penalty},
+            {"pairs", e.pairs}, {"correspondences", e.correspondences}});
+    for (FrameTracks& t : held_) UndistortTracks(k1_, width_, height_, &t);
+    return std::move(held_);
+  }
+
+  double k1() const { return k1_; }
+
+ private:
+  bool deciding_;
+  int width_, height_;
+  Diagnostics* diagnostics_;
+  std::vector<FrameTracks> held_;
+  double k1_ = 0;
+};
 
 // Tracking runs on its own thread, estimation (bundle-adjustment windows,
 // which arrive in bursts) on this one, with a bounded queue of FrameTracks
@@ -147,14 +200,19 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
       queue.Finish(std::current_exception());
     }
   });
+  LensUndistorter lens(options.lens_distortion, info.width, info.height, options.diagnostics);
+  auto estimate = [&](FrameTracks& tracks) {
+    index_of_position.push_back(tracks.index);  // tracks.step keeps the gap
+    tracks.index = static_cast<int>(index_of_position.size()) - 1;
+    estimator.AddFrame(tracks);
+  };
   try {
     FrameTracks tracks;
     while (queue.Pop(&tracks)) {
       if (progress) progress(tracks.index + 1, info.frame_count);  // skipped frames count as done
-      index_of_position.push_back(tracks.index);  // tracks.step keeps the gap
-      tracks.index = static_cast<int>(index_of_position.size()) - 1;
-      estimator.AddFrame(tracks);
+      for (FrameTracks& ready : lens.Add(std::move(tracks))) estimate(ready);
     }
+    for (FrameTracks& ready : lens.Finish()) estimate(ready);
   } catch (...) {
     queue.Cancel();
     tracking.join();
@@ -163,6 +221,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   tracking.join();
   stages.Stage("all frames estimated, last window next");
   CameraPath path = estimator.Finish();
+  if (lens.k1() != 0) path.metadata["k1"] = Num(lens.k1());
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
   InsertSkippedFrames(skipped, info.width, &path);
   stages.Stage("estimation done");

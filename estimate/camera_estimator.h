@@ -28,6 +28,10 @@ struct EstimatorOptions {
   TrackerOptions tracker;            // feature tracking (max_tracks, default 600)
   TrackEstimatorOptions estimator;   // models, bundle adjustment, smoothing
   std::string colmap_binary = "colmap";  // used by the colmap backend
+  // Estimate one radial distortion coefficient from the first frames of the
+  // first shot and undistort every track with it (lens_distortion.h; kept
+  // only where it pays for itself; the path's header says k1=).
+  bool lens_distortion = false;
   // Where the run's diagnostics go (core/diagnostics.h): per-run "stage"
   // records, per-window "window" records, and the costlier ones it asks for.
   // Not owned; none by default.

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -78,6 +79,13 @@ constexpr double kMotionRunShare = 0.05;
 // two views of one set: 0 of 541; a blurred whip pan keeps 22-35 %
 // (docs/extract.md).
 constexpr double kCutSurvival = 0.1;
+// A run of gradual change ends on another picture when at least this share
+// of the picture's cells (MovedPictureChange) no longer match the picture
+// before it, moved as the tracks moved: a dissolve changes every cell, a
+// mover the cells it covers (a head filling half the frame: half of them).
+constexpr double kDissolvedShare = 0.75;
+// Correspondences a run frame's homography is fitted to (ChainRunMotion).
+constexpr size_t kChainPoints = 100;
 
 }  // namespace
 
@@ -122,6 +130,12 @@ struct FeatureTracker::Impl {
   RelinkResult bridge;         // re-links across a fade through black
   bool run_tracked = true;    // every frame of the run kept kMotionRunSurvival of its tracks
   double run_motion_px = 0;   // sum over the run of the median track displacement
+  // The picture before the run (layout thumbnail) and the homography the
+  // tracks followed since (working px; chain false once a frame of the run
+  // had no fit): a run that the motion explains shows the same picture moved.
+  cv::Mat run_before_layout, last_layout;
+  cv::Matx33d run_motion = cv::Matx33d::eye();
+  bool run_chain = true;
 
   void DropTracks() {
     prev_pyramid.clear();
@@ -179,20 +193,44 @@ struct FeatureTracker::Impl {
     run_motion_px += Quantile(std::move(disp), 0.5);
   }
 
-  bool RunWasCameraMotion(int working_width) const {
-    return run_tracked && !prev_points.empty() && run_motion_px >= kMotionRunShare * working_width;
+  bool RunWasCameraMotion(cv::Size working) const {
+    return run_tracked && !prev_points.empty() && run_motion_px >= kMotionRunShare * working.width &&
+           !(RunPictureChange(working) >= kDissolvedShare);
+  }
+
+  // Twin comparison with the motion taken out: the picture before the run,
+  // moved as the tracks moved, against the run's last picture. A pan
+  // brings new colours into view but what stays in view is the same; a
+  // dissolve during a pan is tracked too (KLT follows the fading picture)
+  // but ends on another picture, over the whole frame (a person crossing
+  // changes a compact part). Without a chain or an overlap to compare: NaN.
+  double RunPictureChange(cv::Size working) const {
+    if (!run_chain || run_before_layout.empty() || last_layout.empty())
+      return std::numeric_limits<double>::quiet_NaN();
+    return MovedPictureChange(run_before_layout, last_layout, run_motion, working);
+  }
+
+  // A run between look-alike pictures (close histograms before and after)
+  // that the tracks followed, ending on another picture: a dissolve between
+  // two views of one set. Both cues: appearance (the moved picture) and
+  // tracking (the chain that moved it).
+  bool IsLookAlikeDissolve(const ShotDecision& decision, cv::Size working) const {
+    return decision.look_alike_run_ended && RunPictureChange(working) >= kDissolvedShare;
   }
 
   // A hard cut the histogram test missed (two views of the same set look
-  // alike): all three cues on one frame -- the histogram distance spikes
-  // against the shot's recent distances, KLT loses nearly every track, and
-  // descriptor matching against the last good frame finds no common plane.
+  // alike): all four cues on one frame -- the histogram distance spikes
+  // against the shot's recent distances, KLT loses nearly every track,
+  // descriptor matching against the last good frame finds no common plane,
+  // and the picture does not continue the last one at 64 px (continuity).
   // Each cue alone fires on ordinary footage (a spike at the start of every
-  // move, a collapse in a whip pan, no re-link after a long fast pan).
+  // move, a collapse in a whip pan, no re-link after a long fast pan); the
+  // first three together on a fast handheld move blurred past KLT and ORB,
+  // which still shows the last picture shifted.
   static bool IsLookAlikeCut(const ShotDecision& decision, bool collapsed, size_t before,
                              size_t survived, const RelinkResult& relink) {
     return decision.spike && collapsed && survived <= kCutSurvival * static_cast<double>(before) &&
-           relink.current_from_key.empty();
+           relink.current_from_key.empty() && decision.continuity < kContinuousPicture;
   }
 
   // Makes the current frame the first of a new shot: the tracks of the old
@@ -446,6 +484,29 @@ struct FeatureTracker::Impl {
     std::vector<float> klt_disp;                  // for the transition-run statistics
   };
 
+  // One tracked frame of a run: its KLT motion joins the chain.
+  void ChainRunMotion(const FrameWork& w) {
+    if (!run_chain) return;
+    if (w.collapsed || w.survived < kMinTracksForCollapse || w.from.size() < w.survived) {
+      run_chain = false;
+      return;
+    }
+    // At most ~kChainPoints of them, spread along the list (the grid
+    // detector's order): plenty for 8 parameters, a third of RANSAC's cost.
+    std::vector<cv::Point2f> from, to;
+    const size_t stride = std::max<size_t>(1, w.survived / kChainPoints);
+    for (size_t i = 0; i < w.survived; i += stride) {
+      from.push_back(w.from[i]);
+      to.push_back(w.points[i]);
+    }
+    const cv::Mat h = cv::findHomography(from, to, cv::RANSAC, 3.0);
+    if (h.empty()) {
+      run_chain = false;
+      return;
+    }
+    run_motion = cv::Matx33d(h) * run_motion;
+  }
+
   // The shot boundary of this frame: a cut or fade starts a new shot unless
   // tracked camera motion or a fade through black within the shot explains it.
   void DecideBoundary(const Frame& frame, const ShotDecision& decision, FrameTracks* out) {
@@ -454,7 +515,7 @@ struct FeatureTracker::Impl {
       first = false;
     } else if (options.stills) {
       // Stills: a new view changes the histogram; the descriptor link decides.
-    } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.cols)) {
+    } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.size())) {
       // Gradual change explained by tracked motion: same shot, keep tracking.
     } else if (decision.boundary == ShotBoundary::kFade && after_blank &&
                options.descriptor_recovery && relinker.has_keyframe() &&
@@ -464,8 +525,9 @@ struct FeatureTracker::Impl {
       // Fade through black within one shot: the picture after the black
       // matches the last good frame before it, so the shot goes on and the
       // re-linked tracks carry the motion made in the dark.
-    } else if (decision.boundary != ShotBoundary::kNone) {
-      out->boundary = decision.boundary;
+    } else if (decision.boundary != ShotBoundary::kNone ||
+               IsLookAlikeDissolve(decision, frame.gray.size())) {
+      out->boundary = decision.boundary != ShotBoundary::kNone ? decision.boundary : ShotBoundary::kFade;
       ++shot;
       DropTracks();
       bridge = {};
@@ -473,6 +535,9 @@ struct FeatureTracker::Impl {
     if (!decision.transition) {
       run_tracked = true;
       run_motion_px = 0;
+      run_motion = cv::Matx33d::eye();
+      run_chain = true;
+      run_before_layout = shots.layout();  // the picture before a run starting next frame
     }
     out->shot = shot;
     out->blank = decision.blank;
@@ -507,6 +572,7 @@ struct FeatureTracker::Impl {
       for (size_t i = 0; i < w->points.size(); ++i)
         w->klt_disp.push_back(static_cast<float>(cv::norm(w->points[i] - w->from[i])));
     w->collapsed = w->had_tracks && w->before >= kMinTracksForCollapse && w->survived < kCollapseFraction * w->before;
+    if (transition) ChainRunMotion(*w);
   }
 
   // The re-links across a fade through black, refined against the keyframe
@@ -567,7 +633,7 @@ struct FeatureTracker::Impl {
   void CheckCut(const Frame& frame, const ShotDecision& decision, FrameTracks* out, FrameWork* w) {
     if (Wants(diagnostics, "cut_cues"))
       diagnostics->Record("cut_cues", {{"frame", frame.index}, {"distance", decision.distance},
-                                       {"spike", decision.spike}, {"transition", decision.transition},
+                                       {"spike", decision.spike}, {"transition", decision.transition}, {"continuity", decision.continuity},
                                        {"tracks", w->before}, {"kept", w->survived}, {"collapsed", w->collapsed},
                                        {"relinked", w->relinked}, {"relink_failed", w->relink.current_from_key.empty()}});
     if (w->had_tracks && IsLookAlikeCut(decision, w->collapsed, w->before, w->survived, w->relink)) {
@@ -800,6 +866,7 @@ struct FeatureTracker::Impl {
     DecideBoundary(frame, decision, &out);
     if (decision.blank) {
       EndTracksAtBlank();
+      last_layout.release();
       return out;
     }
     after_blank = false;
@@ -829,6 +896,7 @@ struct FeatureTracker::Impl {
       relinker.SetKeyframe(frame.gray, w.points, w.ids);
     WriteTracks(frame, w, &out);
     KeepForNextFrame(&w);
+    last_layout = shots.layout();
     return out;
   }
 };

@@ -727,6 +727,42 @@ TEST(FeatureTrackerTest, DissolveIsAGradualBoundary) {
   EXPECT_EQ(out.back().shot, 1);
 }
 
+// A dissolve between two views of one set (the same colours: the
+// histograms before and after are close) during a pan: KLT follows the
+// fading picture, so only the picture moved by the tracked motion shows
+// that the run ended on another view. One gradual boundary.
+TEST(FeatureTrackerTest, DissolveBetweenLookAlikeViewsDuringAPanIsABoundary) {
+  const cv::Mat scene = NoiseTexture({3200, 800}, 26);
+  FeatureTracker tracker(SmallOptions());
+  ShotDetector histograms_only;
+  int histogram_boundaries = 0;
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 44; ++i) {
+    // Still for 6 frames, then a pan at 6 px/frame; the dissolve 16..22.
+    const double w = std::clamp((i - 16) / 6.0, 0.0, 1.0);
+    const double x = 6.0 * std::max(0, i - 6);
+    const cv::Mat a = Shifted(scene, -x, 0, kDecoded, {200, 100});
+    const cv::Mat b = Shifted(scene, -x, 0, kDecoded, {1800, 100});  // no overlap
+    cv::Mat img;
+    cv::addWeighted(a, 1 - w, b, w, 0, img);
+    const Frame frame = MakeFrame(img, i, 0.5);
+    histogram_boundaries += histograms_only.Update(frame).boundary != ShotBoundary::kNone;
+    out.push_back(tracker.Process(frame));
+  }
+  EXPECT_EQ(histogram_boundaries, 0) << "the histograms alone must not see it";
+  int fades = 0, cuts = 0, first_fade = -1;
+  for (const auto& t : out) {
+    if (t.boundary == ShotBoundary::kFade && first_fade < 0) first_fade = t.index;
+    fades += t.boundary == ShotBoundary::kFade;
+    cuts += t.boundary == ShotBoundary::kCut;
+  }
+  EXPECT_EQ(cuts, 0);
+  EXPECT_EQ(fades, 1);
+  EXPECT_GE(first_fade, 18);
+  EXPECT_LE(first_fade, 28);
+  EXPECT_EQ(out.back().shot, 1);
+}
+
 // A tilt from the floor to the ceiling changes the colours on screen
 // gradually, like a dissolve: the histogram test alone would split the shot
 // there. KLT follows the content all the way, so it stays one shot.

@@ -25,6 +25,7 @@ extern "C" {
 #include <libavformat/avformat.h>
 #include <libavutil/display.h>
 #include <libavutil/pixdesc.h>
+#include <libavutil/rational.h>
 #include <libswscale/swscale.h>
 }
 
@@ -48,6 +49,25 @@ int DisplayRotationDeg(const AVStream* stream) {
   cw -= 360.0 * std::floor(cw / 360.0);  // [0, 360)
   const int quarter = static_cast<int>(std::lround(cw / 90.0)) % 4;
   return quarter * 90;
+}
+
+// The stream's sample aspect ratio (container, else codec: what the ffmpeg
+// CLI's setsar/pasp/VUI give), reduced; 1:1 when undeclared or absurd
+// (beyond 1:4..4:1 no camera writes it, and a broken header must not
+// stretch the picture past what a decoder would show).
+AVRational StreamSampleAspect(AVFormatContext* fmt, AVStream* stream) {
+  AVRational sar = av_guess_sample_aspect_ratio(fmt, stream, nullptr);
+  if (sar.num <= 0 || sar.den <= 0) return {1, 1};
+  av_reduce(&sar.num, &sar.den, sar.num, sar.den, 1 << 16);
+  const double r = av_q2d(sar);
+  if (r < 0.25 || r > 4) return {1, 1};
+  return sar;
+}
+
+// Stored width scaled to square pixels, rounded, at least 1.
+int DisplayWidth(int stored_width, AVRational sar) {
+  if (sar.num == sar.den) return stored_width;
+  return std::max(1, static_cast<int>(std::lround(stored_width * av_q2d(sar))));
 }
 
 // Rows of a cv::Mat handed to swscale should start 16-byte aligned, or
@@ -158,9 +178,18 @@ class FfmpegSource : public FrameSource {
     else if (info_.duration_s > 0 && info_.fps > 0)
       info_.frame_count = std::lround(info_.duration_s * info_.fps);
     info_.rotation_deg = DisplayRotationDeg(st);
+    // Anamorphic pixels are resampled to square ones: the working images
+    // are scaled to the display aspect by the same swscale pass that
+    // shrinks them, so KLT's windows, the pinhole model and its single
+    // focal length all see square pixels, at no extra cost.
+    sar_ = StreamSampleAspect(fmt_, st);
+    info_.sample_aspect_num = sar_.num;
+    info_.sample_aspect_den = sar_.den;
+    const int display_w = DisplayWidth(par->width, sar_);
+    CheckSize(display_w, par->height);
     const bool swap = info_.rotation_deg == 90 || info_.rotation_deg == 270;
-    info_.width = swap ? par->height : par->width;
-    info_.height = swap ? par->width : par->height;
+    info_.width = swap ? par->height : display_w;
+    info_.height = swap ? display_w : par->height;
   }
 
   int PickVideoStream() {
@@ -412,7 +441,7 @@ class FfmpegSource : public FrameSource {
     const bool limited_8bit = format == AV_PIX_FMT_YUV420P || format == AV_PIX_FMT_YUV422P ||
                               format == AV_PIX_FMT_YUV444P || format == AV_PIX_FMT_NV12 ||
                               format == AV_PIX_FMT_NV21;
-    return limited_8bit && fw >= 8 && fh >= 8 && work.width * 2 == fw && work.height * 2 == fh &&
+    return limited_8bit && sar_.num == sar_.den && fw >= 8 && fh >= 8 && work.width * 2 == fw && work.height * 2 == fh &&
            frame_->linesize[0] > 0 && HalfGrayMatchesSwscale();
   }
 
@@ -430,7 +459,9 @@ class FfmpegSource : public FrameSource {
   }
 
   void Convert(Frame* out) {
-    const int fw = frame_->width, fh = frame_->height;
+    const int fh = frame_->height;
+    const int fw = DisplayWidth(frame_->width, sar_);  // square pixels
+    CheckSize(frame_->width, fh);
     CheckSize(fw, fh);
     const cv::Size work = WorkingSize(fw, fh, options_.max_working_side);
     const bool rotate = info_.rotation_deg != 0;
@@ -499,6 +530,7 @@ class FfmpegSource : public FrameSource {
   SwsContext* gray_sws_ = nullptr;
   SwsContext* bgr_sws_ = nullptr;
   int stream_index_ = -1;
+  AVRational sar_{1, 1};  // sample aspect ratio, applied to every frame
   double time_base_s_ = 0;
   int64_t start_pts_ = AV_NOPTS_VALUE;
   double last_time_s_ = 0;

@@ -12,8 +12,16 @@ namespace hapcine {
 
 struct VideoInfo {
   std::string path;
-  int width = 0;  // decoded frame size, after rotation metadata
+  // Display frame size in square pixels, after rotation metadata: the
+  // decoded width times the sample aspect ratio (rounded; anamorphic video
+  // is resampled to it), so tracks, focal lengths and FOVs are isotropic.
+  int width = 0;
   int height = 0;
+  // Sample (pixel) aspect ratio of the decoded picture, width : height of
+  // one stored pixel (16:15 for 720x576 PAL 4:3). 1:1 for square pixels and
+  // for streams that declare none.
+  int sample_aspect_num = 1;
+  int sample_aspect_den = 1;
   double fps = 0;         // nominal (average) rate; times come from timestamps
   double duration_s = 0;  // 0 when unknown
   long frame_count = 0;   // estimate; 0 when unknown
@@ -34,7 +42,9 @@ struct Frame {
   cv::Mat gray;        // CV_8UC1 at working resolution
   cv::Mat bgr;         // CV_8UC3 at working resolution, or smaller (color_max_side); may be empty
   double scale = 1.0;  // working size / decoded size (same for x and y)
-  // Decoded frame size (after rotation). The working size is rounded to whole
+  // Decoded frame size (after rotation), in square pixels: for anamorphic
+  // video the stored width times the sample aspect ratio, rounded
+  // (VideoInfo::width). The working size is rounded to whole
   // pixels, so the exact per-axis scales are gray.cols / decoded_width and
   // gray.rows / decoded_height; `scale` is the one along the longest side.
   // Working -> decoded pixel (OpenCV centre convention, see tracks.h):

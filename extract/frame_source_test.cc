@@ -277,6 +277,39 @@ TEST_F(FrameSourceTest, HonoursDisplayRotation) {
   EXPECT_EQ(f.bgr.size(), cv::Size(240, 320));
 }
 
+TEST_F(FrameSourceTest, ResamplesAnamorphicPixelsToSquareOnes) {
+  // 160x120 stored with 2:1 pixels (wide pixels, as a squeezed anamorphic
+  // recording): shown 320x120. A white box over stored columns 40..79 is
+  // display columns 80..159.
+  const std::string path =
+      Make("anamorphic.mp4",
+           "-f lavfi -i color=c=black:s=160x120:r=10 -t 0.5 "
+           "-vf drawbox=x=40:y=30:w=40:h=60:color=white:t=fill,setsar=2/1 -c:v libx264 "
+           "-pix_fmt yuv420p");
+  auto source = OpenFrameSource(path, {});
+  EXPECT_EQ(source->info().sample_aspect_num, 2);
+  EXPECT_EQ(source->info().sample_aspect_den, 1);
+  EXPECT_EQ(source->info().width, 320);
+  EXPECT_EQ(source->info().height, 120);
+  Frame f;
+  ASSERT_TRUE(source->Next(&f));
+  ASSERT_EQ(f.gray.size(), cv::Size(320, 120));
+  EXPECT_EQ(f.decoded_width, 320);
+  EXPECT_EQ(f.decoded_height, 120);
+  EXPECT_GT(cv::mean(f.gray(cv::Rect(90, 40, 60, 40)))[0], 200);  // the box, twice as wide
+  EXPECT_LT(cv::mean(f.gray(cv::Rect(170, 40, 60, 40)))[0], 30);  // right of it: black
+  EXPECT_LT(cv::mean(f.gray(cv::Rect(10, 40, 60, 40)))[0], 30);   // left of it: black
+  // Shrunk to a working size, the display aspect is kept.
+  FrameSourceOptions small;
+  small.max_working_side = 160;
+  const std::vector<Frame> frames = ReadAll(path, small);
+  ASSERT_FALSE(frames.empty());
+  EXPECT_EQ(frames[0].gray.size(), cv::Size(160, 60));
+  EXPECT_EQ(frames[0].decoded_width, 320);
+  // Square pixels are left alone.
+  EXPECT_EQ(OpenFrameSource(Testsrc(), {})->info().sample_aspect_num, 1);
+}
+
 TEST_F(FrameSourceTest, BadInputsNameTheFile) {
   ExpectError(Path("does_not_exist.mp4"), "no such file");
   const std::string empty = Path("empty.mp4");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "core/statistics.h"
@@ -57,6 +58,39 @@ cv::Mat Histogram(const Frame& frame, const cv::Mat& gray_thumb) {
   return hist;
 }
 
+// The picture's layout for the continuity test: a 64-px-wide gray
+// thumbnail, blurred (sigma 1.5 px, ~2 % of the width) so that motion blur
+// and compression make little difference, as float for matchTemplate.
+constexpr int kLayoutWidth = 64;
+cv::Mat Layout(const cv::Mat& gray_thumb) {
+  const int h = std::max(
+      8, static_cast<int>(std::lround(gray_thumb.rows * double(kLayoutWidth) / gray_thumb.cols)));
+  cv::Mat small, f;
+  cv::resize(gray_thumb, small, cv::Size(kLayoutWidth, h), 0, 0, cv::INTER_AREA);
+  small.convertTo(f, CV_32F);
+  cv::GaussianBlur(f, f, cv::Size(0, 0), 1.5);
+  return f;
+}
+
+// Best normalised cross-correlation of the middle of `before` (3/5 of each
+// side) anywhere in `now`: shifts up to a fifth of each side, the motion
+// of a fast handheld move or a pan between two frames. 1 for a flat
+// template (nothing to compare: no evidence of a cut).
+double Continuity(const cv::Mat& before, const cv::Mat& now) {
+  if (before.empty() || now.empty() || before.size() != now.size()) return 0;
+  const cv::Rect middle(before.cols / 5, before.rows / 5, before.cols - 2 * (before.cols / 5),
+                        before.rows - 2 * (before.rows / 5));
+  const cv::Mat templ = before(middle);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(templ, mean, stddev);
+  if (stddev[0] < 1.0) return 1;
+  cv::Mat score;
+  cv::matchTemplate(now, templ, score, cv::TM_CCOEFF_NORMED);
+  double best = 0;
+  cv::minMaxLoc(score, nullptr, &best);
+  return std::isfinite(best) ? best : 0;
+}
+
 double Distance(const cv::Mat& a, const cv::Mat& b) {
   if (a.empty() || b.empty() || a.total() != b.total()) return 1.0;
   const double d = cv::compareHist(a, b, cv::HISTCMP_BHATTACHARYYA);
@@ -65,9 +99,75 @@ double Distance(const cv::Mat& a, const cv::Mat& b) {
 
 }  // namespace
 
+namespace {
+
+// NCC of a and b over mask; NaN when either is flat there.
+double MaskedNcc(const cv::Mat& a, const cv::Mat& b, const cv::Mat& mask) {
+  cv::Scalar mean_a, std_a, mean_b, std_b;
+  cv::meanStdDev(a, mean_a, std_a, mask);
+  cv::meanStdDev(b, mean_b, std_b, mask);
+  if (std_a[0] < 1.0 || std_b[0] < 1.0) return std::numeric_limits<double>::quiet_NaN();
+  cv::Mat ab;
+  cv::multiply(a - mean_a[0], b - mean_b[0], ab);
+  return cv::mean(ab, mask)[0] / (std_a[0] * std_b[0]);
+}
+
+}  // namespace
+
+double MovedPictureChange(const cv::Mat& before, const cv::Mat& now,
+                          const cv::Matx33d& now_from_before, cv::Size working) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (before.empty() || now.empty() || before.size() != now.size() || working.width <= 0 ||
+      working.height <= 0)
+    return nan;
+  // Working pixels -> layout pixels (pixel edges scale).
+  const double sx = double(now.cols) / working.width, sy = double(now.rows) / working.height;
+  const cv::Matx33d to_layout(sx, 0, 0.5 * sx - 0.5, 0, sy, 0.5 * sy - 0.5, 0, 0, 1);
+  const cv::Matx33d moved = to_layout * now_from_before * to_layout.inv();
+  cv::Mat warped, covered;
+  cv::warpPerspective(before, warped, moved, now.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+  cv::warpPerspective(cv::Mat(before.size(), CV_8UC1, cv::Scalar(255)), covered, moved, now.size(),
+                      cv::INTER_NEAREST, cv::BORDER_CONSTANT);
+  // Away from the covered part's edge, where the warp mixes in the border.
+  cv::erode(covered, covered, cv::Mat(), cv::Point(-1, -1), 2);
+  int cells = 0, changed = 0;
+  for (int gy = 0; gy < kChangeGridRows; ++gy) {
+    for (int gx = 0; gx < kChangeGridCols; ++gx) {
+      const cv::Rect cell(gx * now.cols / kChangeGridCols, gy * now.rows / kChangeGridRows,
+                          now.cols / kChangeGridCols, now.rows / kChangeGridRows);
+      const cv::Mat mask = covered(cell);
+      if (cv::countNonZero(mask) < 0.5 * cell.area()) continue;
+      const double c = MaskedNcc(warped(cell), now(cell), mask);
+      if (std::isnan(c)) continue;
+      ++cells;
+      changed += c < kContinuousPicture;
+    }
+  }
+  if (cells < kChangeGridCols * kChangeGridRows / 3) return nan;
+  return static_cast<double>(changed) / cells;
+}
+
 bool ShotDetector::IsSpike(double d, double calm_limit) const {
   if (local_.size() < kMinLocal || d < kSpikeFloor || d < calm_limit) return false;
   return d >= kSpikeRatio * Median(std::vector<double>(local_.begin(), local_.end()));
+}
+
+double ShotDetector::UpdateLayout(const cv::Mat& gray_thumb) {
+  const cv::Mat layout = Layout(gray_thumb);
+  const double continuity =
+      !in_blank_run_ && !prev_layout_.empty() ? Continuity(prev_layout_, layout) : 1.0;
+  prev_layout_ = layout;
+  layout_ = layout;
+  return continuity;
+}
+
+void ShotDetector::RecentStatistics(double* mean, double* stddev) const {
+  *mean = *stddev = 0;
+  if (recent_.empty()) return;
+  for (double x : recent_) *mean += x;
+  *mean /= recent_.size();
+  for (double x : recent_) *stddev += (x - *mean) * (x - *mean);
+  *stddev = std::sqrt(*stddev / recent_.size());
 }
 
 void ShotDetector::StartShot() {
@@ -88,12 +188,14 @@ ShotDecision ShotDetector::Update(const Frame& frame) {
   out.luma_stddev = stddev[0];
   out.blank = mean[0] < options_.blank_luma || stddev[0] < options_.blank_stddev;
   if (out.blank) {
+    layout_.release();
     in_blank_run_ = true;
     candidate_ = false;
     candidate_len_ = 0;
     return out;
   }
   const cv::Mat hist = Histogram(frame, gray_thumb);
+  out.continuity = UpdateLayout(gray_thumb);
   if (in_blank_run_ || prev_hist_.empty()) {
     // First content after black (or the very first frame).
     if (in_blank_run_ && shot_has_content_) out.boundary = ShotBoundary::kFade;
@@ -111,12 +213,7 @@ ShotDecision ShotDetector::Update(const Frame& frame) {
   out.distance = d;
   prev_hist_ = hist;
   double mean_d = 0, std_d = 0;
-  if (!recent_.empty()) {
-    for (double x : recent_) mean_d += x;
-    mean_d /= recent_.size();
-    for (double x : recent_) std_d += (x - mean_d) * (x - mean_d);
-    std_d = std::sqrt(std_d / recent_.size());
-  }
+  RecentStatistics(&mean_d, &std_d);
   const bool stats_ok = recent_.size() >= 5;
   const double t_cut =
       stats_ok ? std::max(options_.cut_threshold, mean_d + 6 * std_d) : options_.cut_threshold;
@@ -154,6 +251,7 @@ ShotDecision ShotDetector::Update(const Frame& frame) {
       StartShot();
       return out;
     }
+    out.look_alike_run_ended = candidate_allowed_boundary_ && candidate_len_ >= 2;
   }
   recent_.push_back(d);
   if (recent_.size() > kWindow) recent_.pop_front();

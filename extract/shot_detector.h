@@ -27,8 +27,14 @@
 //    frames included, so a pan's steady change raises the bar) and above
 //    mean + 6 std of its calm distances. A spike alone is not a cut (the
 //    first frame of every camera move is one); FeatureTracker makes it one
-//    when tracking collapses on the same frame and the descriptors do not
-//    re-link, and then calls MarkCut().
+//    when tracking collapses on the same frame, the descriptors do not
+//    re-link and the picture is not continuous with the last one (below),
+//    and then calls MarkCut().
+//  - Continuity: the largest normalised cross-correlation between the
+//    middle of the previous frame and the current frame, on 64-px blurred
+//    gray thumbnails, over shifts up to a fifth of each side. At that scale
+//    motion blur and a fast handheld move leave the picture's layout (one
+//    frame is the last one shifted), while a cut brings an unrelated one.
 
 #include <deque>
 #include <opencv2/core.hpp>
@@ -56,7 +62,34 @@ struct ShotDecision {
   double mean_luma = 0;
   double luma_stddev = 0;
   bool spike = false;       // distance far above the shot's recent ones (see above)
+  // Best NCC of the last frame's middle in this one (see above); 1 when
+  // there is no last frame (first, after blank).
+  double continuity = 1;
+  // A candidate gradual transition ended on this frame without a boundary:
+  // the frames before and after it have close histograms (two views of one
+  // set dissolve into each other so). FeatureTracker compares the pictures
+  // with the tracked motion taken out (MovedPictureChange).
+  bool look_alike_run_ended = false;
 };
+
+// Pictures "continue" (one is the other moved) above this continuity: a
+// fast handheld move with motion blur keeps >= 0.92 between consecutive
+// frames at 64 px, a cut between unrelated pictures of similar colours
+// reaches 0.58-0.61 (docs/extract.md); the maximum over a few hundred
+// shifts of an unrelated picture is what the margin guards against.
+constexpr double kContinuousPicture = 0.8;
+
+// How much of the picture is another picture after the motion is taken
+// out: `before` moved by `now_from_before` (a homography in pixels of
+// images of `working` size) against `now`, both layout thumbnails
+// (ShotDetector::layout()), compared cell by cell on a 4 x 3 grid; the share
+// of the compared cells (covered and textured) whose NCC is under
+// kContinuousPicture. A dissolve changes the whole picture (share near 1),
+// a pan none of it, a person moving in front of the camera a compact part.
+// NaN when under a third of the cells can be compared.
+constexpr int kChangeGridCols = 4, kChangeGridRows = 3;
+double MovedPictureChange(const cv::Mat& before, const cv::Mat& now,
+                          const cv::Matx33d& now_from_before, cv::Size working);
 
 class ShotDetector {
  public:
@@ -67,13 +100,22 @@ class ShotDetector {
   // The caller found a cut on the frame last passed to Update(): start the
   // shot's statistics over from that frame.
   void MarkCut() { StartShot(); }
+  // The layout thumbnail (Continuity) of the frame last passed to Update();
+  // empty for a blank frame.
+  const cv::Mat& layout() const { return layout_; }
 
  private:
   void StartShot();
   bool IsSpike(double d, double calm_limit) const;
+  // The layout thumbnail of this frame; returns its continuity with the last.
+  double UpdateLayout(const cv::Mat& gray_thumb);
+  // Mean and std-dev of the shot's calm distances (0 without any).
+  void RecentStatistics(double* mean, double* stddev) const;
 
   ShotDetectorOptions options_;
   cv::Mat prev_hist_;              // last non-blank frame's histogram
+  cv::Mat prev_layout_;            // last non-blank frame's blurred 64-px gray thumbnail
+  cv::Mat layout_;                 // the last frame's (empty: blank)
   std::deque<double> recent_;      // calm distances of the current shot
   std::deque<double> local_;       // last distances of the shot, calm or not
   bool shot_has_content_ = false;  // a non-blank frame was seen in this shot

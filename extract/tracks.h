@@ -1,6 +1,7 @@
 #pragma once
 // Feature tracks, streamed frame by frame: what extract/ hands to estimate/.
-// Coordinates are in pixels of the *decoded* frame (not the working image),
+// Coordinates are in pixels of the *decoded* frame (not the working image;
+// for anamorphic video the display frame, resampled to square pixels),
 // origin at the top-left pixel's centre... i.e. OpenCV's convention, so the
 // estimator can use the decoded size's image centre as principal point
 // ((width - 1) / 2, (height - 1) / 2). The tracker works on a downscaled image
