@@ -100,6 +100,9 @@ std::string BatchSummary::ToText() const {
     out << std::left << std::setw(9) << FilmStatusName(f.status) << " " << std::right
         << std::setw(7) << std::setprecision(1) << f.seconds << " s  " << f.id;
     if (f.status == FilmStatus::kDuplicate) out << "  duplicate of " << f.duplicate_of;
+    if (f.doubtful_shots > 0)
+      out << "  " << f.doubtful_shots << " of " << f.shots << " shots doubtful, " << f.lost_frames
+          << " frames lost";
     if (!f.reason.empty()) out << "  " << f.reason;
     out << "\n";
   }

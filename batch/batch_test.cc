@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "batch/content_hash.h"
@@ -398,6 +399,36 @@ TEST(BatchOptionsTest, StepKeysSeparateEstimateFromHapticsSettings) {
   b.estimate_args = {"--fast"};
   EXPECT_NE(EstimateStepKey(a), EstimateStepKey(b));
   EXPECT_NE(HapticsStepKey(a, "cinematic"), HapticsStepKey(b, "cinematic"));
+}
+
+}  // namespace
+}  // namespace hapcine::batch
+
+namespace hapcine::batch {
+namespace {
+
+// The summary's doubtful shots come from the camera path's header alone.
+TEST(FilmRunnerTest, ShotQualityCountsFromTheCameraPathHeader) {
+  const std::string file = (std::filesystem::temp_directory_path() / "hapcine_batch_quality.camera.csv").string();
+  {
+    std::ofstream out(file);
+    out << "# fps=24\n# shot_quality.0=first:0 last:9 frames:10 lost:0 median_confidence:0.300 doubtful:0\n"
+           "# shot_quality.1=first:10 last:29 frames:20 lost:3 median_confidence:0.100 doubtful:1\n"
+           "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n# shot_quality.2=not a header: after the column row\n";
+  }
+  FilmOutcome o;
+  ReadShotQualityCounts(file, &o);
+  EXPECT_EQ(o.shots, 2);
+  EXPECT_EQ(o.doubtful_shots, 1);
+  EXPECT_EQ(o.lost_frames, 3);
+  const FilmOutcome back = OutcomeFromJson(OutcomeToJson(o));
+  EXPECT_EQ(back.shots, 2);
+  EXPECT_EQ(back.doubtful_shots, 1);
+  EXPECT_EQ(back.lost_frames, 3);
+  FilmOutcome none;
+  ReadShotQualityCounts(file + ".missing", &none);
+  EXPECT_EQ(none.shots, -1);
+  std::filesystem::remove(file);
 }
 
 }  // namespace

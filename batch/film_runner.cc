@@ -4,7 +4,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "batch/content_hash.h"
 #include "batch/json_bytes.h"
@@ -104,6 +107,19 @@ const char* FilmStatusName(FilmStatus s) {
   return "?";
 }
 
+void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* o) {
+  std::ifstream in(camera_csv);
+  std::string line;
+  const std::string key = "# shot_quality.";
+  while (std::getline(in, line) && line.rfind("#", 0) == 0) {
+    if (line.rfind(key, 0) != 0) continue;
+    o->shots = std::max(o->shots, 0) + 1;
+    if (line.find(" doubtful:1") != std::string::npos) ++o->doubtful_shots;
+    const size_t lost = line.find(" lost:");
+    if (lost != std::string::npos) o->lost_frames += std::atoi(line.c_str() + lost + 6);
+  }
+}
+
 nlohmann::json OutcomeToJson(const FilmOutcome& o) {
   nlohmann::json steps = nlohmann::json::array();
   for (const StepRecord& s : o.steps) {
@@ -115,7 +131,10 @@ nlohmann::json OutcomeToJson(const FilmOutcome& o) {
           {"reason", o.reason},
           {"duplicate_of", o.duplicate_of},
           {"seconds", o.seconds},
-          {"steps", steps}};
+          {"steps", steps},
+          {"shots", o.shots},
+          {"doubtful_shots", o.doubtful_shots},
+          {"lost_frames", o.lost_frames}};
 }
 
 FilmOutcome OutcomeFromJson(const nlohmann::json& j) {
@@ -130,6 +149,9 @@ FilmOutcome OutcomeFromJson(const nlohmann::json& j) {
   o.reason = j.value("reason", "");
   o.duplicate_of = j.value("duplicate_of", "");
   o.seconds = j.value("seconds", 0.0);
+  o.shots = j.value("shots", -1);
+  o.doubtful_shots = j.value("doubtful_shots", 0);
+  o.lost_frames = j.value("lost_frames", 0);
   for (const auto& js : j.value("steps", nlohmann::json::array())) {
     o.steps.push_back({js.value("name", ""), js.value("seconds", 0.0), js.value("reused", false)});
   }
@@ -219,6 +241,7 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
   if (!options.force && FilmIsDone(dir.string(), film, settings_hash)) {
     fs::remove(dir / kFailedFile, ec);
     outcome.status = FilmStatus::kSkipped;
+    ReadShotQualityCounts((dir / (film.stem + ".camera.csv")).string(), &outcome);
     outcome.seconds = SecondsSince(t0);
     return outcome;
   }
@@ -285,6 +308,7 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
   }
   fs::remove_all(dir / kTempDir, ec);
   outcome.status = FilmStatus::kDone;
+  ReadShotQualityCounts((dir / (film.stem + ".camera.csv")).string(), &outcome);
   outcome.seconds = SecondsSince(t0);
   nlohmann::json steps = OutcomeToJson(outcome)["steps"];
   WriteJsonAtomic((dir / kDoneFile).string(), {{"id", film.id},

@@ -36,7 +36,14 @@ struct FilmOutcome {
   std::string duplicate_of;  // duplicate: the film id holding the outputs
   double seconds = 0.0;      // wall time spent on the film in this run
   std::vector<StepRecord> steps;
+  // From the camera path's `# shot_quality.<shot>=` header lines
+  // (docs/formats.md): shots, those flagged doubtful, lost frames; -1 when
+  // the film has no camera path or its header has no summary.
+  int shots = -1, doubtful_shots = 0, lost_frames = 0;
 };
+
+// Fills the three counts above from a camera path's header lines.
+void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* outcome);
 
 nlohmann::json OutcomeToJson(const FilmOutcome& o);
 FilmOutcome OutcomeFromJson(const nlohmann::json& j);

@@ -15,6 +15,7 @@
 #include "core/output_files.h"
 #include "core/progress.h"
 #include "estimate/camera_estimator.h"
+#include "estimate/shot_quality.h"
 
 namespace hapcine::cli {
 namespace {
@@ -26,6 +27,8 @@ void WriteReport(const JsonDiagnostics& diagnostics, const std::string& video, c
                            {"frames", path.frames.size()}, {"stages", nlohmann::json::array()},
                            {"windows", nlohmann::json::array()}};
   for (const auto& [key, value] : path.metadata) header["metadata"][key] = value;
+  header["shot_quality"] = nlohmann::json::array();
+  for (const ShotQuality& q : ReadShotQuality(path)) header["shot_quality"].push_back(ShotQualityJson(q));
   AtomicFile out(report);
   out.stream() << diagnostics.Document(header).dump(1, ' ', false,
                                                    nlohmann::json::error_handler_t::replace)
@@ -205,6 +208,9 @@ int RunEstimate(int argc, char** argv) {
                              " video frame(s): camera motion needs at least two");
     if (const auto w = path.metadata.find("warning"); w != path.metadata.end())
       std::cerr << "hapcine estimate: " << video << ": warning: " << w->second << "\n";
+    // One line per doubtful shot (the rule: estimate/shot_quality.h), even with --quiet.
+    for (const ShotQuality& q : ReadShotQuality(path))
+      if (q.doubtful) std::cerr << "hapcine estimate: " << video << ": " << DoubtfulShotLine(q) << "\n";
     WriteCameraPathFile(path, output);
     if (!report.empty()) WriteReport(diagnostics, video, path, report);
     outputs.CommitAll();

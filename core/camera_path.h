@@ -31,6 +31,12 @@ struct CameraFrame {
   std::optional<double> confidence;  // [0, 1]
 };
 
+// The `model` of a frame the estimator could not place (docs/formats.md): its
+// pose is a placeholder (the last placed pose), its confidence 0; readers must
+// not treat it as motion.
+inline constexpr const char* kLostModel = "lost";
+inline bool IsLost(const CameraFrame& f) { return f.model == kLostModel; }
+
 struct CameraPath {
   // "# key=value" lines; width, height, fps are the conventional keys.
   std::map<std::string, std::string> metadata;

@@ -177,7 +177,11 @@ CameraPath ReadColmapTextModel(const std::string& dir, const ColmapReadOptions& 
         f = it->second;
         prev = &it->second;
       } else {
+        // Not registered: nothing places it (docs/formats.md, model `lost`);
+        // the placeholder is the last registered pose, or the first one
+        // before any.
         f = prev ? *prev : registered.begin()->second;
+        f.model = kLostModel;
         f.confidence = 0;
       }
       f.frame = static_cast<int>(i);

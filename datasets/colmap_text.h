@@ -22,9 +22,9 @@ namespace hapcine {
 
 struct ColmapReadOptions {
   // Presentation time of every decoded frame, by frame index. When given,
-  // the path has one row per entry; frames COLMAP did not register hold the
-  // previous registered pose (or the next one at the start) with
-  // confidence 0. When empty, only registered frames are written, with
+  // the path has one row per entry; frames COLMAP did not register are
+  // `lost` (model kLostModel, confidence 0) with the previous registered
+  // pose (or the next one at the start) as placeholder. When empty, only registered frames are written, with
   // time_s = frame / fps.
   std::vector<double> frame_times;
   double fps = 25;        // used only without frame_times

@@ -54,7 +54,8 @@ TEST(ColmapModel, ConvertsAxesOriginScaleAndFocal) {
   const CameraPath p = ReadColmapTextModel(d.path.string(), o);
   ASSERT_EQ(p.frames.size(), 3u);
   EXPECT_LT(AngleBetweenDeg(p.frames[0].world_from_cam, Eigen::Quaterniond::Identity()), 1e-9);
-  EXPECT_EQ(*p.frames[1].confidence, 0);  // not registered: held
+  EXPECT_EQ(*p.frames[1].confidence, 0);  // not registered: lost
+  EXPECT_EQ(p.frames[1].model.value_or(""), kLostModel);
   const CameraFrame& f = p.frames[2];
   const PanTiltRoll ptr = PanTiltRollFromQuaternion(f.world_from_cam);
   EXPECT_NEAR(ptr.pan_deg, 10, 1e-6);

@@ -282,6 +282,12 @@ std::string SegmentTable(const SegmentReport& s, int rpe_delta) {
   if (s.gt_static)
     o << (s.est_path_length > 0 ? "  <- spurious translation" : "  (none, as in the ground truth)");
   o << "\n";
+  if (s.lost_frames > 0) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "lost: %d of %d matched frames (%.1f %%): not placed, left out of the errors above\n",
+                  s.lost_frames, s.lost_frames + s.frames, 100.0 * s.lost_frames / (s.lost_frames + s.frames));
+    o << buf;
+  }
   if (s.model_agreement) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "model agreement: %.1f %% of %d frames\n",
@@ -309,6 +315,10 @@ nlohmann::json SegmentJson(const SegmentReport& s) {
   nlohmann::json j;
   j["shot"] = s.shot ? nlohmann::json(*s.shot) : nlohmann::json(nullptr);
   j["frames"] = s.frames;
+  j["lost_frames"] = s.lost_frames;
+  j["lost_share"] = s.frames + s.lost_frames > 0
+                        ? nlohmann::json(static_cast<double>(s.lost_frames) / (s.frames + s.lost_frames))
+                        : nlohmann::json(nullptr);
   j["rotation_deg"] = StatsJson(s.rotation_deg);
   j["fov_deg"] = StatsJson(s.fov_deg);
   j["fov_percent"] = StatsJson(s.fov_percent);
@@ -441,25 +451,42 @@ EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
     report.shot_boundaries = ScoreShotBoundaries(samples, options.shot_tolerance_frames);
   }
   std::map<int, std::vector<MatchedPair>> groups;
+  std::map<int, int> lost;  // per group
+  int lost_total = 0;
   for (auto& p : pairs) {
     if (by_shot) {
       const auto& s = gt_shots ? gt.frames[p.gt].shot : est.frames[p.est].shot;
       p.shot = s.value_or(-1);
     }
+    if (IsLost(est.frames[p.est])) {
+      ++lost[p.shot];
+      ++lost_total;
+      groups[p.shot];  // a shot lost entirely is still listed
+      continue;
+    }
     groups[p.shot].push_back(p);
+  }
+  if (lost_total == static_cast<int>(pairs.size())) {
+    throw Error("eval", "every one of the " + std::to_string(lost_total) +
+                            " matched frames of the estimate is lost: nothing to compare");
   }
 
   std::vector<SegmentResult> segs;
   for (const auto& [shot, group] : groups) {
     segs.push_back(EvaluateSegment(gt, est, group, options,
                                    by_shot ? std::optional<int>(shot) : std::nullopt));
+    segs.back().report.lost_frames = lost[shot];
   }
   if (by_shot) {
-    report.overall = PoolSegments(segs);
+    std::vector<SegmentResult> compared;  // shots with frames to compare
+    for (const auto& s : segs)
+      if (s.report.frames > 0) compared.push_back(s);
+    report.overall = PoolSegments(compared);
     for (const auto& s : segs) report.shots.push_back(s.report);
   } else {
     report.overall = segs[0].report;
   }
+  report.overall.lost_frames = lost_total;
   for (const auto& s : segs) {
     report.per_frame.insert(report.per_frame.end(), s.frames.begin(), s.frames.end());
   }
@@ -493,14 +520,16 @@ std::string FormatEvalTable(const EvalReport& r) {
   if (!r.shots.empty()) {
     o << "\nper shot (each aligned on its own first frame):\n";
     o << " shot frames   rot mean    rot max   fov mean  zoom mean   ATE rmse      ATE %"
-         "  est path\n";
+         "  est path   lost\n";
     for (const auto& s : r.shots) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%5d %6d", s.shot.value_or(-1), s.frames);
       o << buf << Num(s.rotation_deg.mean) << Num(s.rotation_deg.max) << Num(s.fov_deg.mean)
         << Num(s.zoom_ratio_percent.mean) << Num(s.ate.rmse)
         << (s.ate_percent ? Num(*s.ate_percent) : std::string("        n/a"))
-        << Num(s.est_path_length) << "\n";
+        << Num(s.est_path_length);
+      std::snprintf(buf, sizeof buf, " %6d\n", s.lost_frames);
+      o << buf;
     }
   }
   return o.str();

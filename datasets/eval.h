@@ -7,6 +7,8 @@
 //
 // Frames are matched by frame index; when fewer than half of the shorter
 // path's frames share an index, by nearest time_s within half a frame period.
+// Frames the estimate marks `lost` are not compared (their pose is a
+// placeholder): they are counted per segment (lost_frames) and reported.
 // When a `shot` column exists every shot is evaluated on its own, aligned on
 // its own first frame (the estimator restarts each shot at the origin with its
 // own scale), and the overall figures pool the per-shot errors.
@@ -78,7 +80,10 @@ struct FrameError {
 
 struct SegmentReport {
   std::optional<int> shot;     // unset for the whole clip
-  int frames = 0;              // matched frames in the segment
+  int frames = 0;              // matched frames in the segment (lost ones excluded)
+  // Matched frames whose estimate is `lost` (docs/formats.md): left out of
+  // every error statistic, and not counted as correct either.
+  int lost_frames = 0;
   ErrorStats rotation_deg;
   ErrorStats fov_deg;
   ErrorStats fov_percent;

@@ -227,6 +227,43 @@ TEST(EvalTest, UnmatchedFramesAreCounted) {
   ExpectAllZero(r.overall);
 }
 
+// Lost frames hold a placeholder far from the truth: they are counted and
+// left out of the errors, not scored as right or wrong.
+TEST(EvalTest, LostFramesAreCountedAndExcluded) {
+  const CameraPath gt = MovingPath(30);
+  CameraPath est = gt;
+  for (int i = 10; i < 16; ++i) {
+    est.frames[i].world_from_cam = est.frames[9].world_from_cam;  // the placeholder
+    est.frames[i].center = est.frames[9].center;
+    est.frames[i].model = kLostModel;
+    est.frames[i].confidence = 0;
+  }
+  const EvalReport r = EvaluateCameraPaths(gt, est, {});
+  EXPECT_EQ(r.matched, 30);
+  EXPECT_EQ(r.overall.lost_frames, 6);
+  EXPECT_EQ(r.overall.frames, 24);
+  EXPECT_EQ(r.overall.rotation_deg.count, 24);
+  ExpectAllZero(r.overall);  // the held placeholder would be degrees off
+  const nlohmann::json j = EvalReportToJson(r);
+  EXPECT_EQ(j["overall"]["lost_frames"], 6);
+  EXPECT_NEAR(j["overall"]["lost_share"].get<double>(), 0.2, 1e-12);
+  EXPECT_NE(FormatEvalTable(r).find("lost: 6 of 30 matched frames (20.0 %)"), std::string::npos);
+  // Per shot: a shot lost entirely is listed with no frames compared.
+  CameraPath gt2 = gt, est2 = est;
+  for (int i = 0; i < 30; ++i) gt2.frames[i].shot = est2.frames[i].shot = i < 20 ? 0 : 1;
+  for (int i = 20; i < 30; ++i) est2.frames[i].model = kLostModel;
+  const EvalReport r2 = EvaluateCameraPaths(gt2, est2, {});
+  ASSERT_EQ(r2.shots.size(), 2u);
+  EXPECT_EQ(r2.shots[0].lost_frames, 6);
+  EXPECT_EQ(r2.shots[1].lost_frames, 10);
+  EXPECT_EQ(r2.shots[1].frames, 0);
+  EXPECT_EQ(r2.overall.lost_frames, 16);
+  EXPECT_EQ(r2.overall.frames, 14);
+  // Every frame lost: nothing to compare, said as such.
+  for (auto& f : est2.frames) f.model = kLostModel;
+  EXPECT_THROW(EvaluateCameraPaths(gt2, est2, {}), Error);
+}
+
 TEST(EvalTest, FallsBackToTimeWhenIndicesDiffer) {
   const CameraPath gt = MovingPath(30);
   CameraPath est = gt;

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
 #include "estimate/lens_distortion.h"
+#include "estimate/shot_quality.h"
 #include "estimate/skipped_frames.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
@@ -224,6 +225,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   if (lens.k1() != 0) path.metadata["k1"] = Num(lens.k1());
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
   InsertSkippedFrames(skipped, info.width, &path);
+  WriteShotQuality(SummariseShots(path, estimator.reports(), info.width), &path);
   stages.Stage("estimation done");
   return path;
 }
@@ -238,6 +240,7 @@ CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& optio
   CameraPath path;
   if (options.backend == "colmap") {
     path = EstimateWithColmap(source, options.colmap_binary, progress);
+    WriteShotQuality(SummariseShots(path, {}, info.width), &path);
   } else {
     path = TrackAndEstimate(source, options, progress);
   }

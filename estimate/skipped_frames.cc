@@ -26,11 +26,14 @@ CameraFrame Between(const CameraFrame& a, const CameraFrame& b, const SkippedFra
   return f;
 }
 
-CameraFrame Held(const CameraFrame& from, const SkippedFrame& s) {
+// Lost (docs/formats.md): the pose of `from`, the nearest placed frame, is
+// only a placeholder.
+CameraFrame Lost(const CameraFrame& from, const SkippedFrame& s) {
   CameraFrame f = from;
   f.frame = s.index;
   f.time_s = s.time_s;
-  if (f.confidence) *f.confidence *= kSkippedFrameConfidence;
+  f.model = kLostModel;
+  f.confidence = 0;
   return f;
 }
 
@@ -47,10 +50,15 @@ void InsertSkippedFrames(const std::vector<SkippedFrame>& skipped, int width_px,
     while (next < est.size() && est[next].frame < s.index) out.push_back(est[next++]);
     if (next < est.size() && est[next].frame == s.index) continue;  // not skipped after all
     const bool has_before = next > 0, has_after = next < est.size();
-    if (has_before && has_after && est[next - 1].shot == est[next].shot)
+    // Placed only between two placed frames of one shot: the motion is then
+    // bounded on both sides and smooth at the scale of a frame. Next to a
+    // lost frame, at either end or across a shot boundary one side is
+    // unknown, and holding or extrapolating would invent the motion.
+    if (has_before && has_after && est[next - 1].shot == est[next].shot && !IsLost(est[next - 1]) &&
+        !IsLost(est[next]))
       out.push_back(Between(est[next - 1], est[next], s, width));
     else
-      out.push_back(Held(has_before ? est[next - 1] : est[next], s));
+      out.push_back(Lost(has_before ? est[next - 1] : est[next], s));
   }
   while (next < est.size()) out.push_back(est[next++]);
   path->frames = std::move(out);

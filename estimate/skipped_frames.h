@@ -22,8 +22,10 @@ constexpr double kSkippedFrameConfidence = 0.8;
 // as are both inputs). Between two estimated frames of the same shot, at
 // its time's fraction u of the way: rotation slerp, centre linear, focal
 // geometric (log-linear); model and shot of the later neighbour (the
-// interval's motion). Otherwise (at either end, or across a shot boundary)
-// the nearest earlier frame is held, or the first later one before any.
+// interval's motion). Otherwise (either neighbour lost, at either end, or
+// across a shot boundary) the frame is lost (model kLostModel, confidence 0)
+// with the nearest earlier frame's pose as placeholder, or the first later
+// one's before any.
 // Entries whose index the path already has are ignored. `width_px`: the
 // decoded width (the frames' fov_deg and focal_px refer to it).
 void InsertSkippedFrames(const std::vector<SkippedFrame>& skipped, int width_px, CameraPath* path);

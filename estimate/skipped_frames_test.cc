@@ -40,7 +40,7 @@ TEST(InsertSkippedFrames, BetweenNeighboursOfOneShot) {
   EXPECT_TRUE(f.world_from_cam.coeffs().allFinite());
 }
 
-TEST(InsertSkippedFrames, HeldAtTheEndsAndAcrossACut) {
+TEST(InsertSkippedFrames, LostAtTheEndsAndAcrossACut) {
   CameraPath path;
   path.frames = {At(1, 0.0, 0.0, 1000, 0), At(3, 0.2, 1.0, 1000, 1)};
   // 0 before any estimated frame, 2 between two shots, 4 and 5 after the last.
@@ -53,7 +53,26 @@ TEST(InsertSkippedFrames, HeldAtTheEndsAndAcrossACut) {
     EXPECT_EQ(path.frames[i].shot, from.shot) << i;
     EXPECT_EQ(path.frames[i].center, from.center) << i;
     EXPECT_LT(path.frames[i].world_from_cam.angularDistance(from.world_from_cam), 1e-15) << i;
+    const bool skipped = i != 1 && i != 3;
+    EXPECT_EQ(IsLost(path.frames[i]), skipped) << i;
+    EXPECT_EQ(*path.frames[i].confidence, skipped ? 0.0 : 0.9) << i;
   }
+}
+
+// Next to a lost frame the motion on one side is unknown: not interpolated.
+TEST(InsertSkippedFrames, LostNextToALostFrame) {
+  CameraPath path;
+  path.frames = {At(0, 0.0, 0.0, 1000), At(2, 0.0, 0.0, 1000), At(4, 0.4, 4.0, 1000), At(6, 0.6, 6.0, 1000)};
+  path.frames[1].model = kLostModel;
+  path.frames[1].confidence = 0;
+  InsertSkippedFrames({{1, 1 / 24.0}, {3, 3 / 24.0}, {5, 5 / 24.0}}, 1000, &path);
+  ASSERT_EQ(path.frames.size(), 7u);
+  EXPECT_TRUE(IsLost(path.frames[1]));  // placed before, lost after
+  EXPECT_TRUE(IsLost(path.frames[3]));  // lost before, placed after
+  EXPECT_EQ(path.frames[3].center, path.frames[2].center);  // the placeholder held, no interpolation
+  EXPECT_EQ(*path.frames[3].confidence, 0);
+  EXPECT_FALSE(IsLost(path.frames[5]));  // between two placed frames
+  EXPECT_NEAR(path.frames[5].center.x(), 5.0, 1e-12);
 }
 
 TEST(InsertSkippedFrames, IndicesAlreadyThereAndEmptyInputsChangeNothing) {

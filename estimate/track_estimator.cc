@@ -95,15 +95,17 @@ void TrackCameraEstimator::StartShot(int shot) {
   focal_observed_ = false;
   scale_set_ = false;
   scene_depth_ = 1;
+  split_log_focal_.reset();
 }
 
 void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
-  const bool new_shot = shot_ < 0 || tracks.shot != shot_ ||
+  const bool new_shot = shot_ < 0 || tracks.shot != source_shot_ ||
                         tracks.boundary == ShotBoundary::kCut ||
                         tracks.boundary == ShotBoundary::kFade;
   if (new_shot) {
     if (shot_ >= 0) FinishShot();
     StartShot(shot_ < 0 ? tracks.shot : std::max(tracks.shot, shot_ + 1));
+    source_shot_ = tracks.shot;
   }
   BufferedFrame f;
   f.tracks = tracks;
@@ -112,6 +114,10 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
     if (p.px.allFinite()) f.u[p.track_id] = Normalise(p.px);
   }
   f.usable = !tracks.blank && static_cast<int>(f.u.size()) >= options_.min_tracks;
+  if (f.usable && !keyframes_.empty() && SharedWithLastKeyframe(f.u) < options_.min_tracks) {
+    SplitShot(tracks);
+    return;
+  }
   const int pos = shot_frames_++;
   // The keyframe gap and the window are counted in frames of the video, so a
   // decoder that skipped frames gives the same spacing in time.
@@ -132,12 +138,6 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
     auto it = kf.u.find(id);
     if (it != kf.u.end()) disp.push_back((u - it->second).norm());
   }
-  if (static_cast<int>(disp.size()) < options_.min_tracks) {
-    // Tracking lost inside the shot: close what we have and restart the
-    // chain here, holding the last pose (no link to measure the jump).
-    AddKeyframe(pos, true);
-    return;
-  }
   const double shared = static_cast<double>(disp.size()) / std::max<size_t>(kf.u.size(), 1);
   if (Median(disp) > options_.keyframe_motion || shared < options_.keyframe_min_shared ||
       cur.video_pos - last.video_pos >= options_.keyframe_max_gap) {
@@ -145,26 +145,40 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
   }
 }
 
-void TrackCameraEstimator::AddKeyframe(int pos, bool force_static) {
-  if (keyframes_.empty()) {
-    // Start of the shot's chain: identity at the origin (or the last pose).
+int TrackCameraEstimator::SharedWithLastKeyframe(const KeyframeTracks& u) const {
+  const BufferedFrame& kf = At(keyframes_.back().pos);
+  int shared = 0;
+  for (const auto& entry : u) shared += kf.u.count(entry.first) > 0;
+  return shared;
+}
+
+// Nothing measures the motion from the last keyframe to this frame, so no
+// pose after it can be put in the shot's frame: holding the last pose would
+// say the camera stopped, continuing from it would hide a jump of unknown
+// size. The frames in between are lost (EmitWindowFrames); this frame starts
+// a new shot at the origin, as after a cut. The lens is the same (no cut was
+// seen), so the new shot starts from the focal reached and keeps what was
+// observed of it.
+void TrackCameraEstimator::SplitShot(const FrameTracks& tracks) {
+  const bool observed = focal_observed_;
+  std::vector<double> samples = focal_samples_;
+  FinishShot();
+  StartShot(shot_ + 1);
+  split_log_focal_ = last_log_focal_;
+  focal_observed_ = observed && last_log_focal_.has_value();
+  focal_samples_ = std::move(samples);
+  AddFrame(tracks);
+}
+
+void TrackCameraEstimator::AddKeyframe(int pos, bool first) {
+  if (first) {
+    // Start of the shot's chain: identity at the origin (after a split, at
+    // the focal the previous shot reached).
     Keyframe k = ChainStart(pos);
-    k.cam.log_focal = prior_log_focal_;
-    if (!raw_.empty()) k.cam = raw_.back().cam;
+    k.cam.log_focal = split_log_focal_.value_or(prior_log_focal_);
     k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
-    keyframes_.push_back(k);
-    return;
-  }
-  if (force_static) {
-    // Chain broken: solve what we have, then restart from here.
-    ProcessWindow(true);
-    keyframes_.clear();
-    frames_.erase(frames_.begin(), frames_.begin() + (pos - buffer_start_));
-    buffer_start_ = pos;
-    Keyframe k = ChainStart(pos);
-    k.cam = raw_.empty() ? BaCamera{} : raw_.back().cam;
-    k.cam.rotation_source = k.cam.center_source = k.cam.focal_source = -1;
-    k.fixed_focal = focal_observed_;
+    k.fixed_focal = split_log_focal_.has_value() && focal_observed_;
+    split_log_focal_.reset();
     keyframes_.push_back(k);
     return;
   }
@@ -257,23 +271,30 @@ TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyfra
   return k;
 }
 
+TrackCameraEstimator::RawPose TrackCameraEstimator::LostPose(const FrameTracks& meta,
+                                                             const BaCamera& placeholder) const {
+  RawPose out;
+  out.meta = meta;
+  out.cam = placeholder;
+  out.lost = true;
+  out.confidence = 0;
+  return out;
+}
+
 void TrackCameraEstimator::FinishShot() {
   if (shot_ < 0) return;
   if (!keyframes_.empty()) {
     ProcessWindow(true);
   } else {
-    // No usable frame in the whole shot: identity, prior focal, no confidence.
-    for (const auto& f : frames_) {
-      RawPose out;
-      out.meta = f.tracks;
-      out.cam.log_focal = prior_log_focal_;
-      raw_.push_back(out);
-    }
+    // No usable frame in the whole shot: nothing is placed; the placeholder
+    // is the origin at the prior focal.
+    BaCamera origin;
+    origin.log_focal = prior_log_focal_;
+    for (const auto& f : frames_) raw_.push_back(LostPose(f.tracks, origin));
   }
   keyframes_.clear();
   frames_.clear();
   const int n = static_cast<int>(raw_.size());
-  // Smoothing per segment, only on the freedoms the segment's model has.
   std::vector<Eigen::Quaterniond> q(n);
   std::vector<Eigen::Vector3d> c(n);
   std::vector<double> lf(n);
@@ -282,40 +303,12 @@ void TrackCameraEstimator::FinishShot() {
     c[i] = raw_[i].cam.center;
     lf[i] = raw_[i].cam.log_focal;
   }
-  if (options_.smooth && options_.smooth_sigma_frames > 0) {
-    // The sigma is in frames of the video: where the decoder skipped frames
-    // (FrameTracks::step) a sample stands for more than one, and a sigma in
-    // samples would smooth over more time and lag the fast parts (with
-    // every other frame, a sideways traveling's ATE was 0.12 % instead of
-    // 0.06 %).
-    double video_frames = 0;
-    for (int i = 1; i < n; ++i) video_frames += std::max(raw_[i].meta.step, 1);
-    const double sigma = n > 1 ? options_.smooth_sigma_frames / (video_frames / (n - 1))
-                               : options_.smooth_sigma_frames;
-    for (int s = 0; s < n;) {
-      int e = s;
-      while (e + 1 < n && raw_[e + 1].model == raw_[s].model) ++e;
-      const MotionModel m = raw_[s].model;
-      // Include the neighbour frames so that segment ends stay continuous.
-      const int lo = std::max(0, s - 1), hi = std::min(n - 1, e + 1);
-      auto sub = [&](auto& v) { return std::vector<std::decay_t<decltype(v[0])>>(v.begin() + lo, v.begin() + hi + 1); };
-      if (HasRotation(m)) {
-        const auto sm = SmoothRotations(sub(q), sigma);
-        for (int i = s; i <= e; ++i) q[i] = sm[i - lo];
-      }
-      if (HasTranslation(m)) {
-        const auto sm = SmoothVectors(sub(c), sigma);
-        for (int i = s; i <= e; ++i) c[i] = sm[i - lo];
-      }
-      if (HasZoom(m)) {
-        const auto sm = SmoothScalars(sub(lf), sigma);
-        for (int i = s; i <= e; ++i) lf[i] = sm[i - lo];
-      }
-      s = e + 1;
-    }
-  }
+  if (options_.smooth && options_.smooth_sigma_frames > 0) SmoothShot(&q, &c, &lf);
+  HoldPlaceholders(&q, &c, &lf);
+  last_log_focal_.reset();
   for (int i = 0; i < n; ++i) {
     const RawPose& r = raw_[i];
+    if (!r.lost) last_log_focal_ = lf[i];
     CameraFrame cf;
     cf.frame = r.meta.index;
     cf.time_s = r.meta.time_s;
@@ -327,11 +320,72 @@ void TrackCameraEstimator::FinishShot() {
     cf.focal_px = focal_px;
     cf.fov_deg = FovDegFromFocalPx(focal_px, width_);
     cf.shot = shot_;
-    cf.model = MotionModelName(r.model);
-    cf.confidence = Clamp01(r.confidence);
+    cf.model = r.lost ? kLostModel : MotionModelName(r.model);
+    cf.confidence = r.lost ? 0.0 : Clamp01(r.confidence);
     path_.frames.push_back(cf);
   }
   raw_.clear();
+}
+
+// A lost frame's pose is the last placed pose as written (after smoothing);
+// before the first placed frame of the shot, that frame's (the origin).
+void TrackCameraEstimator::HoldPlaceholders(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
+                                            std::vector<double>* lf) const {
+  const int n = static_cast<int>(raw_.size());
+  int placed = -1;
+  for (int i = 0; i < n && placed < 0; ++i)
+    if (!raw_[i].lost) placed = i;
+  if (placed < 0) return;
+  for (int i = 0; i < n; ++i) {
+    if (!raw_[i].lost) {
+      placed = i;
+      continue;
+    }
+    (*q)[i] = (*q)[placed];
+    (*c)[i] = (*c)[placed];
+    (*lf)[i] = (*lf)[placed];
+  }
+}
+
+// Zero-phase smoothing per segment of equal model, only on the freedoms the
+// segment's model has. Lost frames are neither smoothed nor used as a
+// segment's neighbours: their placeholder pose is no measurement, and
+// blending it in would pull placed frames towards the pose before the gap.
+void TrackCameraEstimator::SmoothShot(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
+                                      std::vector<double>* lf) const {
+  const int n = static_cast<int>(raw_.size());
+  // The sigma is in frames of the video: where the decoder skipped frames
+  // (FrameTracks::step) a sample stands for more than one, and a sigma in
+  // samples would smooth over more time and lag the fast parts (with
+  // every other frame, a sideways traveling's ATE was 0.12 % instead of
+  // 0.06 %).
+  double video_frames = 0;
+  for (int i = 1; i < n; ++i) video_frames += std::max(raw_[i].meta.step, 1);
+  const double sigma = n > 1 ? options_.smooth_sigma_frames / (video_frames / (n - 1))
+                             : options_.smooth_sigma_frames;
+  for (int s = 0; s < n;) {
+    int e = s;
+    while (e + 1 < n && raw_[e + 1].model == raw_[s].model && raw_[e + 1].lost == raw_[s].lost) ++e;
+    const MotionModel m = raw_[s].model;
+    const bool lost = raw_[s].lost;
+    // Include the neighbour frames so that segment ends stay continuous.
+    const int lo = s > 0 && !raw_[s - 1].lost ? s - 1 : s;
+    const int hi = e + 1 < n && !raw_[e + 1].lost ? e + 1 : e;
+    auto sub = [&](auto& v) { return std::vector<std::decay_t<decltype(v[0])>>(v.begin() + lo, v.begin() + hi + 1); };
+    if (!lost && HasRotation(m)) {
+      const auto sm = SmoothRotations(sub(*q), sigma);
+      for (int i = s; i <= e; ++i) (*q)[i] = sm[i - lo];
+    }
+    if (!lost && HasTranslation(m)) {
+      const auto sm = SmoothVectors(sub(*c), sigma);
+      for (int i = s; i <= e; ++i) (*c)[i] = sm[i - lo];
+    }
+    if (!lost && HasZoom(m)) {
+      const auto sm = SmoothScalars(sub(*lf), sigma);
+      for (int i = s; i <= e; ++i) (*lf)[i] = sm[i - lo];
+    }
+    s = e + 1;
+  }
 }
 
 CameraPath TrackCameraEstimator::Finish() {

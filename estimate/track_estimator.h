@@ -24,6 +24,7 @@
 #include <array>
 #include <deque>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -130,11 +131,23 @@ class TrackCameraEstimator {
     BaCamera cam;
     MotionModel model = MotionModel::kStatic;
     double confidence = 0;
+    // Not placed from evidence (model `lost`, confidence 0): the pose is the
+    // last placed one, a placeholder (docs/formats.md).
+    bool lost = false;
   };
 
   void StartShot(int shot);
   void FinishShot();
-  void AddKeyframe(int pos, bool force_static);
+  // Tracking broke inside a shot (fewer than min_tracks link the frame to
+  // the last keyframe): the shot ends and a new one starts at `tracks`.
+  void SplitShot(const FrameTracks& tracks);
+  void SmoothShot(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
+                  std::vector<double>* lf) const;
+  void HoldPlaceholders(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
+                        std::vector<double>* lf) const;
+  RawPose LostPose(const FrameTracks& meta, const BaCamera& placeholder) const;
+  void AddKeyframe(int pos, bool first);  // first: the chain's start (the shot's origin)
+  int SharedWithLastKeyframe(const KeyframeTracks& u) const;
   Keyframe ChainStart(int pos) const;  // held, no interval of its own; camera left to the caller
   Keyframe LinkedKeyframe(const Keyframe& a, int pos);
   // The current window through SolveWindow (window_solver.h), then its
@@ -161,6 +174,10 @@ class TrackCameraEstimator {
 
   // Current shot.
   int shot_ = -1;
+  int source_shot_ = -1;             // the tracker's shot index of the current shot
+  // After a split: the focal the new shot starts from, and whether it was observed.
+  std::optional<double> split_log_focal_;
+  std::optional<double> last_log_focal_;  // the last placed frame's, set by FinishShot
   int shot_frames_ = 0;              // frames seen in the shot
   int shot_video_frames_ = 0;        // the same in frames of the video (skipped ones too)
   std::deque<BufferedFrame> frames_; // from buffer_start_ on

@@ -56,11 +56,10 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
     RawPose out;
     out.meta = f.tracks;
     while (ki + 1 < n && keyframes_[ki + 1].pos <= pos) ++ki;
-    if (pos < keyframes_[0].pos) {  // before the chain starts (blank lead-in)
-      out.cam = keyframes_[0].cam;
-      out.model = MotionModel::kStatic;
-      out.confidence = 0.05;
-      raw_.push_back(out);
+    if (pos < keyframes_[0].pos) {
+      // Before the shot's first usable frame (a blank lead-in, a fade in):
+      // nothing places these frames; the placeholder is the origin.
+      raw_.push_back(LostPose(f.tracks, keyframes_[0].cam));
       continue;
     }
     const Keyframe& a = keyframes_[ki];
@@ -75,18 +74,18 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
       raw_.push_back(out);
       continue;
     }
-    if (ki + 1 >= n || !f.usable) {
-      // After the last keyframe (end of shot) or unusable: hold the previous pose.
+    if (!f.usable) {
+      // A blank frame, or one with too few tracks: its own image gives no
+      // evidence of the pose. Even between two placed keyframes it stays
+      // lost rather than interpolated: a blank frame is a flash, a fade or a
+      // whip, where the motion in between is not smooth enough to guess.
+      raw_.push_back(LostPose(f.tracks, raw_.empty() ? a.cam : raw_.back().cam));
+      continue;
+    }
+    if (ki + 1 >= n) {
+      // Trailing frames with tracks (end of shot): pose-only solve with the last model's freedoms.
       out.cam = raw_.empty() ? a.cam : raw_.back().cam;
-      out.model = raw_.empty() ? a.model : raw_.back().model;
-      out.confidence = 0.1;
-      if (f.usable && ki + 1 >= n) {
-        // Trailing frames with tracks: pose-only solve with the last model's freedoms.
-        out.model = a.model;
-      } else {
-        raw_.push_back(out);
-        continue;
-      }
+      out.model = a.model;
     }
     const Keyframe& b = ki + 1 < n ? keyframes_[ki + 1] : keyframes_[ki];
     const double t = b.pos > a.pos ? static_cast<double>(pos - a.pos) / (b.pos - a.pos) : 0;

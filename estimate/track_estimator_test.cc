@@ -288,7 +288,9 @@ TEST(TrackEstimator, OcclusionOrderTellsADollyZoomFromAPullBack) {
 // begin at the silhouette, none end there, and beginnings are not counted
 // (OcclusionOptions::births), so there the fit alone decides, as before.
 
-TEST(TrackEstimator, BlankFramesHoldThePoseWithLowConfidence) {
+// Blank frames whose tracks resume with the same ids: lost, and the chain
+// continues across them (one shot).
+TEST(TrackEstimator, BlankFramesAreLostAndTheChainContinues) {
   const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
   const SimRun run = Simulate(90, [](int i) { return PanCamera(i, 20, 800); }, pts, 0.3,
                            [](int i) { return i >= 40 && i < 43; });
@@ -297,8 +299,17 @@ TEST(TrackEstimator, BlankFramesHoldThePoseWithLowConfidence) {
     EXPECT_TRUE(f.world_from_cam.coeffs().allFinite());
     EXPECT_TRUE(f.center.allFinite());
   }
-  EXPECT_LT(*run.path.frames[41].confidence, 0.2);
-  EXPECT_LT(run.mean_rot_err_deg, 0.5);
+  for (int i = 40; i < 43; ++i) {
+    EXPECT_TRUE(IsLost(run.path.frames[i])) << i;
+    EXPECT_EQ(*run.path.frames[i].confidence, 0) << i;
+  }
+  EXPECT_FALSE(IsLost(run.path.frames[43]));
+  EXPECT_EQ(*run.path.frames[89].shot, 0);
+  double placed_err = 0;
+  for (int i = 0; i < 90; ++i)
+    if (!IsLost(run.path.frames[i]))
+      placed_err = std::max(placed_err, AngleBetweenDeg(run.path.frames[i].world_from_cam, run.truth[i].world_from_cam));
+  EXPECT_LT(placed_err, 0.5);
 }
 
 TEST(TrackEstimator, EmptyAndAllBlankInputsGiveValidFrames) {
@@ -312,7 +323,10 @@ TEST(TrackEstimator, EmptyAndAllBlankInputsGiveValidFrames) {
   }
   const CameraPath path = est.Finish();
   ASSERT_EQ(path.frames.size(), 5u);
-  for (const auto& f : path.frames) EXPECT_EQ(ValidateCameraFrame(f), "");
+  for (const auto& f : path.frames) {
+    EXPECT_EQ(ValidateCameraFrame(f), "");
+    EXPECT_TRUE(IsLost(f));
+  }
 }
 
 TEST(TrackEstimator, ErrorDegradesSmoothlyWithNoise) {
@@ -638,8 +652,9 @@ TEST(TrackEstimator, TravelingThenPanInTheNextWindow) {
 }
 
 // The same with tracking lost between the move and the pan (every track
-// new from frame 100: the chain restarts there, holding the last pose).
-TEST(TrackEstimator, TravelingThenLostTrackingThenPan) {
+// new from frame 100): nothing links frame 100 to the move, so the shot is
+// split there; the new shot starts at the origin with the focal reached.
+TEST(TrackEstimator, TravelingThenLostTrackingThenPanSplitsTheShot) {
   const auto pts = RandomPoints(2000, 3, 12, 2.5, 11);
   const SimRun run = SimulateFrames(
       200, TravelingThenPan,
@@ -650,9 +665,69 @@ TEST(TrackEstimator, TravelingThenLostTrackingThenPan) {
         return ft;
       },
       {}, 12);
-  EXPECT_LT(run.mean_rot_err_deg, 0.1);
+  EXPECT_LT(run.mean_rot_err_deg, 0.1);  // the truth's rotation is the identity up to frame 110
   EXPECT_NEAR(*run.path.frames[199].focal_px / 800, 1.0, 0.01);
-  EXPECT_NEAR(*run.path.frames[20].focal_px / *run.path.frames[199].focal_px, 1.0, 0.002);
+  for (int i = 0; i < 200; ++i) {
+    EXPECT_EQ(*run.path.frames[i].shot, i < 100 ? 0 : 1) << i;
+    EXPECT_FALSE(IsLost(run.path.frames[i])) << i;  // every frame has its tracks
+  }
+  EXPECT_EQ(run.path.frames[100].center, Eigen::Vector3d::Zero());  // a new origin, not the held pose
+  EXPECT_GT(run.path.frames[99].center.norm(), 0.02);  // median-depth units: the move is 0.08
+}
+
+// Tracking goes blank mid-shot (frames 40-42) and comes back with new
+// tracks: the blank frames are lost (confidence 0, the last placed pose as
+// placeholder, not smoothed), no pose is held silently, and the frames
+// after start a new shot.
+TEST(TrackEstimator, BlankFramesMidShotAreLostAndSplitTheShot) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun run = SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        if (i >= 40 && i < 43) {
+          ft.points.clear();
+          ft.blank = true;
+        }
+        if (i >= 43)
+          for (auto& p : ft.points) p.track_id += 100000;  // found again: new ids
+        return ft;
+      });
+  ASSERT_EQ(run.path.frames.size(), 90u);
+  for (int i = 0; i < 90; ++i) {
+    const CameraFrame& f = run.path.frames[i];
+    EXPECT_EQ(ValidateCameraFrame(f), "") << i;
+    const bool lost = i >= 40 && i < 43;
+    EXPECT_EQ(IsLost(f), lost) << i;
+    if (lost) {
+      EXPECT_EQ(*f.confidence, 0) << i;
+      EXPECT_EQ(*f.shot, 0) << i;
+      EXPECT_EQ(f.world_from_cam.coeffs(), run.path.frames[39].world_from_cam.coeffs()) << i;  // placeholder
+    } else {
+      EXPECT_GT(*f.confidence, 0.2) << i;
+      EXPECT_EQ(*f.shot, i < 40 ? 0 : 1) << i;
+    }
+  }
+  EXPECT_EQ(AngleBetweenDeg(run.path.frames[43].world_from_cam, Eigen::Quaterniond::Identity()), 0);
+  // Placed frames before the gap are right (relative to the shot's start).
+  for (int i = 0; i < 40; ++i)
+    EXPECT_LT(AngleBetweenDeg(run.path.frames[i].world_from_cam, run.truth[i].world_from_cam), 0.3) << i;
+}
+
+// Blank frames at the start of a shot (a fade in) and at its end (a fade
+// out): lost; the first usable frame is the origin, not lost.
+TEST(TrackEstimator, FadeInAndOutFramesAreLost) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun run = Simulate(90, [](int i) { return PanCamera(i, 20, 800); }, pts, 0.3,
+                              [](int i) { return i < 5 || i >= 85; });
+  ASSERT_EQ(run.path.frames.size(), 90u);
+  for (int i = 0; i < 90; ++i) {
+    const bool lost = i < 5 || i >= 85;
+    EXPECT_EQ(IsLost(run.path.frames[i]), lost) << i;
+    EXPECT_EQ(*run.path.frames[i].confidence == 0, lost) << i;
+  }
+  EXPECT_EQ(run.path.frames[0].world_from_cam.coeffs(), run.path.frames[5].world_from_cam.coeffs());
+  EXPECT_EQ(run.path.frames[89].world_from_cam.coeffs(), run.path.frames[84].world_from_cam.coeffs());
 }
 
 // A forward dolly at constant focal through a scene 3-12 units deep. Pairs

@@ -92,6 +92,11 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
 // The window's report, with its keyframes' two-view model selection, to
 // reports_ and the diagnostics ("window" record, docs/formats.md).
 void TrackCameraEstimator::Report(WindowReport r) {
+  for (const Keyframe& k : keyframes_) {
+    if (k.chain_start || k.fixed) continue;
+    r.inliers += k.inliers;
+    r.correspondences += k.correspondences;
+  }
   if (Wants(diagnostics_, "window")) {
     nlohmann::json keyframes = nlohmann::json::array();
     for (const Keyframe& k : keyframes_) {

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/rotation.h"
+#include "haptics/washout.h"
 
 namespace hapcine {
 namespace {
@@ -75,6 +76,83 @@ CameraSignals ExtractShotSignals(const CameraPath& path, const ShotRange& shot,
   Unwrap(&s.pan_rad);
   Unwrap(&s.roll_rad);
   return s;
+}
+
+namespace {
+
+// The rigid move (and focal ratio) applied to the frames after a lost run.
+struct PoseCorrection {
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  double tan_ratio = 1;  // tan(fov/2) multiplier
+  bool identity = true;
+};
+
+CameraFrame Corrected(const CameraFrame& f, const PoseCorrection& c) {
+  if (c.identity) return f;
+  CameraFrame out = f;
+  out.world_from_cam = CanonicalQuaternion((c.rotation * f.world_from_cam).normalized());
+  out.center = c.rotation * f.center + c.translation;
+  const double half = std::atan(c.tan_ratio * std::tan(DegToRad(f.fov_deg) / 2));
+  out.fov_deg = RadToDeg(2 * half);
+  if (f.focal_px) *out.focal_px = *f.focal_px / c.tan_ratio;
+  return out;
+}
+
+// The correction that puts `placed` (as read) on `target` (as corrected).
+PoseCorrection CorrectionOnto(const CameraFrame& target, const CameraFrame& placed) {
+  PoseCorrection c;
+  c.rotation = (target.world_from_cam * placed.world_from_cam.conjugate()).normalized();
+  c.translation = target.center - c.rotation * placed.center;
+  c.tan_ratio = std::tan(DegToRad(target.fov_deg) / 2) / std::tan(DegToRad(placed.fov_deg) / 2);
+  // Already joined (up to round-off): nothing to move.
+  c.identity = AngleBetweenDeg(target.world_from_cam, placed.world_from_cam) < 1e-9 &&
+               (target.center - placed.center).norm() <= 1e-12 * (1 + placed.center.norm()) &&
+               std::abs(target.fov_deg - placed.fov_deg) < 1e-9;
+  return c;
+}
+
+}  // namespace
+
+std::optional<CameraPath> JoinAcrossLostFrames(const CameraPath& path) {
+  std::optional<CameraPath> joined;
+  PoseCorrection correction;
+  for (size_t i = 1; i < path.frames.size(); ++i) {
+    const CameraFrame& prev = path.frames[i - 1];
+    const CameraFrame& f = path.frames[i];
+    if (f.shot != prev.shot) correction = PoseCorrection();  // a new shot: its own origin
+    if (IsLost(prev) && !IsLost(f) && f.shot == prev.shot) {
+      const CameraFrame target = joined ? joined->frames[i - 1] : prev;
+      correction = CorrectionOnto(target, f);
+    }
+    if (correction.identity) {
+      if (joined) joined->frames[i] = f;
+      continue;
+    }
+    if (!joined) joined = path;
+    joined->frames[i] = Corrected(f, correction);
+  }
+  return joined;
+}
+
+void FadeToRestOverLostFrames(const std::vector<double>& time_s, const std::vector<bool>& lost,
+                              double ramp_s, std::vector<double>* x) {
+  double from = 0, to = 0, start_s = 0;  // the removed part goes from `from` to `to` from start_s
+  auto removed = [&](double t) {
+    const double w = ramp_s > 0 ? SmootherStep((t - start_s) / ramp_s) : 1.0;
+    return from + (to - from) * w;
+  };
+  double last_removed = 0;
+  for (size_t i = 0; i < x->size(); ++i) {
+    if (i > 0 && lost[i] && !lost[i - 1]) {
+      // A lost run starts: bring what frame i-1 shows back to rest.
+      from = last_removed;
+      to = (*x)[i - 1];
+      start_s = time_s[i - 1];
+    }
+    last_removed = removed(time_s[i]);
+    (*x)[i] -= last_removed;
+  }
 }
 
 std::vector<int> CsvDataRowLines(const std::string& file) {

@@ -76,6 +76,24 @@ std::optional<double> DollyZoomSubjectDistance(const CameraPath& path, const Sho
 // a film-wide metadata value says.
 double ShotReferenceDepth(const CameraPath& path, const ShotRange& shot, double explicit_depth_u);
 
+// Lost frames (model `lost`, docs/formats.md) are no motion. Within each
+// shot, the frames after a run of lost frames are moved rigidly (rotation,
+// centre; the focal by the ratio of tan(fov/2)) so that the first placed
+// frame after the run coincides with the run's placeholder pose: the pose
+// gap, which nothing measured, is no jump, and the motion resumes from the
+// next placed frame. nullopt when nothing moves (no lost frames, or every
+// gap already closed), so a path is copied only when it must be.
+std::optional<CameraPath> JoinAcrossLostFrames(const CameraPath& path);
+
+// The actuators return to rest over lost frames: from the last placed frame
+// before a lost run, the value it had is removed from `x` with the cut
+// crossfade's smooth step over ramp_s (at once when ramp_s <= 0), and the
+// motion after the run adds to that return (no jump; at rest by the end of
+// a run longer than ramp_s). `lost[i]`: frame i is lost; x is per frame,
+// relative to the shot start, on a path joined by JoinAcrossLostFrames.
+void FadeToRestOverLostFrames(const std::vector<double>& time_s, const std::vector<bool>& lost,
+                              double ramp_s, std::vector<double>* x);
+
 // Checks beyond ReadCameraPath's: |position| <= 1e6, time gaps inside a shot
 // <= max_gap_s, and what the gaps at shot changes skip beyond max_gap_s, summed,
 // at most the time the frames cover (rows x median frame interval inside

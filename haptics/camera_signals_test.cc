@@ -140,3 +140,57 @@ TEST(CameraSignals, TimeJumpAtAShotChangeIsBoundedByThePathsOwnLength) {
 
 }  // namespace
 }  // namespace hapcine
+
+namespace hapcine {
+namespace {
+
+TEST(CameraSignals, JoinAcrossLostFramesClosesTheGapRigidly) {
+  CameraPath path;
+  for (int i = 0; i < 6; ++i) {
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = i * 0.04;
+    f.shot = 0;
+    const bool lost = i == 2 || i == 3;
+    const int placed = lost ? 1 : i;
+    f.world_from_cam = QuaternionFromPanTiltRoll(PanTiltRoll{10.0 * placed, 0, 0});
+    f.center = Eigen::Vector3d(placed, 0, 0);
+    f.fov_deg = 50 - placed;
+    f.model = lost ? kLostModel : "general";
+    path.frames.push_back(f);
+  }
+  const std::optional<CameraPath> joined = JoinAcrossLostFrames(path);
+  ASSERT_TRUE(joined);
+  const auto& j = joined->frames;
+  // Frame 4 lands on the placeholder; frame 5 keeps its motion relative to 4.
+  EXPECT_LT(AngleBetweenDeg(j[4].world_from_cam, j[3].world_from_cam), 1e-9);
+  EXPECT_LT((j[4].center - j[3].center).norm(), 1e-12);
+  EXPECT_NEAR(j[4].fov_deg, j[3].fov_deg, 1e-9);
+  EXPECT_NEAR(AngleBetweenDeg(j[5].world_from_cam, j[4].world_from_cam), 10, 1e-9);
+  EXPECT_NEAR((j[5].center - j[4].center).norm(), 1, 1e-12);
+  EXPECT_NEAR(j[5].fov_deg, 47.95, 0.01);  // 45 deg scaled by tan(49/2) / tan(46/2), not 49 - 1
+  EXPECT_EQ(j[1].center, path.frames[1].center);  // before the gap: unchanged
+  EXPECT_FALSE(JoinAcrossLostFrames(*joined));  // nothing left to close: no copy
+  CameraPath none = path;
+  for (auto& f : none.frames) f.model = "general";
+  EXPECT_FALSE(JoinAcrossLostFrames(none));
+}
+
+TEST(CameraSignals, FadeToRestOverLostFrames) {
+  const std::vector<double> t = {0, 1, 2, 3, 4, 5, 6};
+  const std::vector<bool> lost = {false, false, true, true, true, false, false};
+  std::vector<double> x = {0, 2, 2, 2, 2, 2, 3};  // held over the lost run, then +1
+  FadeToRestOverLostFrames(t, lost, 2.0, &x);
+  EXPECT_EQ(x[1], 2);
+  EXPECT_NEAR(x[2], 1, 1e-12);  // halfway through the smooth step
+  EXPECT_NEAR(x[3], 0, 1e-12);  // at rest
+  EXPECT_NEAR(x[5], 0, 1e-12);
+  EXPECT_NEAR(x[6], 1, 1e-12);  // the motion after resumes from rest
+  std::vector<double> y = {0, 2, 2, 3};
+  FadeToRestOverLostFrames({0, 1, 2, 3}, {false, false, true, false}, 0, &y);
+  EXPECT_EQ(y[2], 0);
+  EXPECT_EQ(y[3], 1);
+}
+
+}  // namespace
+}  // namespace hapcine

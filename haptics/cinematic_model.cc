@@ -124,6 +124,23 @@ CinematicScale BaseScaleForShot(const CameraSignals& s, const SeatGeometry& seat
   return c;
 }
 
+// Lost frames are no motion: the actuators return to rest over them with
+// the cut crossfade's ramp (FadeToRestOverLostFrames).
+void FadeOverLostFrames(const CameraPath& path, const ShotRange& r, double ramp_s, CameraSignals* s) {
+  std::vector<bool> lost(s->size());
+  bool any = false;
+  for (size_t i = 0; i < s->size(); ++i) any |= lost[i] = IsLost(path.frames[r.first + i]);
+  if (!any) return;
+  std::vector<double> ch(s->size());
+  for (int k = 0; k < 3; ++k) {
+    for (size_t i = 0; i < s->size(); ++i) ch[i] = s->position_u[i][k];
+    FadeToRestOverLostFrames(s->time_s, lost, ramp_s, &ch);
+    for (size_t i = 0; i < s->size(); ++i) s->position_u[i][k] = ch[i];
+  }
+  for (auto* v : {&s->tilt_rad, &s->pan_rad, &s->roll_rad, &s->zoom_forward_u, &s->log_zoom})
+    FadeToRestOverLostFrames(s->time_s, lost, ramp_s, v);
+}
+
 }  // namespace
 
 const CinematicScale& CinematicScaling::ForShot(size_t i) const {
@@ -160,13 +177,16 @@ ActuatorFrame CinematicDisplacement(const Eigen::Vector3d& p, double tilt, doubl
   return out;
 }
 
-std::vector<CameraSignals> CinematicShotSignals(const CameraPath& path,
+std::vector<CameraSignals> CinematicShotSignals(const CameraPath& read_path,
                                                 const std::vector<ShotRange>& shots,
                                                 const CinematicOptions& o,
                                                 const WashoutOptions& w) {
+  const std::optional<CameraPath> joined = JoinAcrossLostFrames(read_path);
+  const CameraPath& path = joined ? *joined : read_path;
   std::vector<CameraSignals> out;
   for (const ShotRange& r : shots) {
     CameraSignals s = ExtractShotSignals(path, r, ShotReferenceDepth(path, r, o.reference_depth_u));
+    FadeOverLostFrames(path, r, w.cut_ramp_s, &s);
     if (w.high_pass) {
       std::vector<double> ch(s.size());
       for (int k = 0; k < 3; ++k) {

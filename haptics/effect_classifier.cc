@@ -122,9 +122,13 @@ void ClassifierOptions::Check() const {
   if (!(significant_change > 0)) throw UsageError("classifier significant_change must be > 0");
 }
 
-std::vector<ClassifiedSegment> ClassifyCameraPath(const CameraPath& path,
+std::vector<ClassifiedSegment> ClassifyCameraPath(const CameraPath& read_path,
                                                   const ClassifierOptions& o) {
   o.Check();
+  // Lost frames hold their placeholder and the gap after them is closed:
+  // no motion, no spike (JoinAcrossLostFrames).
+  const std::optional<CameraPath> joined = JoinAcrossLostFrames(read_path);
+  const CameraPath& path = joined ? *joined : read_path;
   const double depth = o.reference_depth_u > 0 ? o.reference_depth_u : ReferenceDepthFor(path, 1.0);
   std::vector<ClassifiedSegment> out;
   for (const ShotRange& shot : SplitShots(path)) {

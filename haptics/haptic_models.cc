@@ -138,10 +138,15 @@ void HapticOptions::Check() const {
   }
 }
 
-HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& o) {
+HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o) {
   o.Check();
   const std::string source = o.source.empty() ? "camera path" : o.source;
-  ValidatePathForHaptics(path, source, o.max_gap_s);
+  ValidatePathForHaptics(read_path, source, o.max_gap_s);
+  // The models never integrate lost frames: the pose gap after them is
+  // closed here (JoinAcrossLostFrames), and the cinematic model returns the
+  // actuators to rest over them (cinematic_model.cc).
+  const std::optional<CameraPath> joined = JoinAcrossLostFrames(read_path);
+  const CameraPath& path = joined ? *joined : read_path;
   if (std::abs(path.frames.front().time_s) > kMaxMediaClockS) {
     // Times counted from the first frame instead; the offset is kept.
     CameraPath from_first = path;

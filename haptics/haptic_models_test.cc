@@ -167,6 +167,65 @@ TEST(HapticModels, FilmStaysInTheWorkspaceAndNeverJumps) {
   EXPECT_LT(std::abs(t.samples[24900].pos_m[0].x()), 0.1 * o.seat.usable_half_m);
 }
 
+// 10 s of a pan (3 deg/s) with a sideways drift; frames 100-149 (4-6 s)
+// lost: the placeholder is frame 99's pose, and at frame 150 the path jumps
+// by the 2 s of motion nothing measured.
+CameraPath PanWithLostFrames() {
+  CameraPath path;
+  for (int i = 0; i < 250; ++i) {
+    const int placed = i >= 100 && i < 150 ? 99 : i;
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = i / 25.0;
+    f.center = Eigen::Vector3d(0.02 * placed / 25.0, 0, 0);
+    f.world_from_cam = QuaternionFromPanTiltRoll(PanTiltRoll{3.0 * placed / 25.0, 0, 0});
+    f.fov_deg = 50;
+    f.shot = 0;
+    f.model = placed == i ? "general" : kLostModel;
+    f.confidence = placed == i ? 0.9 : 0.0;
+    path.frames.push_back(f);
+  }
+  return path;
+}
+
+TEST(HapticModels, LostFramesFadeToRestAndResumeWithoutASpike) {
+  const CameraPath path = PanWithLostFrames();
+  HapticOptions o;
+  o.washout.high_pass = false;  // a held pose would hold the actuators without it
+  const HapticTrack t = MakeHapticTrack(path, o);
+  const double rate = o.OutputRateHz();
+  // At rest once the ramp from the last placed frame (3.96 s) is over, until the motion resumes at 6 s.
+  // (+ one frame: samples interpolate between frames)
+  for (double s = 3.96 + o.washout.cut_ramp_s + 0.04; s < 6.0; s += 0.01) {
+    const HapticSample& x = t.samples[static_cast<size_t>(s * rate)];
+    for (int a = 0; a < kNumActuators; ++a) EXPECT_LT(x.pos_m[a].norm(), 1e-12) << s;
+  }
+  // Before the gap the pan is felt; after it, the motion resumes from rest.
+  EXPECT_GT(t.samples[static_cast<size_t>(3.9 * rate)].pos_m[0].norm(), 1e-3);
+  EXPECT_GT(t.samples[static_cast<size_t>(9.9 * rate)].pos_m[0].norm(), 1e-3);
+  // No spike: the speed limit never acts, and no step is larger than the
+  // placed motion's own largest step before the gap (times the crossfade's 1.875).
+  EXPECT_EQ(t.metadata.at("rate_limited_samples"), "0");
+  double before = 0, overall = 0;
+  for (size_t i = 1; i < t.samples.size(); ++i) {
+    for (int a = 0; a < kNumActuators; ++a) {
+      const double step = (t.samples[i].pos_m[a] - t.samples[i - 1].pos_m[a]).cwiseAbs().maxCoeff();
+      overall = std::max(overall, step);
+      if (t.samples[i].time_s < 3.9) before = std::max(before, step);
+    }
+  }
+  // The fade's own largest step: 1.875 x the value it removes / the ramp.
+  double at_gap = 0;
+  for (int a = 0; a < kNumActuators; ++a)
+    at_gap = std::max(at_gap, t.samples[static_cast<size_t>(3.96 * rate)].pos_m[a].cwiseAbs().maxCoeff());
+  EXPECT_LE(overall, before + 1.875 * at_gap / (o.washout.cut_ramp_s * rate) + 1e-12);
+  std::cout << "[ lost ] largest step " << overall << " m, before the gap " << before << " m\n";
+  // The semantic model sees no motion over the lost frames (no jump to classify).
+  o.model = HapticModel::kSemantic;
+  const HapticTrack sem = MakeHapticTrack(path, o);
+  EXPECT_EQ(sem.metadata.at("rate_limited_samples"), "0");
+}
+
 TEST(HapticModels, RejectsBadPaths) {
   HapticOptions o;
   o.source = "bad.camera.csv";

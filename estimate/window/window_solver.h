@@ -112,6 +112,9 @@ struct WindowReport {
   std::vector<WindowCandidate> candidates;
   BaSummary ba;                      // of the solution taken, after every polish
   int points_kept = 0;               // points whose track survived the whole-track cut
+  // Two-view inliers and correspondences of the window's free keyframes
+  // (set by the estimator; the shot quality summary, shot_quality.h).
+  int inliers = 0, correspondences = 0;
   std::vector<std::pair<std::string, double>> timings_s;  // wall seconds per step
 };
 

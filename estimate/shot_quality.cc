@@ -1,0 +1,141 @@
+#include "estimate/shot_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+
+#include "core/statistics.h"
+#include "estimate/geometry/reference_width.h"
+
+namespace hapcine {
+namespace {
+
+constexpr const char* kKeyPrefix = "shot_quality.";
+
+std::string Fixed(double v, int digits) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+// The windows' figures per shot: inliers and correspondences summed, the
+// RMS pooled over observations.
+struct WindowTally {
+  long inliers = 0, correspondences = 0;
+  double sum_sq_px = 0;
+  long observations = 0;
+  bool focal_observable = false;
+};
+
+}  // namespace
+
+std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vector<WindowReport>& windows,
+                                        int width) {
+  std::map<int, WindowTally> tally;
+  for (const WindowReport& w : windows) {
+    WindowTally& t = tally[w.shot];
+    t.inliers += w.inliers;
+    t.correspondences += w.correspondences;
+    t.sum_sq_px += w.rms_px * w.rms_px * w.observations;
+    t.observations += w.observations;
+    t.focal_observable |= w.focal_observable;
+  }
+  std::vector<ShotQuality> out;
+  std::vector<double> confidence;
+  for (size_t i = 0; i < path.frames.size(); ++i) {
+    const CameraFrame& f = path.frames[i];
+    const int shot = f.shot.value_or(0);
+    if (out.empty() || out.back().shot != shot) {
+      if (!out.empty()) out.back().median_confidence = Median(confidence);
+      confidence.clear();
+      out.push_back({});
+      out.back().shot = shot;
+      out.back().first_frame = f.frame;
+    }
+    ShotQuality& q = out.back();
+    q.last_frame = f.frame;
+    ++q.frames;
+    q.lost += IsLost(f);
+    confidence.push_back(IsLost(f) ? 0.0 : f.confidence.value_or(1.0));
+  }
+  if (!out.empty()) out.back().median_confidence = Median(confidence);
+  for (ShotQuality& q : out) {
+    if (auto it = tally.find(q.shot); it != tally.end()) {
+      const WindowTally& t = it->second;
+      if (t.correspondences > 0) q.inlier_ratio = static_cast<double>(t.inliers) / t.correspondences;
+      if (t.observations > 0 && width > 0)
+        q.rms_px = std::sqrt(t.sum_sq_px / t.observations) * kReferenceWidthPx / width;
+      q.focal_observable = t.focal_observable;
+    }
+    q.doubtful = q.lost > kDoubtfulLostShare * q.frames || q.median_confidence < kDoubtfulMedianConfidence;
+  }
+  return out;
+}
+
+void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path) {
+  for (const ShotQuality& q : shots) {
+    std::ostringstream v;
+    v << "first:" << q.first_frame << " last:" << q.last_frame << " frames:" << q.frames << " lost:" << q.lost
+      << " median_confidence:" << Fixed(q.median_confidence, 3);
+    if (q.inlier_ratio) v << " inlier_ratio:" << Fixed(*q.inlier_ratio, 3);
+    if (q.rms_px) v << " rms_px:" << Fixed(*q.rms_px, 3);
+    if (q.focal_observable) v << " focal_observable:" << (*q.focal_observable ? 1 : 0);
+    v << " doubtful:" << (q.doubtful ? 1 : 0);
+    path->metadata[kKeyPrefix + std::to_string(q.shot)] = v.str();
+  }
+}
+
+std::vector<ShotQuality> ReadShotQuality(const CameraPath& path) {
+  std::vector<ShotQuality> out;
+  for (const auto& [key, value] : path.metadata) {
+    if (key.rfind(kKeyPrefix, 0) != 0) continue;
+    ShotQuality q;
+    q.shot = std::atoi(key.c_str() + std::string(kKeyPrefix).size());
+    std::istringstream in(value);
+    std::string field;
+    while (in >> field) {
+      const size_t colon = field.find(':');
+      if (colon == std::string::npos) continue;
+      const std::string name = field.substr(0, colon);
+      const double v = std::strtod(field.c_str() + colon + 1, nullptr);
+      if (name == "first") q.first_frame = static_cast<int>(v);
+      else if (name == "last") q.last_frame = static_cast<int>(v);
+      else if (name == "frames") q.frames = static_cast<int>(v);
+      else if (name == "lost") q.lost = static_cast<int>(v);
+      else if (name == "median_confidence") q.median_confidence = v;
+      else if (name == "inlier_ratio") q.inlier_ratio = v;
+      else if (name == "rms_px") q.rms_px = v;
+      else if (name == "focal_observable") q.focal_observable = v != 0;
+      else if (name == "doubtful") q.doubtful = v != 0;
+    }
+    out.push_back(q);
+  }
+  std::sort(out.begin(), out.end(), [](const ShotQuality& a, const ShotQuality& b) { return a.shot < b.shot; });
+  return out;
+}
+
+nlohmann::json ShotQualityJson(const ShotQuality& q) {
+  auto opt = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"shot", q.shot},
+          {"first_frame", q.first_frame},
+          {"last_frame", q.last_frame},
+          {"frames", q.frames},
+          {"lost", q.lost},
+          {"median_confidence", q.median_confidence},
+          {"inlier_ratio", opt(q.inlier_ratio)},
+          {"rms_px", opt(q.rms_px)},
+          {"focal_observable", opt(q.focal_observable)},
+          {"doubtful", q.doubtful}};
+}
+
+std::string DoubtfulShotLine(const ShotQuality& q) {
+  std::string s = "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
+                  std::to_string(q.last_frame) + "): doubtful: ";
+  if (q.lost > 0) s += std::to_string(q.lost) + " of " + std::to_string(q.frames) + " frames lost, ";
+  return s + "median confidence " + Fixed(q.median_confidence, 2);
+}
+
+}  // namespace hapcine

@@ -1,0 +1,82 @@
+#include "estimate/shot_quality.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace hapcine {
+namespace {
+
+CameraPath TwoShots() {
+  CameraPath path;
+  for (int i = 0; i < 40; ++i) {
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = i / 25.0;
+    f.fov_deg = 50;
+    f.shot = i < 20 ? 0 : 1;
+    const bool lost = i >= 30 && i < 33;  // 3 of shot 1's 20 frames
+    f.model = lost ? kLostModel : "rotation";
+    f.confidence = lost ? 0.0 : (i < 20 ? 0.3 : 0.1);
+    path.frames.push_back(f);
+  }
+  return path;
+}
+
+TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
+  CameraPath path = TwoShots();
+  WindowReport w;
+  w.shot = 0;
+  w.inliers = 90;
+  w.correspondences = 100;
+  w.observations = 100;
+  w.rms_px = 0.5;  // at 1920 px: 0.25 px at 960
+  w.focal_observable = true;
+  const std::vector<ShotQuality> q = SummariseShots(path, {w}, 1920);
+  ASSERT_EQ(q.size(), 2u);
+  EXPECT_EQ(q[0].frames, 20);
+  EXPECT_EQ(q[0].lost, 0);
+  EXPECT_NEAR(q[0].median_confidence, 0.3, 1e-12);
+  EXPECT_NEAR(*q[0].inlier_ratio, 0.9, 1e-12);
+  EXPECT_NEAR(*q[0].rms_px, 0.25, 1e-12);
+  EXPECT_TRUE(*q[0].focal_observable);
+  EXPECT_FALSE(q[0].doubtful);
+  EXPECT_EQ(q[1].first_frame, 20);
+  EXPECT_EQ(q[1].last_frame, 39);
+  EXPECT_EQ(q[1].lost, 3);
+  EXPECT_FALSE(q[1].inlier_ratio);  // no window: unknown, not 0
+  EXPECT_TRUE(q[1].doubtful);       // 15 % lost, median 0.1
+  EXPECT_EQ(DoubtfulShotLine(q[1]), "shot 1 (frames 20-39): doubtful: 3 of 20 frames lost, median confidence 0.10");
+
+  WriteShotQuality(q, &path);
+  EXPECT_EQ(path.metadata.at("shot_quality.1"),
+            "first:20 last:39 frames:20 lost:3 median_confidence:0.100 doubtful:1");
+  // Through the file and back.
+  std::stringstream file;
+  WriteCameraPath(path, file);
+  const std::vector<ShotQuality> back = ReadShotQuality(ReadCameraPath(file, "test"));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(ShotQualityJson(back[0]), ShotQualityJson(q[0]));
+  EXPECT_EQ(ShotQualityJson(back[1]), ShotQualityJson(q[1]));
+}
+
+// One lost frame in 20 is the limit; a single weak frame is not a weak shot.
+TEST(ShotQuality, DoubtfulRuleAtItsEdges) {
+  CameraPath path = TwoShots();
+  for (auto& f : path.frames) {
+    f.shot = 0;
+    f.model = "rotation";
+    f.confidence = 0.3;
+  }
+  path.frames[5].model = kLostModel;
+  path.frames[6].model = kLostModel;  // 2 of 40: 5 %
+  path.frames[7].confidence = 0.01;
+  EXPECT_FALSE(SummariseShots(path, {}, 960)[0].doubtful);
+  path.frames[8].model = kLostModel;  // 3 of 40
+  EXPECT_TRUE(SummariseShots(path, {}, 960)[0].doubtful);
+  CameraPath empty;
+  EXPECT_TRUE(SummariseShots(empty, {}, 960).empty());
+}
+
+}  // namespace
+}  // namespace hapcine
