@@ -122,7 +122,7 @@ def verdict(r, t):
 def fmt(v, digits=3):
     if v is None:
         return "n/a"
-    if v == 0:
+    if abs(v) < 1e-9:  # round-off of an exact zero
         return "0"
     return ("%." + str(digits) + "g") % v
 
@@ -133,7 +133,7 @@ def cell(r, static):
     s = "%s / %s / %s / %s" % (fmt(r["rot"]), fmt(r["fov"]), fmt(r["zoom"]),
                                fmt(r["ate"]) if r["ate"] is not None else "-")
     if static or r.get("gt_static"):
-        s += " / tr %s, static %s" % (fmt(r["spurious"], 2),
+        s += " / tr %s, model %s" % (fmt(r["spurious"], 2),
                                      fmt(r["model_agreement"], 2) if r["model_agreement"]
                                      is not None else "n/a")
     return s
