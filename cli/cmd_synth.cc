@@ -27,12 +27,24 @@ int RunSynth(int argc, char** argv) {
       argv[0]};
   std::vector<std::string> presets;
   std::string out_dir;
-  bool all = false, table1 = false, hard = false, list = false, full_ss = false;
+  bool all = false, table1 = false, hard = false, movers = false, list = false, full_ss = false;
+  double distortion_k1 = 0;
   SynthOptions opt;
   app.add_option("presets", presets, "preset names (see --list)");
   app.add_flag("--all", all, "every preset (Table 1 and hard cases)");
   app.add_flag("--table1", table1, "the seven Table 1 presets");
   app.add_flag("--hard", hard, "the hard-case presets");
+  app.add_flag("--movers", movers,
+               "the presets with independently moving objects (a head, walkers, a crowd; not "
+               "part of --all)");
+  app.add_option("--variant", opt.variant,
+                 "'test': the test-split look (other textures and lighting, grain, motion blur, "
+                 "compression, vignetting, lens distortion, far walkers) over the same camera "
+                 "paths");
+  auto* dist = app.add_option("--distortion", distortion_k1,
+                              "radial lens distortion k1: x_d = x_n (1 + k1 r_n^2), x_n = (x - "
+                              "W/2) / focal_px (OpenCV k1, COLMAP SIMPLE_RADIAL); < 0 = barrel")
+                   ->check(FiniteRange(-0.2, 0.2));
   app.add_flag("--list", list, "print every preset with a one-line description and exit");
   app.add_option("-o,--output", out_dir, "output directory (created if missing)");
   app.add_option("--width", opt.width, "frame width, pixels (even)")->capture_default_str()
@@ -74,6 +86,10 @@ int RunSynth(int argc, char** argv) {
       for (const std::string& name : SynthPresetNames()) {
         std::printf("%-20s %s\n", name.c_str(), SynthPresetDescription(name).c_str());
       }
+      std::printf("\nwith independently moving objects (--movers):\n");
+      for (const std::string& name : SynthMoverPresetNames()) {
+        std::printf("%-20s %s\n", name.c_str(), SynthPresetDescription(name).c_str());
+      }
       return kExitOk;
     }
     std::vector<std::string> todo;
@@ -87,8 +103,13 @@ int RunSynth(int argc, char** argv) {
     if (all) add(SynthPresetNames());
     if (table1) add(SynthTable1PresetNames());
     if (hard) add(SynthHardPresetNames());
+    if (movers) add(SynthMoverPresetNames());
     add(presets);
-    if (todo.empty()) throw UsageError("no preset given (name presets, or --all/--table1/--hard)");
+    if (todo.empty()) {
+      throw UsageError("no preset given (name presets, or --all/--table1/--hard/--movers)");
+    }
+    opt.has_distortion = dist->count() > 0;
+    opt.distortion_k1 = distortion_k1;
     if (out_dir.empty()) throw UsageError("-o OUT_DIR is required");
     opt.adaptive = !full_ss;
     opt.Check();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -34,13 +35,31 @@ struct Sampler {
   Vector3d center;
   int width, height;
   double f;
+  double k1 = 0;
+  const MoverFrame* movers = nullptr;
+
+  // Camera-frame ray through the (distorted) image point (x, y).
+  Vector3d Ray(double x, double y) const {
+    if (k1 == 0) return CameraRayDirection(x, y, width, height, f);
+    const Eigen::Vector2d u = UndistortNormalised(
+        Eigen::Vector2d((x - 0.5 * width) / f, (y - 0.5 * height) / f), k1);
+    return Vector3d(u.x(), -u.y(), -1.0);
+  }
 
   // Colour (RGB) seen through continuous image point (x, y); `fp_scale` is
   // the sample's width in pixels (1 for a whole pixel). Sets *id.
   Rgb Sample(double x, double y, double fp_scale, int* id) const {
-    const Vector3d d = world_from_cam * CameraRayDirection(x, y, width, height, f);
+    const Vector3d d = world_from_cam * Ray(x, y);
     Hit hit;
-    if (!scene.Trace(center, d, &hit)) {
+    const bool scene_hit = scene.Trace(center, d, &hit);
+    if (movers != nullptr) {
+      Rgb albedo;
+      if (movers->Trace(center, d, fp_scale / f, &hit, &albedo)) {
+        *id = hit.surface_id;
+        return ShadeMover(scene, hit, albedo);
+      }
+    }
+    if (!scene_hit) {
       *id = -1;
       return Rgb::Zero();
     }
@@ -62,9 +81,34 @@ bool ProjectToImage(const CameraView& view, const Vector3d& world_point, Eigen::
   if (p.z() >= -1e-12) return false;
   const double f = view.focal_px();
   const double depth = -p.z();
-  (*xy)[0] = 0.5 * view.width + f * p.x() / depth;
-  (*xy)[1] = 0.5 * view.height - f * p.y() / depth;
+  const Eigen::Vector2d n = DistortNormalised(Eigen::Vector2d(p.x() / depth, -p.y() / depth),
+                                              view.k1);
+  (*xy)[0] = 0.5 * view.width + f * n.x();
+  (*xy)[1] = 0.5 * view.height + f * n.y();
   return true;
+}
+
+Eigen::Vector2d DistortNormalised(const Eigen::Vector2d& u, double k1) {
+  return u * (1 + k1 * u.squaredNorm());
+}
+
+double MaxDistortedRadius(double k1) {
+  if (k1 >= 0) return std::numeric_limits<double>::infinity();
+  const double r = 1 / std::sqrt(-3 * k1);  // where d/dr [r (1 + k1 r^2)] = 0
+  return r * (1 + k1 * r * r);
+}
+
+Eigen::Vector2d UndistortNormalised(const Eigen::Vector2d& d, double k1) {
+  const double rd = d.norm();
+  if (k1 == 0 || rd == 0) return d;
+  double r = rd;
+  for (int i = 0; i < 30; ++i) {  // Newton on g(r) = r + k1 r^3 - rd, from r = rd
+    const double g = r + k1 * r * r * r - rd, dg = 1 + 3 * k1 * r * r;
+    const double step = g / dg;
+    r -= step;
+    if (std::abs(step) < 1e-15 * (1 + r)) break;
+  }
+  return d * (r / rd);
 }
 
 void RenderOptions::Check() const {
@@ -82,6 +126,14 @@ cv::Mat RenderView(const Scene& scene, const CameraView& view, const RenderOptio
   const int w = view.width, h = view.height;
   Sampler s{scene, view.world_from_cam.normalized().toRotationMatrix(), view.center, w, h,
             view.focal_px()};
+  s.k1 = view.k1;
+  if (view.movers && !view.movers->empty()) s.movers = view.movers.get();
+  // The distortion must be invertible out to the image corner.
+  const double corner_r = std::hypot(0.5 * w, 0.5 * h) / s.f;
+  if (!(corner_r < MaxDistortedRadius(view.k1))) {
+    throw UsageError("lens distortion k1 = " + std::to_string(view.k1) +
+                     " folds the image over before its corner at this field of view");
+  }
   cv::Mat out(h, w, CV_32FC3);
   const int n = options.supersample;
   // Sub-sample offsets inside the pixel square.

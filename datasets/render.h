@@ -20,9 +20,11 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "datasets/movers.h"
 #include "datasets/scene.h"
 
 namespace hapcine::synth {
@@ -32,9 +34,27 @@ struct CameraView {
   Eigen::Quaterniond world_from_cam = Eigen::Quaterniond::Identity();
   double fov_deg = 50;  // horizontal
   int width = 1280, height = 720;
+  // Radial lens distortion (DistortNormalised below); 0 = ideal pinhole.
+  double k1 = 0;
+  // Independently moving objects at this view's instant (null or empty = none).
+  std::shared_ptr<const MoverFrame> movers;
 
   double focal_px() const;
 };
+
+// One-coefficient radial distortion, in focal-normalised image coordinates
+// (the model of OpenCV's k1 and COLMAP's SIMPLE_RADIAL):
+//   x_n = (x - W/2) / f,  y_n = (y - H/2) / f      (ideal pinhole image, pixels x, y)
+//   (x_d, y_d) = (x_n, y_n) * (1 + k1 * (x_n^2 + y_n^2))
+//   distorted pixel = (W/2 + f x_d, H/2 + f y_d)
+// f is focal_px of the camera path (the pinhole's), the centre is the image
+// centre. k1 < 0 is barrel distortion (the corners are pulled in).
+Eigen::Vector2d DistortNormalised(const Eigen::Vector2d& undistorted, double k1);
+// Inverse of DistortNormalised (Newton on the radius). Exact to ~1e-12 where
+// the map is monotonic: r (1 + k1 r^2) increasing, i.e. 1 + 3 k1 r^2 > 0.
+Eigen::Vector2d UndistortNormalised(const Eigen::Vector2d& distorted, double k1);
+// Largest distorted radius the model reaches monotonically (infinite for k1 >= 0).
+double MaxDistortedRadius(double k1);
 
 // Camera-frame ray direction (not normalised; z = -1) through the continuous
 // image point (x_px, y_px).
@@ -42,7 +62,8 @@ Eigen::Vector3d CameraRayDirection(double x_px, double y_px, int width, int heig
                                    double focal_px);
 
 // Projects a world point to continuous image coordinates (the inverse of
-// CameraRayDirection). False if the point is not in front of the camera.
+// CameraRayDirection; with the view's k1 distortion applied). False if the
+// point is not in front of the camera.
 bool ProjectToImage(const CameraView& view, const Eigen::Vector3d& world_point,
                     Eigen::Vector2d* xy_px);
 

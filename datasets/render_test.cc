@@ -160,6 +160,95 @@ TEST(RenderView, DeterministicAcrossThreadCounts) {
   EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0);
 }
 
+TEST(LensDistortion, MapsAKnownPointWhereTheFormulaSays) {
+  // x_d = x_n (1 + k1 r^2): (0.3, 0.4) has r^2 = 0.25, so k1 = -0.1 scales it by 0.975.
+  const Vector2d d = DistortNormalised(Vector2d(0.3, 0.4), -0.1);
+  EXPECT_NEAR(d.x(), 0.2925, 1e-15);
+  EXPECT_NEAR(d.y(), 0.39, 1e-15);
+  for (double k1 : {-0.2, -0.04, 0.0, 0.15}) {
+    for (const Vector2d& u : {Vector2d(0.0, 0.0), Vector2d(0.01, -0.02), Vector2d(-0.6, 0.35)}) {
+      const Vector2d back = UndistortNormalised(DistortNormalised(u, k1), k1);
+      EXPECT_NEAR((back - u).norm(), 0, 1e-12) << k1;
+    }
+  }
+  // Barrel distortion folds over beyond r = 1/sqrt(-3 k1).
+  EXPECT_NEAR(MaxDistortedRadius(-0.12), (1 / std::sqrt(0.36)) * (1 - 0.12 / 0.36), 1e-12);
+  EXPECT_TRUE(std::isinf(MaxDistortedRadius(0.1)));
+
+  // ProjectToImage applies it in pixels around the image centre with focal_px.
+  CameraView v;
+  v.width = 640;
+  v.height = 360;
+  v.fov_deg = 60;
+  v.k1 = -0.1;
+  const double f = v.focal_px();
+  Vector2d xy;
+  // Camera frame: +y up, so image y_n = 0.4 (down) is camera y = -0.4.
+  ASSERT_TRUE(ProjectToImage(v, Vector3d(0.3, -0.4, -1) * 2.5, &xy));
+  EXPECT_NEAR(xy.x(), 320 + f * 0.2925, 1e-9);
+  EXPECT_NEAR(xy.y(), 180 + f * 0.39, 1e-9);
+}
+
+TEST(RenderView, DistortedSphereLandsAtTheDistortedProjection) {
+  auto scene = DarkRoom();
+  CameraView v;
+  v.width = 160;
+  v.height = 120;
+  v.fov_deg = 60;
+  v.k1 = -0.15;
+  scene->spheres.push_back({Vector3d(0.5, -0.3, -1) * 6, 0.12, 1});
+  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->UpdateGroupBounds();
+  RenderOptions o;
+  o.supersample = 4;
+  const Vector2d got = BrightCentroid(RenderView(*scene, v, o));
+  Vector2d expected, pinhole;
+  ASSERT_TRUE(ProjectToImage(v, scene->spheres[0].center, &expected));
+  CameraView ideal = v;
+  ideal.k1 = 0;
+  ASSERT_TRUE(ProjectToImage(ideal, scene->spheres[0].center, &pinhole));
+  EXPECT_GT((expected - pinhole).norm(), 3);  // the distortion is visible ...
+  EXPECT_NEAR(got.x(), expected.x(), 0.2);    // ... and the render follows it
+  EXPECT_NEAR(got.y(), expected.y(), 0.2);
+  // A k1 that folds the image before its corner is refused.
+  v.k1 = -0.2;
+  v.fov_deg = 120;
+  EXPECT_THROW(RenderView(*scene, v, o), UsageError);
+}
+
+TEST(RenderView, MoversOccludeTheSceneOnlyWhereTheyAreNearer) {
+  auto scene = DarkRoom();
+  scene->spheres.push_back({Vector3d(0.5, 0, -5), 0.4, 1});  // bright, right of the axis
+  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->UpdateGroupBounds();
+  CameraView v;
+  v.width = 96;
+  v.height = 64;
+  v.fov_deg = 50;
+  RenderOptions o;
+  const cv::Mat before = RenderView(*scene, v, o);
+  // A mover made of one ellipsoid, left of the axis, nearer than the room's wall.
+  auto movers = std::make_shared<MoverFrame>(MoversAt(MoverKind::kHead, 0, 7, 1));
+  movers->parts.resize(1);
+  movers->parts[0].center = Vector3d(-0.8, 0, -4);
+  movers->parts[0].radii = Vector3d(0.5, 0.7, 0.3);
+  movers->groups = {{movers->parts[0].center, 0.7, 0, 1}};
+  v.movers = movers;
+  const cv::Mat after = RenderView(*scene, v, o);
+  Vector2d mover_px, sphere_px;
+  ASSERT_TRUE(ProjectToImage(v, movers->parts[0].center, &mover_px));
+  ASSERT_TRUE(ProjectToImage(v, scene->spheres[0].center, &sphere_px));
+  const auto at = [](const cv::Mat& m, const Vector2d& p) {
+    return m.at<cv::Vec3f>(static_cast<int>(p.y()), static_cast<int>(p.x()));
+  };
+  EXPECT_GT(cv::norm(at(after, mover_px) - at(before, mover_px)), 10);  // the mover is drawn
+  EXPECT_EQ(at(after, sphere_px), at(before, sphere_px));              // the sphere is untouched
+  // Behind the sphere, a mover is hidden.
+  movers->parts[0].center = Vector3d(0.5, 0, -8);
+  movers->groups[0].center = movers->parts[0].center;
+  EXPECT_EQ(at(RenderView(*scene, v, o), sphere_px), at(before, sphere_px));
+}
+
 TEST(RenderOptions, RejectsBadSupersample) {
   RenderOptions o;
   o.supersample = 0;

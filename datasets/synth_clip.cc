@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <system_error>
 
@@ -31,16 +32,60 @@ std::string Num(double v) {
   return s.str();
 }
 
+// The look of a clip: the preset's own, or the test-split variant's
+// (docs/synth.md, "Test-split variant"). Only appearance changes; the camera
+// path is the preset's.
+struct Look {
+  uint32_t scene_seed = 1;
+  double k1 = 0;
+  synth::MoverKind movers = synth::MoverKind::kNone;
+  bool variant = false;
+  int max_blur_views = 48;  // sub-frames of a motion-blurred frame at most
+  bool blur = false;        // average sub-frames over the shutter
+  int crf = 18;
+};
+
+constexpr uint32_t kVariantSeedOffset = 1000003;  // other textures, posters, mover clothes
+constexpr double kVariantK1 = -0.04;               // mild barrel distortion
+constexpr int kVariantCrf = 26;                    // visible compression
+constexpr float kVariantGrainSigma = 3.0f;         // film grain, 8-bit levels
+constexpr float kVariantVignette = 0.3f;           // light fall-off at the corners
+constexpr int kVariantBlurViews = 4;               // bounded cost of the variant's motion blur
+
+Look ClipLook(const PresetInfo& p, const SynthOptions& o) {
+  Look look;
+  look.variant = o.variant == "test";
+  look.scene_seed = look.variant ? o.seed + kVariantSeedOffset : o.seed;
+  look.movers = p.movers;
+  if (look.variant && look.movers == synth::MoverKind::kNone) {
+    look.movers = synth::MoverKind::kFarWalkers;
+  }
+  look.k1 = o.has_distortion ? o.distortion_k1 : look.variant ? kVariantK1 : 0;
+  look.blur = p.motion_blur || look.variant;
+  look.max_blur_views = p.motion_blur ? 48 : kVariantBlurViews;
+  look.crf = p.high_crf ? o.noisy_crf : look.variant ? std::max(o.crf, kVariantCrf) : o.crf;
+  return look;
+}
+
+CameraView ClipView(const PresetInfo& p, double t, const SynthOptions& o, const Look& look) {
+  CameraView v = SynthView(PresetCameraAt(p, t, Timing(o), o.seed), o.width, o.height);
+  v.k1 = look.k1;
+  if (look.movers != synth::MoverKind::kNone) {
+    v.movers = std::make_shared<const synth::MoverFrame>(
+        synth::MoversAt(look.movers, t, o.duration_s, look.scene_seed));
+  }
+  return v;
+}
+
 // Views averaged into frame `frame`: one at the frame time, or, for
 // motion-blurred presets, enough sub-frame views across the shutter interval
 // (centred on the frame time) that consecutive ones move the image by at most
 // ~2.5 px. The ground truth is the pose at the centre of the exposure.
-std::vector<CameraView> FrameViews(const PresetInfo& p, int frame, const SynthOptions& o) {
+std::vector<CameraView> FrameViews(const PresetInfo& p, int frame, const SynthOptions& o,
+                                   const Look& look) {
   const synth::ClipTiming timing = Timing(o);
   const double t = timing.FrameTime(frame);
-  if (!p.motion_blur) {
-    return {SynthView(PresetCameraAt(p, t, timing, o.seed), o.width, o.height)};
-  }
+  if (!look.blur) return {ClipView(p, t, o, look)};
   const double half = 0.5 * o.shutter / o.fps;
   const CameraState a = PresetCameraAt(p, t - half, timing, o.seed);
   const CameraState b = PresetCameraAt(p, t + half, timing, o.seed);
@@ -49,11 +94,11 @@ std::vector<CameraView> FrameViews(const PresetInfo& p, int frame, const SynthOp
                          std::abs(FocalPxFromFovDeg(a.fov_deg, o.width) -
                                   FocalPxFromFovDeg(b.fov_deg, o.width)) +
                          (a.center - b.center).norm() * f;  // worst case: 1 m depth
-  const int n = std::clamp(static_cast<int>(std::ceil(disp_px / 2.5)), 1, 48);
+  const int n = std::clamp(static_cast<int>(std::ceil(disp_px / 2.5)), 1, look.max_blur_views);
   std::vector<CameraView> views;
   for (int k = 0; k < n; ++k) {
     const double tk = n == 1 ? t : t - half + (k + 0.5) / n * 2 * half;
-    views.push_back(SynthView(PresetCameraAt(p, tk, timing, o.seed), o.width, o.height));
+    views.push_back(ClipView(p, tk, o, look));
   }
   return views;
 }
@@ -62,7 +107,8 @@ bool SameViews(const std::vector<CameraView>& a, const std::vector<CameraView>& 
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {
     if (a[i].center != b[i].center || a[i].fov_deg != b[i].fov_deg ||
-        a[i].world_from_cam.coeffs() != b[i].world_from_cam.coeffs()) {
+        a[i].world_from_cam.coeffs() != b[i].world_from_cam.coeffs() || a[i].k1 != b[i].k1 ||
+        a[i].movers || b[i].movers) {  // movers move: every frame is rendered
       return false;
     }
   }
@@ -95,6 +141,12 @@ void SynthOptions::Check() const {
     throw UsageError("crf must be in [0, 51]");
   }
   if (!(shutter > 0 && shutter <= 1)) throw UsageError("shutter must be in (0, 1]");
+  if (variant != "" && variant != "test") {
+    throw UsageError("unknown variant '" + variant + "' (known: test)");
+  }
+  if (has_distortion && !(distortion_k1 >= -0.2 && distortion_k1 <= 0.2)) {
+    throw UsageError("distortion k1 must be in [-0.2, 0.2]");
+  }
   static const char* kX264[] = {"ultrafast", "superfast", "veryfast", "faster", "fast",
                                 "medium",    "slow",      "slower",   "veryslow", "placebo"};
   if (std::find(std::begin(kX264), std::end(kX264), x264_preset) == std::end(kX264)) {
@@ -121,6 +173,12 @@ std::vector<std::string> SynthHardPresetNames() {
   for (const PresetInfo& p : synth::SynthPresets()) {
     if (p.group == "hard") out.push_back(p.name);
   }
+  return out;
+}
+
+std::vector<std::string> SynthMoverPresetNames() {
+  std::vector<std::string> out;
+  for (const PresetInfo& p : synth::SynthMoverPresets()) out.push_back(p.name);
   return out;
 }
 
@@ -160,7 +218,17 @@ CameraPath SynthGroundTruth(const std::string& preset, const SynthOptions& optio
   m["units"] = "m";
   m["scene"] = p.scene == synth::SceneStyle::kLowTexture ? "hall_low_texture" : "hall";
   m["pixel_centre"] = "i+0.5";  // pixel (i, j) centre at (i+0.5, j+0.5); principal point W/2 H/2
-  if (p.motion_blur) m["shutter"] = Num(options.shutter);
+  const Look look = ClipLook(p, options);
+  if (look.blur) m["shutter"] = Num(options.shutter);
+  if (look.variant) {
+    m["variant"] = options.variant;
+    m["scene_seed"] = std::to_string(look.scene_seed);
+    m["grain_sigma"] = Num(kVariantGrainSigma);
+    m["vignette"] = Num(kVariantVignette);
+    m["crf"] = std::to_string(look.crf);
+  }
+  if (look.k1 != 0) m["distortion_k1"] = Num(look.k1);  // render.h DistortNormalised
+  if (look.movers != synth::MoverKind::kNone) m["movers"] = synth::MoverKindName(look.movers);
   if (p.noise_sigma > 0) m["noise_sigma"] = Num(p.noise_sigma);
   if (p.cut) m["cut_frames"] = std::to_string(PresetCutFrame(p, timing));
   if (p.fade) {
@@ -207,11 +275,55 @@ std::shared_ptr<const synth::Scene> SynthScene(uint32_t seed, synth::SceneStyle 
   return scene;
 }
 
+// The test-split variant's lighting: the lights moved and warmer/cooler,
+// a darker ambient term (same geometry and textures).
+std::shared_ptr<const synth::Scene> VariantLighting(const synth::Scene& base) {
+  auto lit = std::make_shared<synth::Scene>(base);
+  lit->lights = {{Eigen::Vector3d(-5, 4.2, -1), 0.6f, 4.0},
+                 {Eigen::Vector3d(4, 4.6, -6), 0.35f, 6.0},
+                 {Eigen::Vector3d(1, 3.5, 3.0), 0.3f, 4.0}};
+  lit->ambient = 0.33f;
+  return lit;
+}
+
+// Per-pixel gain of the variant's vignetting: 1 - v (r / r_corner)^2.
+cv::Mat VignetteGain(int width, int height) {
+  cv::Mat gain(height, width, CV_32FC3);
+  const double rc2 = 0.25 * (double(width) * width + double(height) * height);
+  for (int y = 0; y < height; ++y) {
+    float* row = gain.ptr<float>(y);
+    for (int x = 0; x < width; ++x) {
+      const double dx = x + 0.5 - 0.5 * width, dy = y + 0.5 - 0.5 * height;
+      const float g = static_cast<float>(1 - kVariantVignette * (dx * dx + dy * dy) / rc2);
+      row[3 * x] = row[3 * x + 1] = row[3 * x + 2] = g;
+    }
+  }
+  return gain;
+}
+
+// The variant's picture treatment of a rendered frame (BGR, 0..255 floats):
+// a warm grade with a slight gamma, vignetting, and luminance film grain
+// seeded per frame.
+void VariantTreatment(const cv::Mat& vignette, uint32_t seed, int frame, cv::Mat* img) {
+  cv::multiply(*img, cv::Scalar(0.9, 1.0, 1.08), *img);  // B, G, R gains
+  cv::multiply(*img, vignette, *img);
+  cv::max(*img, 0.0, *img);
+  cv::pow(*img * (1.0 / 255), 0.9, *img);
+  *img *= 255.0;
+  cv::Mat grain(img->size(), CV_32FC1);
+  cv::RNG rng((static_cast<uint64_t>(seed) << 32) ^ (0x85EBCA6BULL * (frame + 7)));
+  rng.fill(grain, cv::RNG::NORMAL, 0, kVariantGrainSigma);
+  cv::Mat grain3;
+  cv::merge(std::vector<cv::Mat>{grain, grain, grain}, grain3);
+  *img += grain3;
+}
+
 SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
                       const std::string& out_dir) {
   options.Check();
   const PresetInfo& p = synth::FindSynthPreset(preset);
   const CameraPath truth = SynthGroundTruth(preset, options);
+  const Look look = ClipLook(p, options);
   PrepareOutputDir(out_dir);
   SynthResult result;
   result.video_path = (fs::path(out_dir) / (p.name + ".mp4")).string();
@@ -219,12 +331,14 @@ SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
   result.frames = static_cast<int>(truth.frames.size());
 
   VideoWriterOptions vopt;
-  vopt.crf = p.high_crf ? options.noisy_crf : options.crf;
+  vopt.crf = look.crf;
   vopt.preset = options.x264_preset;
   VideoWriter writer;
   writer.Open(result.video_path, options.width, options.height, options.fps, vopt);
 
-  const auto scene = SynthScene(options.seed, p.scene, options.jobs);
+  auto scene = SynthScene(look.scene_seed, p.scene, options.jobs);
+  if (look.variant) scene = VariantLighting(*scene);
+  const cv::Mat vignette = look.variant ? VignetteGain(options.width, options.height) : cv::Mat();
   synth::RenderOptions ropt;
   ropt.supersample = options.supersample;
   ropt.adaptive = options.adaptive;
@@ -236,7 +350,7 @@ SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
   std::vector<CameraView> prev_views;
   cv::Mat clean, frame_f, frame_8u, noise;
   for (int i = 0; i < result.frames; ++i) {
-    std::vector<CameraView> views = FrameViews(p, i, options);
+    std::vector<CameraView> views = FrameViews(p, i, options, look);
     if (clean.empty() || !SameViews(views, prev_views)) {  // still frames are rendered once
       clean = views.size() == 1 ? synth::RenderView(*scene, views[0], ropt)
                                 : synth::RenderAverage(*scene, views, blur_opt);
@@ -245,6 +359,10 @@ SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
     }
     const double gain = PresetBrightnessAt(p, timing.FrameTime(i), timing);
     frame_f = gain == 1.0 ? clean : clean * gain;
+    if (look.variant) {
+      if (frame_f.data == clean.data) frame_f = clean.clone();
+      VariantTreatment(vignette, look.scene_seed, i, &frame_f);
+    }
     if (p.noise_sigma > 0) {
       noise.create(frame_f.size(), CV_32FC3);
       cv::RNG rng((static_cast<uint64_t>(options.seed) << 32) ^ (0x9E3779B9ULL * (i + 1)));

@@ -33,6 +33,14 @@ struct SynthOptions {
   int noisy_crf = 38;         // x264 CRF for the noise_compression preset
   std::string x264_preset = "fast";  // x264 speed preset
   double shutter = 0.5;       // exposure / frame interval for motion-blurred presets (180 deg)
+  // Radial lens distortion k1 (render.h, DistortNormalised); used when
+  // has_distortion, else 0 (or the variant's own).
+  bool has_distortion = false;
+  double distortion_k1 = 0;
+  // "" = the presets as documented; "test" = the test-split look (other
+  // textures and lighting, grain, motion blur, compression, vignetting, lens
+  // distortion, far walkers) over the same camera paths (docs/synth.md).
+  std::string variant;
   // Called after every frame with (preset, frames done, frames total).
   std::function<void(const std::string&, int, int)> progress;
 
@@ -51,6 +59,8 @@ struct SynthResult {
 std::vector<std::string> SynthPresetNames();
 std::vector<std::string> SynthTable1PresetNames();
 std::vector<std::string> SynthHardPresetNames();
+// The presets with independently moving objects (not part of SynthPresetNames()).
+std::vector<std::string> SynthMoverPresetNames();
 // One-line description of a preset (throws UsageError for unknown names).
 std::string SynthPresetDescription(const std::string& preset);
 

@@ -95,6 +95,39 @@ TEST(SynthClip, RenderIsDeterministicInTheSeed) {
   EXPECT_GT(sd[0], 15);
 }
 
+TEST(SynthClip, HeadMoverChangesThePictureUnderAStaticCamera) {
+  const fs::path dir = TempDir("head");
+  const SynthResult r = SynthClip("head_turn", Tiny(), dir.string());
+  const auto video = testing::DecodeVideo(r.video_path);
+  ASSERT_EQ(video.frames.size(), 14u);
+  // The camera never moves, but the head (in the middle of the frame) does.
+  const cv::Rect middle(50, 20, 60, 50);
+  const double change =
+      cv::norm(video.frames[0](middle), video.frames[7](middle), cv::NORM_L1) / middle.area();
+  EXPECT_GT(change, 5);
+  EXPECT_EQ(r.rendered_views, 14);  // every frame rendered: the movers move
+  fs::remove_all(dir);
+}
+
+TEST(SynthClip, VariantIsDeterministicAndDiffersFromTheOriginal) {
+  SynthOptions o = Tiny();
+  o.duration_s = 3 / 24.0;
+  const fs::path dir = TempDir("variant");
+  const SynthResult orig = SynthClip("dutch_angle", o, (dir / "orig").string());
+  o.variant = "test";
+  const SynthResult a = SynthClip("dutch_angle", o, (dir / "a").string());
+  const SynthResult b = SynthClip("dutch_angle", o, (dir / "b").string());
+  const auto va = testing::DecodeVideo(a.video_path), vb = testing::DecodeVideo(b.video_path);
+  const auto vo = testing::DecodeVideo(orig.video_path);
+  ASSERT_EQ(va.frames.size(), 3u);
+  ASSERT_EQ(vo.frames.size(), 3u);
+  for (size_t i = 0; i < va.frames.size(); ++i) {
+    EXPECT_EQ(cv::norm(va.frames[i], vb.frames[i], cv::NORM_INF), 0) << i;
+    EXPECT_GT(cv::norm(va.frames[i], vo.frames[i], cv::NORM_L1) / va.frames[i].total(), 10) << i;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(SynthClip, BadOutputDirLeavesNothingBehind) {
   const fs::path dir = TempDir("bad");
   fs::create_directories(dir);

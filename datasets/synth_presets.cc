@@ -122,11 +122,51 @@ const std::vector<PresetInfo>& SynthPresets() {
   return kPresets;
 }
 
+const std::vector<PresetInfo>& SynthMoverPresets() {
+  static const std::vector<PresetInfo> kPresets = [] {
+    std::vector<PresetInfo> p;
+    auto add = [&p](const char* name, MoverKind kind, const char* desc) {
+      PresetInfo i;
+      i.name = name;
+      i.group = "movers";
+      i.description = desc;
+      i.movers = kind;
+      p.push_back(i);
+    };
+    add("head_turn", MoverKind::kHead,
+        "static camera on a head and shoulders (~60 % of the frame height) that turns, nods, "
+        "blinks and talks");
+    add("head_push_in", MoverKind::kHead,
+        "the head_turn scene with a slow 0.2 m push-in (view direction fixed)");
+    add("pan_crossing", MoverKind::kCrossing,
+        "pan 0 -> 30 deg while three people-sized walkers cross 1.5-4 m in front");
+    add("traveling_crossing", MoverKind::kCrossing,
+        "the traveling move (x -2 -> +2 m) while three walkers cross in front");
+    add("crowd_static", MoverKind::kCrowd,
+        "static camera; a crowd of fourteen walkers 3-9 m away, mostly walking across");
+    return p;
+  }();
+  return kPresets;
+}
+
+std::string MoverKindName(MoverKind kind) {
+  switch (kind) {
+    case MoverKind::kHead: return "head";
+    case MoverKind::kCrossing: return "crossing";
+    case MoverKind::kCrowd: return "crowd";
+    case MoverKind::kFarWalkers: return "far_walkers";
+    case MoverKind::kNone: break;
+  }
+  return "none";
+}
+
 const PresetInfo& FindSynthPreset(const std::string& name) {
   std::string names;
-  for (const PresetInfo& p : SynthPresets()) {
-    if (p.name == name) return p;
-    names += (names.empty() ? "" : ", ") + p.name;
+  for (const auto* list : {&SynthPresets(), &SynthMoverPresets()}) {
+    for (const PresetInfo& p : *list) {
+      if (p.name == name) return p;
+      names += (names.empty() ? "" : ", ") + p.name;
+    }
   }
   throw UsageError("unknown preset '" + name + "' (known: " + names + ")");
 }
@@ -206,8 +246,17 @@ CameraState PresetCameraAt(const PresetInfo& preset, double t, const ClipTiming&
     }
   } else if (n == "fade_to_black") {
     c.pan_deg += Mix(0, 25, s);
-  } else if (n == "static_camera") {
+  } else if (n == "static_camera" || n == "crowd_static") {
     // Framing only.
+  } else if (n == "head_turn" || n == "head_push_in") {
+    // Frame the head slightly left of centre, as in a dialogue close-up.
+    LookAt(c.center, MoverHeadCenter() + Vector3d(-0.05, -0.02, 0), &c.pan_deg, &c.tilt_deg);
+    if (n == "head_push_in") c.center.z() -= Mix(0, 0.2, s);  // view direction fixed
+  } else if (n == "pan_crossing") {
+    c.pan_deg += Mix(0, 30, s);
+  } else if (n == "traveling_crossing") {
+    c.pan_deg = 0;
+    c.center.x() = Mix(-2, 2, s);
   } else {
     throw UsageError("no camera motion for preset '" + n + "'");
   }

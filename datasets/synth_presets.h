@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "datasets/movers.h"
 #include "datasets/scene_hall.h"
 
 namespace hapcine::synth {
@@ -35,7 +36,7 @@ struct CameraState {
 
 struct PresetInfo {
   std::string name;
-  std::string group;        // "table1" or "hard"
+  std::string group;        // "table1", "hard" or "movers"
   std::string description;  // one line, for --list and docs
   SceneStyle scene = SceneStyle::kTextured;
   bool motion_blur = false;  // average sub-frame renders over the shutter interval
@@ -43,11 +44,17 @@ struct PresetInfo {
   bool high_crf = false;     // encode with SynthOptions::noisy_crf
   bool fade = false;         // brightness follows PresetBrightnessAt
   bool cut = false;          // two shots; PresetCutFrame gives the first frame of shot 1
+  MoverKind movers = MoverKind::kNone;  // independently moving objects (not in the ground truth)
 };
 
-// All presets: Table 1 in the paper's order, then the hard cases.
+// All presets: Table 1 in the paper's order, then the hard cases (`--all`).
 const std::vector<PresetInfo>& SynthPresets();
-// Throws UsageError naming the valid presets.
+// The presets with independently moving objects (`--movers`), kept apart so
+// that `--all` stays the 17 presets above.
+const std::vector<PresetInfo>& SynthMoverPresets();
+// Name of a mover kind for the metadata ("head", "crossing", "crowd", "far_walkers").
+std::string MoverKindName(MoverKind kind);
+// Throws UsageError naming the valid presets (searches both lists).
 const PresetInfo& FindSynthPreset(const std::string& name);
 
 struct ClipTiming {

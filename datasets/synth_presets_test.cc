@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/camera_path.h"
@@ -232,6 +233,62 @@ TEST(SynthPresets, WhipPanIsFastAndFadeReturns) {
   EXPECT_EQ(synth::PresetBrightnessAt(fade, 3.75, timing), 0);
   EXPECT_NEAR(synth::PresetBrightnessAt(fade, 3.0, timing), 0.5, 1e-12);
   EXPECT_EQ(synth::PresetBrightnessAt(fade, 6.5, timing), 1);
+}
+
+TEST(SynthPresets, MoversLeaveTheCameraPathAlone) {
+  // The movers are no part of --all, and the ground truth is the camera's only.
+  EXPECT_EQ(SynthMoverPresetNames().size(), 5u);
+  const std::vector<std::string> all = SynthPresetNames();
+  for (const std::string& name : SynthMoverPresetNames()) {
+    EXPECT_EQ(std::count(all.begin(), all.end(), name), 0) << name;
+  }
+  const CameraPath head = SynthGroundTruth("head_turn", Opts());
+  EXPECT_EQ(head.metadata.at("movers"), "head");
+  for (const CameraFrame& f : head.frames) {
+    EXPECT_EQ(f.model, "static");
+    EXPECT_EQ(f.center, head.frames[0].center);
+  }
+  EXPECT_EQ(SynthGroundTruth("crowd_static", Opts()).frames.back().model, "static");
+  // A camera move with walkers is the move without them.
+  const CameraPath a = SynthGroundTruth("traveling_crossing", Opts());
+  const CameraPath b = SynthGroundTruth("traveling", Opts());
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (size_t i = 0; i < a.frames.size(); ++i) {
+    EXPECT_EQ(a.frames[i].center, b.frames[i].center);
+    EXPECT_EQ(a.frames[i].world_from_cam.coeffs(), b.frames[i].world_from_cam.coeffs());
+    EXPECT_EQ(a.frames[i].model, b.frames[i].model);
+  }
+  EXPECT_EQ(SynthGroundTruth("pan_crossing", Opts()).frames[80].model, "rotation");
+  EXPECT_EQ(SynthGroundTruth("head_push_in", Opts()).frames[80].model, "general");
+}
+
+TEST(SynthPresets, VariantKeepsTheCameraPathAndRecordsItsLook) {
+  SynthOptions test = Opts();
+  test.variant = "test";
+  for (const std::string& name : SynthPresetNames()) {
+    const CameraPath a = SynthGroundTruth(name, Opts()), b = SynthGroundTruth(name, test);
+    ASSERT_EQ(a.frames.size(), b.frames.size());
+    for (size_t i = 0; i < a.frames.size(); ++i) {
+      EXPECT_EQ(a.frames[i].center, b.frames[i].center);
+      EXPECT_EQ(a.frames[i].world_from_cam.coeffs(), b.frames[i].world_from_cam.coeffs());
+      EXPECT_EQ(a.frames[i].fov_deg, b.frames[i].fov_deg);
+      EXPECT_EQ(a.frames[i].model, b.frames[i].model);
+    }
+    EXPECT_EQ(b.metadata.at("variant"), "test");
+    EXPECT_EQ(b.metadata.at("distortion_k1"), "-0.04");
+    EXPECT_EQ(b.metadata.at("movers"), "far_walkers");
+    EXPECT_EQ(a.metadata.count("variant"), 0u);
+    EXPECT_EQ(a.metadata.count("distortion_k1"), 0u);
+  }
+  // --distortion overrides the variant's k1 and works alone.
+  SynthOptions k = Opts();
+  k.has_distortion = true;
+  k.distortion_k1 = 0.05;
+  EXPECT_EQ(SynthGroundTruth("zoom_in", k).metadata.at("distortion_k1"), "0.05");
+  k.distortion_k1 = 0.5;
+  EXPECT_THROW(k.Check(), UsageError);
+  test.variant = "other";
+  EXPECT_THROW(test.Check(), UsageError);
 }
 
 TEST(SynthPresets, NamesAndErrors) {

@@ -240,6 +240,25 @@ TEST_F(PipelineTest, EstimateReportListsEveryWindowsCandidatesModelAndSolve) {
   EXPECT_EQ(sa.str(), sb.str());
 }
 
+TEST_F(PipelineTest, MoverPresetRendersAndEstimatesEndToEnd) {
+  // A static camera on a turning head: the clip renders, the estimator runs through it, and
+  // eval compares the two paths (accuracy on it is docs/generalisation.md's, not this test's).
+  const fs::path dir = dir_ / "movers";
+  fs::create_directories(dir);
+  RunResult r = RunHapcine("synth head_turn --width 320 --height 180 --duration-s 1.5 -o " + Quote(dir), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path gt = dir / "head_turn.camera.csv", est = dir / "head_turn.est.camera.csv";
+  EXPECT_EQ(hapcine::ReadCameraPathFile(gt.string()).metadata.at("movers"), "head");
+  r = RunHapcine("estimate -q " + Quote(dir / "head_turn.mp4") + " -o " + Quote(est), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(hapcine::ReadCameraPathFile(est.string()).frames.size(), 36u);
+  r = RunHapcine("eval --json --gt " + Quote(gt) + " --est " + Quote(est), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(r.out);
+  EXPECT_EQ(report.at("frames").at("matched").get<int>(), 36);
+  EXPECT_TRUE(report.at("overall").at("gt_static").get<bool>());
+}
+
 TEST_F(PipelineTest, EstimateRejectsBadVideosWithOneLineAndNoOutput) {
   const fs::path empty = dir_ / "empty file.mp4";
   std::ofstream(empty).close();
