@@ -77,7 +77,7 @@ struct FloorShadow {
 };
 
 struct ObjectGroup {
-  Eigen::Vector3d lo, hi;  // bounding box of all members
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();  // bounding box of all members
   std::vector<int> boxes, cylinders, spheres;
 };
 

@@ -115,8 +115,11 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
   }
   f.usable = !tracks.blank && static_cast<int>(f.u.size()) >= options_.min_tracks;
   if (f.usable && !keyframes_.empty() && SharedWithLastKeyframe(f.u) < options_.min_tracks) {
-    SplitShot(tracks);
-    return;
+    if (keyframes_.size() > 1) {
+      SplitShot(tracks);
+      return;
+    }
+    RestartChain();
   }
   const int pos = shot_frames_++;
   // The keyframe gap and the window are counted in frames of the video, so a
@@ -168,6 +171,16 @@ void TrackCameraEstimator::SplitShot(const FrameTracks& tracks) {
   focal_observed_ = observed && last_log_focal_.has_value();
   focal_samples_ = std::move(samples);
   AddFrame(tracks);
+}
+
+// The chain's first keyframe links to nothing after it: tracking broke again
+// before any motion from it was measured (the blur of a handheld take, frame
+// after frame). It placed nothing, so it does not make a shot of its own
+// (a run of one-frame shots in a continuous take): its frames become the
+// lost lead-in of a chain starting here, with the focal it started from.
+void TrackCameraEstimator::RestartChain() {
+  split_log_focal_ = keyframes_.front().cam.log_focal;
+  keyframes_.clear();
 }
 
 void TrackCameraEstimator::AddKeyframe(int pos, bool first) {

@@ -141,6 +141,7 @@ class TrackCameraEstimator {
   // Tracking broke inside a shot (fewer than min_tracks link the frame to
   // the last keyframe): the shot ends and a new one starts at `tracks`.
   void SplitShot(const FrameTracks& tracks);
+  void RestartChain();
   void SmoothShot(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
                   std::vector<double>* lf) const;
   void HoldPlaceholders(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,

@@ -675,6 +675,28 @@ TEST(TrackEstimator, TravelingThenLostTrackingThenPanSplitsTheShot) {
   EXPECT_GT(run.path.frames[99].center.norm(), 0.02);  // median-depth units: the move is 0.08
 }
 
+// Tracking breaks three frames in a row (frames 100, 101, 102 each with new
+// ids, as KLT re-detects through a blurred move): the frames whose chain
+// links to nothing after them are lost, and one new shot starts at 102, not
+// a run of one-frame shots.
+TEST(TrackEstimator, RepeatedChainBreaksAreLostNotOneFrameShots) {
+  const auto pts = RandomPoints(2000, 3, 12, 2.5, 11);
+  const SimRun run = SimulateFrames(
+      160, TravelingThenPan,
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const int generation = i < 100 ? 0 : std::min(i, 102) - 99;  // 1, 2, then 3 from 102 on
+        for (auto& p : ft.points) p.track_id += 100000 * generation;
+        return ft;
+      },
+      {}, 12);
+  for (int i = 0; i < 160; ++i) {
+    EXPECT_EQ(*run.path.frames[i].shot, i < 100 ? 0 : 1) << i;
+    EXPECT_EQ(IsLost(run.path.frames[i]), i == 100 || i == 101) << i;
+  }
+  EXPECT_EQ(run.path.frames[102].center, Eigen::Vector3d::Zero());  // the new shot's origin
+}
+
 // Tracking goes blank mid-shot (frames 40-42) and comes back with new
 // tracks: the blank frames are lost (confidence 0, the last placed pose as
 // placeholder, not smoothed), no pose is held silently, and the frames
