@@ -84,6 +84,9 @@ constexpr double kCutSurvival = 0.1;
 // before it, moved as the tracks moved: a dissolve changes every cell, a
 // mover the cells it covers (a head filling half the frame: half of them).
 constexpr double kDissolvedShare = 0.75;
+// Share of a frame's tracks one homography must explain to a pixel for the
+// run's chained motion to predict the picture (ExplainsThePicture).
+constexpr double kPictureExplained = 0.8;
 // Correspondences a run frame's homography is fitted to (ChainRunMotion).
 constexpr size_t kChainPoints = 100;
 
@@ -484,6 +487,22 @@ struct FeatureTracker::Impl {
     std::vector<float> klt_disp;                  // for the transition-run statistics
   };
 
+  // Whether one homography moves the picture as the tracks moved: most of
+  // them within a pixel (KLT's own precision). A move with parallax (a
+  // crane, a traveling) is not one homography, and chained over a long run
+  // its prediction drifts until the moved picture looks like another one:
+  // such a run is no evidence of a dissolve either way.
+  static bool ExplainsThePicture(const cv::Matx33d& h, const std::vector<cv::Point2f>& from,
+                                 const std::vector<cv::Point2f>& to) {
+    size_t close = 0;
+    for (size_t i = 0; i < from.size(); ++i) {
+      const cv::Vec3d p = h * cv::Vec3d(from[i].x, from[i].y, 1.0);
+      const double dx = p[0] / p[2] - to[i].x, dy = p[1] / p[2] - to[i].y;
+      close += dx * dx + dy * dy <= 1.0;
+    }
+    return close >= kPictureExplained * static_cast<double>(from.size());
+  }
+
   // One tracked frame of a run: its KLT motion joins the chain.
   void ChainRunMotion(const FrameWork& w) {
     if (!run_chain) return;
@@ -500,7 +519,7 @@ struct FeatureTracker::Impl {
       to.push_back(w.points[i]);
     }
     const cv::Mat h = cv::findHomography(from, to, cv::RANSAC, 3.0);
-    if (h.empty()) {
+    if (h.empty() || !ExplainsThePicture(cv::Matx33d(h), from, to)) {
       run_chain = false;
       return;
     }
