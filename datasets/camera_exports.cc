@@ -10,6 +10,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/rotation.h"
+#include "datasets/tum_format.h"
 
 namespace hapcine {
 namespace {
@@ -23,22 +24,6 @@ Eigen::Matrix3d BlenderFromOurWorld() {
   return Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
 }
 
-// Parses one line of whitespace-separated finite numbers; an empty vector
-// for a blank line.
-std::vector<double> ParseNumbers(const std::string& line, const std::string& where) {
-  std::istringstream fields(line);
-  std::vector<double> v;
-  std::string tok;
-  while (fields >> tok) {
-    char* end = nullptr;
-    const double x = std::strtod(tok.c_str(), &end);
-    if (end == tok.c_str() || *end != '\0') throw Error(where, "not a number: '" + tok + "'");
-    if (!std::isfinite(x)) throw Error(where, "non-finite value");
-    v.push_back(x);
-  }
-  return v;
-}
-
 // Reads every non-blank line as exactly `count` numbers.
 std::vector<std::vector<double>> ReadNumberRows(std::istream& in, const std::string& source,
                                                 size_t count, const char* layout) {
@@ -48,7 +33,7 @@ std::vector<std::vector<double>> ReadNumberRows(std::istream& in, const std::str
   while (std::getline(in, line)) {
     ++line_no;
     const std::string where = source + ":" + std::to_string(line_no);
-    std::vector<double> v = ParseNumbers(line, where);
+    std::vector<double> v = ParseNumberFields(line, where);
     if (v.empty()) continue;
     if (v.size() != count) {
       throw Error(where, "expected " + std::to_string(count) + " values (" + layout + "), got " +

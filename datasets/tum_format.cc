@@ -13,6 +13,20 @@
 
 namespace hapcine {
 
+std::vector<double> ParseNumberFields(const std::string& line, const std::string& where) {
+  std::istringstream fields(line);
+  std::vector<double> v;
+  std::string tok;
+  while (fields >> tok) {
+    char* end = nullptr;
+    const double x = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end != '\0') throw Error(where, "not a number: '" + tok + "'");
+    if (!std::isfinite(x)) throw Error(where, "non-finite value");
+    v.push_back(x);
+  }
+  return v;
+}
+
 std::vector<TumPose> ReadTumTrajectory(std::istream& in, const std::string& source_name) {
   std::vector<TumPose> poses;
   std::string line;
@@ -26,16 +40,7 @@ std::vector<TumPose> ReadTumTrajectory(std::istream& in, const std::string& sour
     for (char& ch : line) {
       if (ch == ',' || ch == '\t' || ch == '\r') ch = ' ';
     }
-    std::istringstream fields(line);
-    std::vector<double> v;
-    std::string tok;
-    while (fields >> tok) {
-      char* end = nullptr;
-      const double x = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0') throw Error(where, "not a number: '" + tok + "'");
-      if (!std::isfinite(x)) throw Error(where, "non-finite value");
-      v.push_back(x);
-    }
+    const std::vector<double> v = ParseNumberFields(line, where);
     if (v.size() != 8) {
       throw Error(where, "expected 8 values (timestamp tx ty tz qx qy qz qw), got " +
                              std::to_string(v.size()));

@@ -25,6 +25,11 @@ struct TumPose {
   Eigen::Quaterniond world_from_cam = Eigen::Quaterniond::Identity();
 };
 
+// The whitespace-separated numbers of one line of a text trajectory (TUM,
+// KITTI, Nuke .chan); an empty vector for a blank line. Throws Error(where)
+// for a field that is not a finite number.
+std::vector<double> ParseNumberFields(const std::string& line, const std::string& where);
+
 // Throws hapcine::Error("<source>:<line>", reason) on lines that do not hold
 // exactly 8 finite numbers, non-unit quaternions (|q| off by > 1e-3) and
 // non-increasing timestamps. Empty input is an error.
