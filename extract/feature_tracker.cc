@@ -139,6 +139,9 @@ struct FeatureTracker::Impl {
   cv::Mat run_before_layout, last_layout;
   cv::Matx33d run_motion = cv::Matx33d::eye();
   bool run_chain = true;
+  // Where the run's tracks were on the frame before it (by id): the chain is
+  // checked against them, since per-frame fits hide a slow parallax drift.
+  std::unordered_map<long, cv::Point2f> run_start_points;
 
   void DropTracks() {
     prev_pyramid.clear();
@@ -250,6 +253,7 @@ struct FeatureTracker::Impl {
     shots.MarkCut();
     run_tracked = true;
     run_motion_px = 0;
+    run_start_points.clear();
   }
 
   // New corners on the half-resolution pyramid level (4x cheaper than the
@@ -493,14 +497,34 @@ struct FeatureTracker::Impl {
   // its prediction drifts until the moved picture looks like another one:
   // such a run is no evidence of a dissolve either way.
   static bool ExplainsThePicture(const cv::Matx33d& h, const std::vector<cv::Point2f>& from,
-                                 const std::vector<cv::Point2f>& to) {
+                                 const std::vector<cv::Point2f>& to, double tolerance_px = 1.0) {
     size_t close = 0;
     for (size_t i = 0; i < from.size(); ++i) {
       const cv::Vec3d p = h * cv::Vec3d(from[i].x, from[i].y, 1.0);
       const double dx = p[0] / p[2] - to[i].x, dy = p[1] / p[2] - to[i].y;
-      close += dx * dx + dy * dy <= 1.0;
+      close += dx * dx + dy * dy <= tolerance_px * tolerance_px;
     }
     return close >= kPictureExplained * static_cast<double>(from.size());
+  }
+
+  // Whether the chained run motion still puts the tracks that lived through
+  // the whole run where they are, to one pixel of the picture comparison's
+  // layout (MovedPictureChange cannot see a drift under that, and a larger
+  // one decorrelates its cells): a crane's parallax passes each frame's
+  // 1 px test yet drifts by several layout pixels over a long run. Too few
+  // such tracks to tell: the per-frame tests stand.
+  static double LayoutPixel(cv::Size working) { return double(working.width) / kLayoutWidth; }
+
+  bool ChainStillExplainsTheRun(const FrameWork& w) const {
+    std::vector<cv::Point2f> from, to;
+    for (size_t i = 0; i < w.survived; ++i) {
+      const auto start = run_start_points.find(w.ids[i]);
+      if (start == run_start_points.end()) continue;
+      from.push_back(start->second);
+      to.push_back(w.points[i]);
+    }
+    if (from.size() < kMinTracksForCollapse) return true;
+    return ExplainsThePicture(run_motion, from, to, LayoutPixel(w.size));
   }
 
   // One tracked frame of a run: its KLT motion joins the chain.
@@ -523,7 +547,10 @@ struct FeatureTracker::Impl {
       run_chain = false;
       return;
     }
+    if (run_start_points.empty())
+      for (size_t i = 0; i < w.survived; ++i) run_start_points.emplace(w.ids[i], w.from[i]);
     run_motion = cv::Matx33d(h) * run_motion;
+    if (!ChainStillExplainsTheRun(w)) run_chain = false;
   }
 
   // The shot boundary of this frame: a cut or fade starts a new shot unless
@@ -556,6 +583,7 @@ struct FeatureTracker::Impl {
       run_motion_px = 0;
       run_motion = cv::Matx33d::eye();
       run_chain = true;
+      run_start_points.clear();
       run_before_layout = shots.layout();  // the picture before a run starting next frame
     }
     out->shot = shot;

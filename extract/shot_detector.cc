@@ -61,7 +61,6 @@ cv::Mat Histogram(const Frame& frame, const cv::Mat& gray_thumb) {
 // The picture's layout for the continuity test: a 64-px-wide gray
 // thumbnail, blurred (sigma 1.5 px, ~2 % of the width) so that motion blur
 // and compression make little difference, as float for matchTemplate.
-constexpr int kLayoutWidth = 64;
 cv::Mat Layout(const cv::Mat& gray_thumb) {
   const int h = std::max(
       8, static_cast<int>(std::lround(gray_thumb.rows * double(kLayoutWidth) / gray_thumb.cols)));

@@ -88,6 +88,9 @@ constexpr double kContinuousPicture = 0.8;
 // a pan none of it, a person moving in front of the camera a compact part.
 // NaN when under a third of the cells can be compared.
 constexpr int kChangeGridCols = 4, kChangeGridRows = 3;
+// Width of the layout thumbnails the picture is compared on (continuity,
+// MovedPictureChange), pixels.
+constexpr int kLayoutWidth = 64;
 double MovedPictureChange(const cv::Mat& before, const cv::Mat& now,
                           const cv::Matx33d& now_from_before, cv::Size working);
 
