@@ -80,15 +80,21 @@ CameraView ClipView(const PresetInfo& p, double t, const SynthOptions& o, const 
 // Views averaged into frame `frame`: one at the frame time, or, for
 // motion-blurred presets, enough sub-frame views across the shutter interval
 // (centred on the frame time) that consecutive ones move the image by at most
-// ~2.5 px. The ground truth is the pose at the centre of the exposure.
+// ~2.5 px. The ground truth is the pose at the centre of the exposure. The
+// exposure stays inside the frame's shot (an edit joins whole frames: a
+// shutter never opens on one take and closes on the next), so the first
+// frame of a shot is exposed from its own time on.
 std::vector<CameraView> FrameViews(const PresetInfo& p, int frame, const SynthOptions& o,
                                    const Look& look) {
   const synth::ClipTiming timing = Timing(o);
   const double t = timing.FrameTime(frame);
   if (!look.blur) return {ClipView(p, t, o, look)};
-  const double half = 0.5 * o.shutter / o.fps;
-  const CameraState a = PresetCameraAt(p, t - half, timing, o.seed);
-  const CameraState b = PresetCameraAt(p, t + half, timing, o.seed);
+  const int shot = PresetCameraAt(p, t, timing, o.seed).shot;
+  double open = t - 0.5 * o.shutter / o.fps, close = t + 0.5 * o.shutter / o.fps;
+  if (PresetCameraAt(p, open, timing, o.seed).shot != shot) open = t;
+  if (PresetCameraAt(p, close, timing, o.seed).shot != shot) close = t;
+  const CameraState a = PresetCameraAt(p, open, timing, o.seed);
+  const CameraState b = PresetCameraAt(p, close, timing, o.seed);
   const double f = FocalPxFromFovDeg(std::max(a.fov_deg, b.fov_deg), o.width);
   const double disp_px = DegToRad(AngleBetweenDeg(a.world_from_cam(), b.world_from_cam())) * f +
                          std::abs(FocalPxFromFovDeg(a.fov_deg, o.width) -
@@ -97,7 +103,7 @@ std::vector<CameraView> FrameViews(const PresetInfo& p, int frame, const SynthOp
   const int n = std::clamp(static_cast<int>(std::ceil(disp_px / 2.5)), 1, look.max_blur_views);
   std::vector<CameraView> views;
   for (int k = 0; k < n; ++k) {
-    const double tk = n == 1 ? t : t - half + (k + 0.5) / n * 2 * half;
+    const double tk = n == 1 ? t : open + (k + 0.5) / n * (close - open);
     views.push_back(ClipView(p, tk, o, look));
   }
   return views;

@@ -128,6 +128,31 @@ TEST(SynthClip, VariantIsDeterministicAndDiffersFromTheOriginal) {
   fs::remove_all(dir);
 }
 
+// A shutter opens and closes within one take: the motion-blurred variant's
+// first frame after a hard cut shows the new shot only, not a blend of both
+// (an edit joins whole frames).
+TEST(SynthClip, BlurredFrameAfterACutShowsOnlyTheNewShot) {
+  SynthOptions o = Tiny();
+  o.variant = "test";  // every variant clip is motion-blurred
+  const fs::path dir = TempDir("cut_blur");
+  const SynthResult r = SynthClip("hard_cut", o, dir.string());
+  const CameraPath gt = ReadCameraPathFile(r.camera_path);
+  int cut = -1;
+  for (size_t i = 1; i < gt.frames.size() && cut < 0; ++i)
+    if (gt.frames[i].shot != gt.frames[i - 1].shot) cut = static_cast<int>(i);
+  ASSERT_GT(cut, 0);
+  ASSERT_LT(cut + 1, static_cast<int>(gt.frames.size()));
+  const auto video = testing::DecodeVideo(r.video_path);
+  const cv::Mat& before = video.frames[cut - 1];
+  const cv::Mat& first = video.frames[cut];
+  const cv::Mat& next = video.frames[cut + 1];
+  // A blend of the two shots differs from the last frame of the old one by
+  // about half as much as the new shot does.
+  EXPECT_GT(cv::norm(first, before, cv::NORM_L1), 0.8 * cv::norm(next, before, cv::NORM_L1))
+      << cv::norm(first, next, cv::NORM_L1);
+  fs::remove_all(dir);
+}
+
 TEST(SynthClip, BadOutputDirLeavesNothingBehind) {
   const fs::path dir = TempDir("bad");
   fs::create_directories(dir);
