@@ -16,6 +16,7 @@
 #include "datasets/eval.h"
 #include "datasets/eval_haptics.h"
 #include "haptics/camera_signals.h"
+#include "haptics/hjif_import.h"
 
 namespace hapcine::cli {
 
@@ -69,6 +70,11 @@ int RunEval(int argc, char** argv) {
   app.add_option("--haptic-model", haptic_model, "model of the compared tracks (implies --haptic)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cinematic", "semantic", "random", "none"}));
+  std::string haptic_track;
+  app.add_option("--haptic-track", haptic_track,
+                 "compare the estimate's haptic track with this track (*.haptic.csv, or an\n"
+                 "MPEG-I Haptics .hjif with Position perceptions) instead of the GT path's "
+                 "(implies --haptic)");
   app.add_option("--haptic-rate", haptic_rate, "rate of the compared tracks, Hz")
       ->capture_default_str()
       ->check(FiniteRange(10, 10000));
@@ -78,7 +84,7 @@ int RunEval(int argc, char** argv) {
     opt.matching = ParseFrameMatching(matching);
     opt.per_shot = !no_per_shot;
     opt.Check();
-    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}},
+    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}, {haptic_track, "--haptic-track"}},
                       {{json_out, "-o"}, {per_frame_out, "--per-frame"}});
     const CameraPath gt = ReadCameraPathFile(gt_file);
     const CameraPath est = ReadCameraPathFile(est_file);
@@ -87,7 +93,7 @@ int RunEval(int argc, char** argv) {
     report.est_source = est_file;
     nlohmann::json j = EvalReportToJson(report);
     std::optional<HapticEvalReport> haptic_report;
-    if (haptic || app.count("--haptic-model") > 0) {
+    if (haptic || app.count("--haptic-model") > 0 || !haptic_track.empty()) {
       HapticOptions ho;
       ho.model = HapticModelFromName(haptic_model);
       ho.rate_hz = haptic_rate;
@@ -99,7 +105,9 @@ int RunEval(int argc, char** argv) {
         const std::vector<int> lines = CsvDataRowLines(file);
         ValidatePathForHaptics(*path, file, ho.max_gap_s, &lines);
       }
-      haptic_report = EvaluateHapticDifference(gt, est, report, ho);
+      const HapticTrack reference =
+          haptic_track.empty() ? HapticTrack() : ReadAnyHapticTrackFile(haptic_track);
+      haptic_report = EvaluateHapticDifferenceToTrack(reference, gt, est, report, ho);
       j["haptic"] = HapticEvalToJson(*haptic_report);
     }
     if (!json_out.empty()) {
