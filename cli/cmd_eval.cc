@@ -20,6 +20,30 @@
 
 namespace hapcine::cli {
 
+namespace {
+
+// `eval --haptic`: the haptic difference of the two paths' tracks, or of the
+// estimate's track and `track_file` (*.haptic.csv or .hjif) when given.
+HapticEvalReport HapticReport(const CameraPath& gt, const CameraPath& est,
+                              const EvalReport& report, const std::string& model, double rate_hz,
+                              const std::string& track_file) {
+  HapticOptions ho;
+  ho.model = HapticModelFromName(model);
+  ho.rate_hz = rate_hz;
+  ho.source = report.gt_source;
+  ho.Check();
+  // The haptic checks (gaps, absurd positions) with file line numbers.
+  for (const auto& [path, file] : {std::pair<const CameraPath*, std::string>{&gt, report.gt_source},
+                                   {&est, report.est_source}}) {
+    const std::vector<int> lines = CsvDataRowLines(file);
+    ValidatePathForHaptics(*path, file, ho.max_gap_s, &lines);
+  }
+  const HapticTrack reference = track_file.empty() ? HapticTrack() : ReadAnyHapticTrackFile(track_file);
+  return EvaluateHapticDifferenceToTrack(reference, gt, est, report, ho);
+}
+
+}  // namespace
+
 int RunEval(int argc, char** argv) {
   CLI::App app{
       "Compare an estimated camera path (*.camera.csv) against ground truth: rotation error, "
@@ -94,20 +118,7 @@ int RunEval(int argc, char** argv) {
     nlohmann::json j = EvalReportToJson(report);
     std::optional<HapticEvalReport> haptic_report;
     if (haptic || app.count("--haptic-model") > 0 || !haptic_track.empty()) {
-      HapticOptions ho;
-      ho.model = HapticModelFromName(haptic_model);
-      ho.rate_hz = haptic_rate;
-      ho.source = gt_file;
-      ho.Check();
-      // The haptic checks (gaps, absurd positions) with file line numbers.
-      for (const auto& [path, file] : {std::pair<const CameraPath*, std::string>{&gt, gt_file},
-                                       {&est, est_file}}) {
-        const std::vector<int> lines = CsvDataRowLines(file);
-        ValidatePathForHaptics(*path, file, ho.max_gap_s, &lines);
-      }
-      const HapticTrack reference =
-          haptic_track.empty() ? HapticTrack() : ReadAnyHapticTrackFile(haptic_track);
-      haptic_report = EvaluateHapticDifferenceToTrack(reference, gt, est, report, ho);
+      haptic_report = HapticReport(gt, est, report, haptic_model, haptic_rate, haptic_track);
       j["haptic"] = HapticEvalToJson(*haptic_report);
     }
     if (!json_out.empty()) {
