@@ -32,17 +32,19 @@ mkdir -p "$OUT"
 film="$OUT/film.camera.csv"
 [ -f "$film" ] || python3 "$ROOT/bench/long_camera_path.py" "$SECONDS_FILM" 24 "$film"
 ulimit -Sn 1024  # the reference loader's schema recursion (validate.sh README)
-# step LABEL command...: one line of wall s, peak RSS MB, exit status.
+# step LABEL command...: one line of wall s, CPU s (user + system: on a
+# shared machine the wall time mostly measures the others), peak RSS MB, exit.
 step() {
   local label=$1
   shift
-  /usr/bin/time -f "%e %M" -o "$OUT/time.txt" nice "$@" >"$OUT/$label.log" 2>&1
-  local rc=$? wall rss
-  read -r wall rss < <(tail -n 1 "$OUT/time.txt")  # after "Command exited with ..."
-  printf '| %s | %s | %d | %d |\n' "$label" "$wall" $((rss / 1024)) "$rc"
+  /usr/bin/time -f "%e %U %S %M" -o "$OUT/time.txt" nice "$@" >"$OUT/$label.log" 2>&1
+  local rc=$? wall user sys rss
+  read -r wall user sys rss < <(tail -n 1 "$OUT/time.txt")  # after "Command exited with ..."
+  printf '| %s | %s | %s | %d | %d |\n' "$label" "$wall" "$(awk "BEGIN{print $user + $sys}")" \
+    $((rss / 1024)) "$rc"
 }
-echo "| step | wall s | peak RSS MB | exit |"
-echo "|---|---|---|---|"
+echo "| step | wall s | CPU s | peak RSS MB | exit |"
+echo "|---|---|---|---|---|"
 step haptics "$HC" haptics "$film" -o "$OUT/film.haptic.csv" --hjif "$OUT/film.hjif"
 step load "$RS/hjif_load_check" "$OUT/film.hjif"
 step encode "$RS/source/Encoder/Encoder" -f "$OUT/film.hjif" -o "$OUT/film.hmpg" -b
