@@ -16,8 +16,33 @@
 #include "datasets/eval.h"
 #include "datasets/eval_haptics.h"
 #include "haptics/camera_signals.h"
+#include "haptics/hjif_import.h"
 
 namespace hapcine::cli {
+
+namespace {
+
+// `eval --haptic`: the haptic difference of the two paths' tracks, or of the
+// estimate's track and `track_file` (*.haptic.csv or .hjif) when given.
+HapticEvalReport HapticReport(const CameraPath& gt, const CameraPath& est,
+                              const EvalReport& report, const std::string& model, double rate_hz,
+                              const std::string& track_file) {
+  HapticOptions ho;
+  ho.model = HapticModelFromName(model);
+  ho.rate_hz = rate_hz;
+  ho.source = report.gt_source;
+  ho.Check();
+  // The haptic checks (gaps, absurd positions) with file line numbers.
+  for (const auto& [path, file] : {std::pair<const CameraPath*, std::string>{&gt, report.gt_source},
+                                   {&est, report.est_source}}) {
+    const std::vector<int> lines = CsvDataRowLines(file);
+    ValidatePathForHaptics(*path, file, ho.max_gap_s, &lines);
+  }
+  const HapticTrack reference = track_file.empty() ? HapticTrack() : ReadAnyHapticTrackFile(track_file);
+  return EvaluateHapticDifferenceToTrack(reference, gt, est, report, ho);
+}
+
+}  // namespace
 
 int RunEval(int argc, char** argv) {
   CLI::App app{
@@ -69,6 +94,11 @@ int RunEval(int argc, char** argv) {
   app.add_option("--haptic-model", haptic_model, "model of the compared tracks (implies --haptic)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cinematic", "semantic", "random", "none"}));
+  std::string haptic_track;
+  app.add_option("--haptic-track", haptic_track,
+                 "compare the estimate's haptic track with this track (*.haptic.csv, or an\n"
+                 "MPEG-I Haptics .hjif with Position perceptions) instead of the GT path's "
+                 "(implies --haptic)");
   app.add_option("--haptic-rate", haptic_rate, "rate of the compared tracks, Hz")
       ->capture_default_str()
       ->check(FiniteRange(10, 10000));
@@ -78,7 +108,7 @@ int RunEval(int argc, char** argv) {
     opt.matching = ParseFrameMatching(matching);
     opt.per_shot = !no_per_shot;
     opt.Check();
-    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}},
+    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}, {haptic_track, "--haptic-track"}},
                       {{json_out, "-o"}, {per_frame_out, "--per-frame"}});
     const CameraPath gt = ReadCameraPathFile(gt_file);
     const CameraPath est = ReadCameraPathFile(est_file);
@@ -87,19 +117,8 @@ int RunEval(int argc, char** argv) {
     report.est_source = est_file;
     nlohmann::json j = EvalReportToJson(report);
     std::optional<HapticEvalReport> haptic_report;
-    if (haptic || app.count("--haptic-model") > 0) {
-      HapticOptions ho;
-      ho.model = HapticModelFromName(haptic_model);
-      ho.rate_hz = haptic_rate;
-      ho.source = gt_file;
-      ho.Check();
-      // The haptic checks (gaps, absurd positions) with file line numbers.
-      for (const auto& [path, file] : {std::pair<const CameraPath*, std::string>{&gt, gt_file},
-                                       {&est, est_file}}) {
-        const std::vector<int> lines = CsvDataRowLines(file);
-        ValidatePathForHaptics(*path, file, ho.max_gap_s, &lines);
-      }
-      haptic_report = EvaluateHapticDifference(gt, est, report, ho);
+    if (haptic || app.count("--haptic-model") > 0 || !haptic_track.empty()) {
+      haptic_report = HapticReport(gt, est, report, haptic_model, haptic_rate, haptic_track);
       j["haptic"] = HapticEvalToJson(*haptic_report);
     }
     if (!json_out.empty()) {

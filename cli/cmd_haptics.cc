@@ -2,6 +2,7 @@
 // A thin mapping of flags onto HapticOptions; the work is in haptics/.
 
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -133,6 +134,8 @@ int RunHaptics(int argc, char** argv) {
     opt.source = input;
     opt.Check();
     hjif_opt.gain_m = opt.seat.workspace_half_m;
+    // A short description: the file's stem, not its path (8-bit length in .hmpg).
+    hjif_opt.description = std::filesystem::path(hjif).stem().string();
     hjif_opt.Check();
     CameraPath path;
     if (EndsWith(input, ".csv")) {

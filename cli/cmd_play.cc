@@ -17,7 +17,8 @@ int RunPlay(int argc, char** argv) {
   PlayOptions o;
   app.add_option("video", o.video, "The video file (played by mpv)")->required(false);
   app.add_option("--track", o.track,
-                 "Haptic track (*.haptic.csv). Default: <video stem>.haptic.csv beside the video");
+                 "Haptic track (*.haptic.csv, or an MPEG-I Haptics .hjif with Position perceptions). "
+                 "Default: <video stem>.haptic.csv beside the video");
   app.add_option("--device", o.device, "falcon (Novint Falcons over USB), sim (simulated) or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"falcon", "sim", "none"}));

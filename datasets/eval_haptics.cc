@@ -40,6 +40,14 @@ CameraPath ScaleEstimateToGroundTruth(const CameraPath& est, const EvalReport& r
 HapticEvalReport EvaluateHapticDifference(const CameraPath& gt, const CameraPath& est,
                                           const EvalReport& path_report,
                                           const HapticOptions& options) {
+  return EvaluateHapticDifferenceToTrack(HapticTrack(), gt, est, path_report, options);
+}
+
+// `reference` empty: the ground truth path's track.
+HapticEvalReport EvaluateHapticDifferenceToTrack(const HapticTrack& reference,
+                                                 const CameraPath& gt, const CameraPath& est,
+                                                 const EvalReport& path_report,
+                                                 const HapticOptions& options) {
   HapticOptions o = options;
   if (o.source.empty()) o.source = path_report.gt_source;
   // Each path's problems name its own file (the tracks share the options).
@@ -48,14 +56,15 @@ HapticEvalReport EvaluateHapticDifference(const CameraPath& gt, const CameraPath
   ValidatePathForHaptics(est, path_report.est_source.empty() ? "estimate" : path_report.est_source,
                          o.max_gap_s);
   const CameraPath scaled = ScaleEstimateToGroundTruth(est, path_report);
-  const auto [a, b] = MakeComparableHapticTracks(gt, scaled, o);
+  const auto [gt_track, b] = MakeComparableHapticTracks(gt, scaled, o);
+  const HapticTrack& a = reference.samples.empty() ? gt_track : reference;
   HapticEvalReport r;
-  r.model = a.model;
-  r.rate_hz = a.rate_hz;
+  r.model = b.model;
+  r.rate_hz = b.rate_hz;
   r.difference = HapticTrackDifference(a, b);
   if (r.difference.num_samples == 0) {
-    throw Error(path_report.gt_source + " vs " + path_report.est_source,
-                "haptic tracks do not overlap in time");
+    const std::string ref = reference.samples.empty() ? path_report.gt_source : reference.source;
+    throw Error(ref + " vs " + path_report.est_source, "haptic tracks do not overlap in time");
   }
   for (const HapticSample& s : a.samples) {
     for (int k = 0; k < kNumActuators; ++k) {

@@ -35,6 +35,14 @@ HapticEvalReport EvaluateHapticDifference(const CameraPath& gt, const CameraPath
                                           const EvalReport& path_report,
                                           const HapticOptions& options);
 
+// The same, but the estimate's track is compared with `reference` (a track
+// authored elsewhere: *.haptic.csv or .hjif) instead of the ground truth
+// path's track; the scaling still comes from the ground truth path.
+HapticEvalReport EvaluateHapticDifferenceToTrack(const HapticTrack& reference,
+                                                 const CameraPath& gt, const CameraPath& est,
+                                                 const EvalReport& path_report,
+                                                 const HapticOptions& options);
+
 // The estimate with its centres in ground-truth units (per-shot Sim(3) scale).
 CameraPath ScaleEstimateToGroundTruth(const CameraPath& est, const EvalReport& path_report);
 

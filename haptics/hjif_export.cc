@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
+#include <functional>
 #include <sstream>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -13,29 +16,69 @@ namespace {
 
 using nlohmann::json;
 
-// body_part_target of each actuator's channels (reference-software names).
-const nlohmann::json kBodyParts[kNumActuators] = {
-    nlohmann::json::array({"Head"}),
-    nlohmann::json::array({"Left", "Hand"}),
-    nlohmann::json::array({"Right", "Hand"}),
-};
+// The int8 unit of a direction vector (reference software VECTOR_RANGE).
+constexpr int kUnitVector = 127;
+// Amplitudes are millimetres / gain (perception_unit_exponent -3): a gain
+// in mm keeps its precision in the binary format, which stores the gain as
+// a float32 fraction of +-10000 (0.05 would come back as 0.0498).
+constexpr int kPerceptionUnitExponent = -3;
+constexpr double kUnitsPerMetre = 1000;
 
-std::string TodayUtc() {
+std::string NowUtc() {
   const std::time_t now = std::time(nullptr);
   std::tm tm{};
   gmtime_r(&now, &tm);
-  char buf[16];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
 }
 
+// Length of the UTF-8 character at s[i] (0 if the bytes there are not one).
+size_t Utf8CharLength(const std::string& s, size_t i) {
+  const auto c = static_cast<unsigned char>(s[i]);
+  const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k) {
+    if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return 0;
+  }
+  return n;
+}
+
 }  // namespace
+
+uint32_t HjifBodyPartMask(Actuator a) {
+  // One bit per HapSeat body part; see docs/haptics.md ("MPEG-I Haptics").
+  switch (a) {
+    case Actuator::kHead: return 1u << 0;
+    case Actuator::kLeft: return 1u << 1;
+    case Actuator::kRight: return 1u << 2;
+  }
+  return 0;
+}
+
+std::string HjifShortText(const std::string& text, size_t max_bytes) {
+  std::string out;
+  for (size_t i = 0; i < text.size();) {
+    const size_t n = Utf8CharLength(text, i);
+    const bool control = n == 1 && static_cast<unsigned char>(text[i]) < 0x20;
+    const std::string c = n == 0 || control ? "?" : text.substr(i, n);
+    if (out.size() + c.size() > max_bytes) break;
+    out += c;
+    i += std::max<size_t>(n, 1);
+  }
+  return out;
+}
 
 void HjifOptions::Check() const {
   if (!(keyframe_rate_hz > 0 && keyframe_rate_hz <= 10000)) {
     throw UsageError("hjif keyframe rate must be in (0, 10000] Hz");
   }
-  if (!(timescale >= 1 && timescale <= 1000000)) throw UsageError("hjif timescale out of range");
+  // 48000: the Main profile's largest timescale (reference software check).
+  if (!(timescale >= 1 && timescale <= 48000)) throw UsageError("hjif timescale must be in [1, 48000]");
+  // Two keyframes must fit in one effect's 16-bit relative positions.
+  if (timescale / keyframe_rate_hz > kHjifMaxRelativePosition / 2) {
+    throw UsageError("hjif keyframe interval exceeds half of the 65535 ticks an effect can span");
+  }
   if (!(gain_m > 0 && gain_m <= 1)) throw UsageError("hjif gain must be in (0, 1] m");
 }
 
@@ -54,105 +97,151 @@ KeyframeTimes KeyframeTimesOf(const HapticTrack& track, const HjifOptions& o) {
   k.t0 = track.samples.front().time_s;
   k.t1 = track.samples.back().time_s;
   k.step = 1.0 / o.keyframe_rate_hz;
-  while (!(k.t0 + k.count * k.step > k.t1 - 1e-9)) ++k.count;
+  // A regular keyframe at least one tick before the last sample: no two
+  // keyframes share a tick.
+  while (!(k.t0 + k.count * k.step > k.t1 - 1.0 / o.timescale)) ++k.count;
   ++k.count;  // the last sample
   return k;
 }
 
-// One keyframe of actuator a, axis k: {relative_position, amplitude_modulation}.
+// One effect: keyframes [first, last] (inclusive) of every channel, at
+// `position` ticks. Consecutive effects share their boundary keyframe, so
+// the curve has no gap, and none spans more than 65535 ticks.
+struct EffectSpan {
+  size_t first = 0, last = 0;
+  long long position = 0;
+};
+
+long long Ticks(double t, const HjifOptions& o) { return std::llround(t * o.timescale); }
+
+std::vector<EffectSpan> EffectSpansOf(const KeyframeTimes& times, const HjifOptions& o) {
+  std::vector<EffectSpan> spans;
+  size_t first = 0;
+  while (true) {
+    EffectSpan span{first, first, Ticks(times.At(first), o)};
+    while (span.last + 1 < times.count &&
+           Ticks(times.At(span.last + 1), o) - span.position <= kHjifMaxRelativePosition) {
+      ++span.last;
+    }
+    spans.push_back(span);
+    if (span.last + 1 >= times.count) break;
+    first = span.last;
+  }
+  return spans;
+}
+
+// One keyframe: {relative_position, amplitude_modulation}.
 struct Keyframe {
   long long relative_position;
   double amplitude;
 };
 
-// Calls visit(Keyframe) for each keyframe of channel (a, k), in order.
+// Calls visit(Keyframe) for each keyframe of channel (a, k) in `span`.
 template <class Visit>
 void ForEachKeyframe(const HapticTrack& track, const HjifOptions& o, const KeyframeTimes& times,
-                     int a, int k, Visit visit) {
-  const long long effect_pos = std::llround(times.t0 * o.timescale);
+                     const EffectSpan& span, int a, int k, Visit visit) {
   size_t hint = 0;
   Eigen::Vector3d pos[kNumActuators];
-  for (size_t i = 0; i < times.count; ++i) {
+  const double gain = o.gain_m * kUnitsPerMetre;
+  for (size_t i = span.first; i <= span.last; ++i) {
     const double t = times.At(i);
     track.Sample(t, pos, &hint);  // the track interpolated linearly
-    visit(Keyframe{std::llround(t * o.timescale) - effect_pos, pos[a][k] / o.gain_m});
+    visit(Keyframe{Ticks(t, o) - span.position, pos[a][k] * kUnitsPerMetre / gain});
   }
 }
 
-// The document with each channel's keyframes array made by keyframes(a, k).
-template <class MakeKeyframes>
-json HjifDocument(const HapticTrack& track, const HjifOptions& o, const KeyframeTimes& times,
-                  MakeKeyframes keyframes) {
-  const long long effect_pos = std::llround(times.t0 * o.timescale);
+std::string DescriptionOf(const HapticTrack& track, const HjifOptions& o) {
+  const std::string text = o.description.empty()
+                               ? std::filesystem::path(track.source).stem().string()
+                               : o.description;
+  return HjifShortText(text, kHjifMaxDescriptionBytes);
+}
+
+json HjifChannel(int a, int k, const HjifOptions& o, json effects) {
+  const char* axis_names[3] = {"x", "y", "z"};
+  json band = {{"band_type", "Curve"},
+               {"curve_type", "Linear"},
+               {"lower_frequency_limit", 0},
+               {"upper_frequency_limit",
+                std::max(1, static_cast<int>(std::lround(o.keyframe_rate_hz / 2)))},
+               {"effects", std::move(effects)}};
+  json ch;
+  ch["id"] = a * 3 + k;
+  ch["description"] = std::string(ActuatorName(static_cast<Actuator>(a))) + " " +
+                      axis_names[k] + " position (seat frame: +X right, +Y up, +Z backward)";
+  ch["gain"] = o.gain_m * kUnitsPerMetre;
+  ch["mixing_coefficient"] = 1.0;
+  ch["body_part_mask"] = HjifBodyPartMask(static_cast<Actuator>(a));
+  ch["reference_device_id"] = 1;
+  // The seat axis this channel moves along, an int8 unit vector.
+  ch["direction"] = {{"X", k == 0 ? kUnitVector : 0},
+                     {"Y", k == 1 ? kUnitVector : 0},
+                     {"Z", k == 2 ? kUnitVector : 0}};
+  ch["bands"] = json::array({band});
+  return ch;
+}
+
+json HjifPerception(int a, const HjifOptions& o, const std::function<json(int, int)>& effects) {
+  const Actuator actuator = static_cast<Actuator>(a);
+  json p;
+  p["id"] = a;
+  p["perception_modality"] = "Position";
+  p["description"] =
+      std::string(ActuatorName(actuator)) + " actuator displacement from its workspace centre";
+  p["avatar_id"] = 1;
+  p["effect_library"] = json::array();
+  p["reference_devices"] = json::array(
+      {json{{"id", 1}, {"name", "Novint Falcon"}, {"body_part_mask", HjifBodyPartMask(actuator)}}});
+  p["unit_exponent"] = -3;  // of time: the timescale's ticks are ms at 1000
+  p["perception_unit_exponent"] = kPerceptionUnitExponent;  // amplitude x gain is mm
+  json channels = json::array();
+  for (int k = 0; k < 3; ++k) channels.push_back(HjifChannel(a, k, o, effects(a, k)));
+  p["channels"] = channels;
+  return p;
+}
+
+// The document with each channel's effects array made by effects(a, k).
+json HjifDocument(const HapticTrack& track, const HjifOptions& o,
+                  const std::function<json(int, int)>& effects) {
   json doc;
   doc["version"] = "2023";
   doc["profile"] = "Main";
   doc["level"] = 1;
-  doc["date"] = o.date.empty() ? TodayUtc() : o.date;
+  doc["date"] = o.date.empty() ? NowUtc() : o.date;
   doc["timescale"] = o.timescale;
-  doc["description"] = o.description.empty()
-                           ? "hapcine " + track.model + " haptic track of " + track.source +
-                                 " (HapSeat actuator positions, seat frame +X right, +Y up, "
-                                 "+Z backward)"
-                           : o.description;
-  // Avatar and reference-device ids start at 1 (the reference software's schema).
-  doc["avatars"] = json::array({json{{"id", 1}, {"lod", 0}, {"type", "Custom"}}});
+  doc["description"] = DescriptionOf(track, o);
+  // Ids start at 1 (0 is reserved); a Custom avatar needs a mesh in the
+  // binary format: a URN names the HapSeat's seated user (no file).
+  doc["avatars"] =
+      json::array({json{{"id", 1}, {"lod", 0}, {"type", "Custom"}, {"mesh", "urn:hapcine:hapseat"}}});
   json perceptions = json::array();
-  const char* axis_names[3] = {"x", "y", "z"};
-  for (int a = 0; a < kNumActuators; ++a) {
-    json p;
-    p["id"] = a;
-    p["perception_modality"] = "Position";
-    p["description"] = std::string(ActuatorName(static_cast<Actuator>(a))) +
-                       " actuator displacement from its workspace centre";
-    p["avatar_id"] = 1;
-    p["effect_library"] = json::array();
-    p["reference_devices"] = json::array(
-        {json{{"id", 1}, {"name", "Novint Falcon"}}});
-    p["unit_exponent"] = 0;             // metres (10^0)
-    p["perception_unit_exponent"] = 0;  // amplitudes times gain are metres
-    json channels = json::array();
-    for (int k = 0; k < 3; ++k) {
-      json effect = {{"id", 0},    {"effect_type", "Basis"}, {"position", effect_pos},
-                     {"phase", 0}, {"base_signal", "Sine"},  {"keyframes", keyframes(a, k)}};
-      json band = {{"band_type", "Curve"},
-                   {"curve_type", "Linear"},
-                   {"lower_frequency_limit", 0},
-                   // An integer in the reference software's loader.
-                   {"upper_frequency_limit",
-                    std::max(1, static_cast<int>(std::lround(o.keyframe_rate_hz / 2)))},
-                   {"effects", json::array({effect})}};
-      json ch;
-      ch["id"] = a * 3 + k;
-      ch["description"] = std::string(ActuatorName(static_cast<Actuator>(a))) + " " +
-                          axis_names[k] + " position (seat frame: +X right, +Y up, +Z backward)";
-      ch["gain"] = o.gain_m;
-      ch["mixing_coefficient"] = 1.0;
-      ch["body_part_mask"] = 0;  // unspecified; body_part_target names the part
-      ch["body_part_target"] = kBodyParts[a];
-      ch["reference_device_id"] = 1;
-      // The seat axis this channel moves along.
-      ch["direction"] = {{"X", k == 0 ? 1 : 0}, {"Y", k == 1 ? 1 : 0}, {"Z", k == 2 ? 1 : 0}};
-      ch["bands"] = json::array({band});
-      channels.push_back(ch);
-    }
-    p["channels"] = channels;
-    perceptions.push_back(p);
-  }
+  for (int a = 0; a < kNumActuators; ++a) perceptions.push_back(HjifPerception(a, o, effects));
   doc["perceptions"] = perceptions;
-  doc["syncs"] = json::array();
+  // What the reference decoder puts back after a binary round trip.
+  doc["syncs"] = json::array({json{{"timestamp", 0}, {"timescale", o.timescale}}});
   return doc;
 }
 
 void CheckTrack(const HapticTrack& track, const HjifOptions& o) {
   o.Check();
   if (track.samples.empty()) throw Error(track.source, "haptic track has no samples");
+  const double t0 = track.samples.front().time_s;
+  const double t1 = track.samples.back().time_s;
+  if (t0 < 0) throw Error(track.source, "a .hjif cannot start before time 0");
+  if (Ticks(t1, o) > kHjifMaxEffectPosition) {
+    throw Error(track.source, "track ends at " + std::to_string(t1) +
+                                  " s, beyond the .hjif effect position limit (2^25 ticks)");
+  }
 }
 
-// The line `"keyframes": "<placeholder a k>"` of the skeleton, as dump(1)
+json EffectHeader(const EffectSpan& span) {
+  return json{{"effect_type", "Basis"}, {"position", span.position}};
+}
+
+// The line `"effects": "<placeholder a k>"` of the skeleton, as dump(1)
 // prints it: its indentation, channel and trailing comma. A user's text
-// cannot make such a line: dump() escapes the newlines of every string.
-const char kPlaceholder[] = "\"keyframes\": \"\\u0000hapcine keyframes ";
+// cannot make such a line: dump() escapes the control characters of every string.
+const char kPlaceholder[] = "\"effects\": \"\\u0000hapcine effects ";
 
 bool ParsePlaceholderLine(const std::string& line, size_t* indent, int* a, int* k,
                           bool* comma) {
@@ -179,34 +268,54 @@ void WriteKeyframe(std::ostream& out, const std::string& indent, const Keyframe&
       << indent << (last ? "}\n" : "},\n");
 }
 
+// One effect as dump(1) prints it at `pad`: its members in key order
+// (effect_type, keyframes, position).
+template <class Keyframes>
+void WriteEffect(std::ostream& out, const std::string& pad, const EffectSpan& span, bool last,
+                 Keyframes keyframes) {
+  out << pad << "{\n"
+      << pad << " \"effect_type\": \"Basis\",\n"
+      << pad << " \"keyframes\": [\n";
+  keyframes(pad + "  ");
+  out << pad << " ],\n"
+      << pad << " \"position\": " << span.position << "\n"
+      << pad << (last ? "}\n" : "},\n");
+}
+
 }  // namespace
 
 json HapticTrackToHjif(const HapticTrack& track, const HjifOptions& o) {
   CheckTrack(track, o);
   const KeyframeTimes times = KeyframeTimesOf(track, o);
-  return HjifDocument(track, o, times, [&](int a, int k) {
-    json keyframes = json::array();
-    ForEachKeyframe(track, o, times, a, k, [&](const Keyframe& key) {
-      keyframes.push_back({{"relative_position", key.relative_position},
-                           {"amplitude_modulation", key.amplitude}});
-    });
-    return keyframes;
+  const std::vector<EffectSpan> spans = EffectSpansOf(times, o);
+  return HjifDocument(track, o, [&](int a, int k) {
+    json effects = json::array();
+    for (const EffectSpan& span : spans) {
+      json effect = EffectHeader(span);
+      json keyframes = json::array();
+      ForEachKeyframe(track, o, times, span, a, k, [&](const Keyframe& key) {
+        keyframes.push_back({{"relative_position", key.relative_position},
+                             {"amplitude_modulation", key.amplitude}});
+      });
+      effect["keyframes"] = std::move(keyframes);
+      effects.push_back(std::move(effect));
+    }
+    return effects;
   });
 }
 
 void WriteHjif(const HapticTrack& track, const HjifOptions& o, std::ostream& out) {
   CheckTrack(track, o);
   const KeyframeTimes times = KeyframeTimesOf(track, o);
-  // The document without its keyframes (a few kB), each keyframes array
+  const std::vector<EffectSpan> spans = EffectSpansOf(times, o);
+  // The document without its effects (a few kB), each effects array
   // replaced by a placeholder string, then printed line by line with the
-  // keyframes written in place of each placeholder: a long film's millions
+  // effects written in place of each placeholder: a long film's millions
   // of keyframes are never held in memory.
-  const json skeleton = HjifDocument(track, o, times, [](int a, int k) {
-    return std::string(1, '\0') + "hapcine keyframes " + std::to_string(a) + " " +
-           std::to_string(k);
+  const json skeleton = HjifDocument(track, o, [](int a, int k) {
+    return json(std::string(1, '\0') + "hapcine effects " + std::to_string(a) + " " +
+                std::to_string(k));
   });
-  // A file name in the description may hold bytes that are not UTF-8: they
-  // become U+FFFD (JSON text is UTF-8) rather than failing the export.
   std::istringstream text(skeleton.dump(1, ' ', false, json::error_handler_t::replace));
   std::string line;
   while (std::getline(text, line)) {
@@ -218,11 +327,15 @@ void WriteHjif(const HapticTrack& track, const HjifOptions& o, std::ostream& out
       continue;
     }
     const std::string pad(indent, ' ');
-    out << pad << "\"keyframes\": [\n";
-    size_t i = 0;
-    ForEachKeyframe(track, o, times, a, k, [&](const Keyframe& key) {
-      WriteKeyframe(out, pad + " ", key, ++i == times.count);
-    });
+    out << pad << "\"effects\": [\n";
+    for (size_t e = 0; e < spans.size(); ++e) {
+      WriteEffect(out, pad + " ", spans[e], e + 1 == spans.size(), [&](const std::string& kpad) {
+        size_t i = spans[e].first;
+        ForEachKeyframe(track, o, times, spans[e], a, k, [&](const Keyframe& key) {
+          WriteKeyframe(out, kpad, key, i++ == spans[e].last);
+        });
+      });
+    }
     out << pad << (comma ? "],\n" : "]\n");
   }
 }

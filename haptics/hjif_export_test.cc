@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "haptics/haptic_models.h"
 #include "haptics/test_paths_for_test.h"
@@ -19,10 +21,22 @@ HapticTrack Track() {
   return MakeHapticTrack(testing::MakeEffectPath(CameraEffect::kDutchAngle), o);
 }
 
+// Every keyframe of channel (a, k), with its absolute tick.
+std::vector<std::pair<long long, double>> ChannelKeyframes(const nlohmann::json& j, int a, int k) {
+  std::vector<std::pair<long long, double>> keys;
+  for (const auto& e : j["perceptions"][a]["channels"][k]["bands"][0]["effects"]) {
+    for (const auto& key : e.at("keyframes")) {
+      keys.emplace_back(e.at("position").get<long long>() + key.at("relative_position").get<long long>(),
+                        key.at("amplitude_modulation").get<double>());
+    }
+  }
+  return keys;
+}
+
 TEST(HjifExport, StructureAndValues) {
   const HapticTrack track = Track();
   HjifOptions o;
-  o.date = "2026-01-02";
+  o.date = "2026-01-02T03:04:05Z";
   const std::string file = std::string(HAPCINE_BINARY_DIR) + "/hjif_export_test.hjif";
   WriteHjifFile(track, file, o);
   std::ifstream in(file);
@@ -30,43 +44,85 @@ TEST(HjifExport, StructureAndValues) {
   std::remove(file.c_str());
   EXPECT_EQ(j.at("profile"), "Main");
   EXPECT_EQ(j.at("version"), "2023");
-  EXPECT_EQ(j.at("date"), "2026-01-02");
+  EXPECT_EQ(j.at("date"), "2026-01-02T03:04:05Z");
   EXPECT_EQ(j.at("timescale"), 1000);
+  EXPECT_EQ(j.at("description"), "clip.camera");  // the source's stem, not its path
   ASSERT_EQ(j.at("perceptions").size(), 3u);
   const size_t expected_keys = 701;  // 7 s at 100 Hz, both ends
   for (int a = 0; a < 3; ++a) {
     const auto& p = j["perceptions"][a];
     EXPECT_EQ(p.at("perception_modality"), "Position");
-    EXPECT_EQ(p.at("id"), a);
+    EXPECT_EQ(p.at("unit_exponent"), -3);             // time: ms ticks
+    EXPECT_EQ(p.at("perception_unit_exponent"), -3);  // amplitude x gain: mm
     ASSERT_EQ(p.at("channels").size(), 3u);
     for (int k = 0; k < 3; ++k) {
       const auto& ch = p["channels"][k];
-      const double gain = ch.at("gain");
+      EXPECT_EQ(ch.at("gain"), 50.0);
+      EXPECT_EQ(ch.at("body_part_mask"), HjifBodyPartMask(static_cast<Actuator>(a)));
       const auto& band = ch.at("bands").at(0);
       EXPECT_EQ(band.at("band_type"), "Curve");
-      const auto& effect = band.at("effects").at(0);
-      EXPECT_EQ(effect.at("effect_type"), "Basis");
-      const auto& keys = effect.at("keyframes");
+      ASSERT_EQ(band.at("effects").size(), 1u);  // 7 s: one effect
+      const auto keys = ChannelKeyframes(j, a, k);
       ASSERT_EQ(keys.size(), expected_keys);
       long long prev = -1;
-      for (const auto& key : keys) {
-        const long long rel = key.at("relative_position");
-        EXPECT_GT(rel, prev);
-        prev = rel;
-        const double t = (effect.at("position").get<long long>() + rel) / 1000.0;
-        const HapticSample& s = track.samples[static_cast<size_t>(std::lround(t * 1000))];
-        EXPECT_NEAR(key.at("amplitude_modulation").get<double>() * gain, s.pos_m[a][k], 1e-12);
-        EXPECT_LE(std::abs(key.at("amplitude_modulation").get<double>()), 1.0);
+      for (const auto& [tick, amplitude] : keys) {
+        EXPECT_GT(tick, prev);
+        prev = tick;
+        const HapticSample& s = track.samples[static_cast<size_t>(tick)];
+        EXPECT_NEAR(amplitude * 50 * 1e-3, s.pos_m[a][k], 1e-12);
+        EXPECT_LE(std::abs(amplitude), 1.0);
       }
     }
   }
   // The dutch angle moves the right hand's y: the keyframes are not all zero.
   double m = 0;
-  for (const auto& key :
-       j["perceptions"][2]["channels"][1]["bands"][0]["effects"][0]["keyframes"]) {
-    m = std::max(m, std::abs(key["amplitude_modulation"].get<double>()));
-  }
+  for (const auto& key : ChannelKeyframes(j, 2, 1)) m = std::max(m, std::abs(key.second));
   EXPECT_GT(m, 0.3);
+}
+
+// A film: no effect spans more than the binary format's 16-bit relative
+// position; consecutive effects share their boundary keyframe, so the curve
+// is the same as one long effect's.
+TEST(HjifExport, LongTracksAreSplitIntoEffectsOf65535TicksAtMost) {
+  HapticTrack track;
+  track.source = "/some/dir/film.camera.csv";
+  track.rate_hz = 100;
+  for (int i = 0; i <= 20000; ++i) {  // 200 s
+    HapticSample s;
+    s.time_s = i / 100.0;
+    s.pos_m[1] = {0.04 * std::sin(i * 1e-3), 0, 0};
+    track.samples.push_back(s);
+  }
+  HjifOptions o;
+  o.keyframe_rate_hz = 10;
+  const nlohmann::json j = HapticTrackToHjif(track, o);
+  const auto& effects = j["perceptions"][1]["channels"][0]["bands"][0]["effects"];
+  ASSERT_EQ(effects.size(), 4u);  // 200 s in effects of <= 65.5 s
+  long long end = 0;
+  for (const auto& e : effects) {
+    EXPECT_EQ(e.at("position").get<long long>(), end);  // starts where the previous ended
+    EXPECT_EQ(e.at("keyframes").at(0).at("relative_position"), 0);
+    const long long last = e.at("keyframes").back().at("relative_position");
+    EXPECT_LE(last, kHjifMaxRelativePosition);
+    end = e.at("position").get<long long>() + last;
+  }
+  EXPECT_EQ(end, 200000);
+  for (const auto& [tick, amplitude] : ChannelKeyframes(j, 1, 0)) {
+    EXPECT_NEAR(amplitude * 50e-3, 0.04 * std::sin(tick * 1e-4), 1e-12) << tick;
+  }
+}
+
+TEST(HjifExport, DescriptionIsShortAndUtf8) {
+  EXPECT_EQ(HjifShortText("abc", 255), "abc");
+  EXPECT_EQ(HjifShortText(std::string(300, 'x'), 255).size(), 255u);
+  // Cut on a character boundary: "é" is two bytes.
+  EXPECT_EQ(HjifShortText("a\xc3\xa9", 2), "a");
+  EXPECT_EQ(HjifShortText("a\xc3\xa9", 3), "a\xc3\xa9");
+  EXPECT_EQ(HjifShortText("a\xff\nb", 255), "a??b");
+  HapticTrack track = Track();
+  track.source = "/a/long/path/" + std::string(400, 'n') + ".camera.csv";
+  const nlohmann::json j = HapticTrackToHjif(track, HjifOptions{});
+  EXPECT_EQ(j.at("description").get<std::string>(), std::string(255, 'n'));
 }
 
 // The members, and their JSON types, that the MPEG reference software's HJIF
@@ -88,7 +144,9 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
   for (const auto& av : j["avatars"]) {
     has(av, "id", &J::is_number_integer);
     has(av, "lod", &J::is_number_integer);
+    EXPECT_GE(av.at("id").get<int>(), 1);  // 0 is reserved
     EXPECT_EQ(av.at("type"), "Custom");
+    has(av, "mesh", &J::is_string);  // a Custom avatar's mesh: needed by the binary format
   }
   for (const auto& p : j["perceptions"]) {
     has(p, "id", &J::is_number_integer);
@@ -99,6 +157,7 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
     has(p, "effect_library", &J::is_array);
     for (const auto& d : p.at("reference_devices")) {
       has(d, "id", &J::is_number_integer);
+      EXPECT_GE(d.at("id").get<int>(), 1);
       has(d, "name", &J::is_string);
     }
     for (const auto& ch : p["channels"]) {
@@ -107,11 +166,11 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
       has(ch, "gain", &J::is_number);
       has(ch, "mixing_coefficient", &J::is_number);
       has(ch, "body_part_mask", &J::is_number_integer);
-      EXPECT_GE(ch["body_part_mask"].get<int>(), 0);
+      EXPECT_GT(ch["body_part_mask"].get<int>(), 0);
       has(ch, "bands", &J::is_array);
-      for (const auto& part : ch.at("body_part_target")) {
-        EXPECT_TRUE(part == "Head" || part == "Left" || part == "Right" || part == "Hand") << part;
-      }
+      // The body part is the mask's: the binary format keeps a mask or a
+      // target, not both.
+      EXPECT_FALSE(ch.contains("body_part_target"));
       for (const char* axis : {"X", "Y", "Z"}) {
         EXPECT_TRUE(ch.at("direction").at(axis).is_number_integer()) << axis;
       }
@@ -124,8 +183,8 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
         for (const auto& e : band["effects"]) {
           EXPECT_EQ(e.at("effect_type"), "Basis");
           has(e, "position", &J::is_number_integer);
-          has(e, "phase", &J::is_number);
-          EXPECT_EQ(e.at("base_signal"), "Sine");
+          // Meaningless in a Curve band: the reference writer drops them.
+          EXPECT_FALSE(e.contains("id") || e.contains("phase") || e.contains("base_signal"));
           has(e, "keyframes", &J::is_array);
           for (const auto& key : e["keyframes"]) {
             ASSERT_TRUE(key.at("relative_position").is_number_integer());
@@ -135,17 +194,23 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
       }
     }
   }
-  // Each channel's direction is its seat axis.
+  // Each channel's direction is its seat axis, an int8 unit vector (127).
   const auto& right = j["perceptions"][2];
-  EXPECT_EQ(right["channels"][1]["direction"]["Y"], 1);
+  EXPECT_EQ(right["channels"][1]["direction"]["Y"], 127);
   EXPECT_EQ(right["channels"][1]["direction"]["X"], 0);
-  EXPECT_EQ(right["channels"][0]["body_part_target"], nlohmann::json::array({"Right", "Hand"}));
+  EXPECT_EQ(right["channels"][0]["body_part_mask"], HjifBodyPartMask(Actuator::kRight));
+  EXPECT_NE(HjifBodyPartMask(Actuator::kRight), HjifBodyPartMask(Actuator::kLeft));
+  // ISO 8601 date-time (the schema's "date-time"), UTC.
+  const std::string date = j["date"];
+  EXPECT_EQ(date.size(), 20u) << date;
+  EXPECT_EQ(date[10], 'T');
+  EXPECT_EQ(date.back(), 'Z');
 }
 
 // The streaming writer prints the very text of the document's dump(1).
 TEST(HjifExport, StreamedTextIsTheDocumentsDump) {
   HjifOptions o;
-  o.date = "2026-01-02";
+  o.date = "2026-01-02T00:00:00Z";
   HapticTrack track = Track();
   track.source = "odd \"name\"\n\\ \"keyframes\": \"\x01.csv";
   for (double rate : {100.0, 7.0}) {
@@ -160,6 +225,19 @@ TEST(HjifExport, StreamedTextIsTheDocumentsDump) {
   std::ostringstream streamed;
   WriteHjif(one, o, streamed);
   EXPECT_EQ(streamed.str(), HapticTrackToHjif(one, o).dump(1) + "\n");
+  // Several effects per channel (150 s).
+  HapticTrack film;
+  for (int i = 0; i <= 1500; ++i) {
+    film.samples.emplace_back();
+    film.samples.back().time_s = i / 10.0;
+    film.samples.back().pos_m[0] = {0.001 * (i % 7), 0, -0.002};
+  }
+  o.keyframe_rate_hz = 10;
+  std::ostringstream streamed_film;
+  WriteHjif(film, o, streamed_film);
+  const nlohmann::json doc = HapticTrackToHjif(film, o);
+  EXPECT_EQ(doc["perceptions"][0]["channels"][0]["bands"][0]["effects"].size(), 3u);
+  EXPECT_EQ(streamed_film.str(), doc.dump(1) + "\n");
 }
 
 TEST(HjifExport, RejectsEmptyTracksAndBadOptions) {

@@ -16,6 +16,7 @@
 #include "core/progress.h"
 #include "haptics/device_config.h"
 #include "haptics/falcon_firmware.h"
+#include "haptics/hjif_import.h"
 #include "haptics/safety.h"
 #include "haptics/usb_transport.h"
 #include "player/loop_runner.h"
@@ -153,7 +154,7 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
   } restore;
 
   const std::string track_path = ResolveTrackPath(o.video, o.track);
-  const HapticTrack track = ReadHapticTrackFile(track_path);
+  const HapticTrack track = ReadAnyHapticTrackFile(track_path);  // *.haptic.csv or .hjif
   if (track.samples.empty()) throw Error(track_path, "haptic track has no rows");
   const double track_end_s = track.samples.back().time_s;
   if (!o.video.empty() && !fs::exists(o.video)) throw Error(o.video, "video not found");

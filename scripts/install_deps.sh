@@ -25,6 +25,10 @@ PACKAGES=(
   xvfb
   # Benchmarks (bench/run.sh): /usr/bin/time for wall time and peak RSS.
   time
+  # MPEG-I Haptics reference software (tests/hjif_reference_test.sh runs
+  # ../shared/tools/mpeg-haptics/validate.sh: cmake, make, g++ above, and
+  # its schema check in python jsonschema).
+  python3 python3-jsonschema
   # Compiler cache: rebuilds of unchanged files are nearly free.
   ccache
   # Fuzzing the readers (scripts/fuzz.sh): clang and its libFuzzer runtime.

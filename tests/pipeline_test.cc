@@ -135,6 +135,28 @@ TEST_F(PipelineTest, SynthEstimateEvalHapticsPlay) {
                  dir_);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE((r.out + r.err).find("p99"), std::string::npos) << r.out << r.err;
+
+  // The same track as MPEG-I .hjif plays too, and eval compares with it.
+  r = RunHapcine("play " + Quote(video) + " --track " + Quote(hjif) +
+                     " --device sim --headless --no-realtime --stats",
+                 dir_);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = RunHapcine("eval --json --gt " + Quote(gt) + " --est " + Quote(est) + " --haptic-track " +
+                     Quote(hjif),
+                 dir_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out).at("haptic").at("samples").get<int>(), 1000);
+  // A perception the HapSeat cannot play is refused with one line naming it.
+  nlohmann::json vibration = hjif_doc;
+  vibration["perceptions"][1]["perception_modality"] = "Vibrotactile";
+  const fs::path vib = dir_ / "vibration.hjif";
+  std::ofstream(vib) << vibration.dump();
+  r = RunHapcine("play " + Quote(video) + " --track " + Quote(vib) + " --device sim --headless",
+                 dir_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "hapcine play: " + vib.string() +
+                       ": perception 1 (Vibrotactile): only Position perceptions can play on the "
+                       "HapSeat\n");
 }
 
 // docs/batch.md: a local batch handles any file name. A newline, '=' and ','
