@@ -165,6 +165,7 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
 
   HapticTrack track;
   track.rate_hz = rate;
+  track.interpolation = InterpolationForRate(rate);
   track.model = HapticModelName(o.model);
   track.source = o.source;
   // The samples are built in place (a two-hour film is 7.2 million of
