@@ -41,6 +41,32 @@ void Text(std::ostream& o, double x, double y, const std::string& s, const char*
     << "\" text-anchor=\"" << anchor << "\"" << extra << ">" << Escape(s) << "</text>\n";
 }
 
+void WriteLegend(std::ostream& o, const Figure& fig, const FigureLayout& L, size_t pi) {
+  const PlotRect& r = L.panels[pi].plot;
+  const std::vector<LegendEntry> entries = PanelLegend(fig, pi);
+  const size_t rows = LegendRowsThatFit(r);
+  double ly = r.y + 12;
+  for (size_t i = 0; i < entries.size(); ++i, ly += kLegendRowPx) {
+    if (i + 1 == rows && entries.size() > rows) {
+      Text(o, L.legend_x + 30, ly, "+" + std::to_string(entries.size() - i) + " more", "start", 11);
+      break;
+    }
+    const LegendEntry& e = entries[i];
+    if (e.kind == LegendEntry::kSwatch) {
+      o << "<rect x=\"" << F(L.legend_x) << "\" y=\"" << F(ly - 10) << "\" width=\"24\" height=\"10\" fill=\""
+        << Rgb(e.color) << "\"/>\n";
+    } else if (e.kind == LegendEntry::kCut) {
+      o << "<line x1=\"" << F(L.legend_x + 12) << "\" y1=\"" << F(ly - 11) << "\" x2=\"" << F(L.legend_x + 12)
+        << "\" y2=\"" << F(ly + 1) << "\" stroke=\"" << Rgb(e.color) << "\" stroke-width=\"2\"/>\n";
+    } else {
+      o << "<line x1=\"" << F(L.legend_x) << "\" y1=\"" << F(ly - 4) << "\" x2=\"" << F(L.legend_x + 24)
+        << "\" y2=\"" << F(ly - 4) << "\" stroke=\"" << Rgb(e.color) << "\" stroke-width=\"2\""
+        << (e.kind == LegendEntry::kDashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
+    }
+    Text(o, L.legend_x + 30, ly, e.name, "start", 11);
+  }
+}
+
 }  // namespace
 
 std::string RenderFigureSvg(const Figure& fig) {
@@ -96,6 +122,12 @@ std::string RenderFigureSvg(const Figure& fig) {
     o << "<g clip-path=\"url(#clip" << pi << ")\">\n";
     for (const auto& s : p.series) {
       for (const auto& run : SeriesRuns(s, L, r)) {
+        if (s.filled && run.size() > 1) {  // the area down to y = 0
+          o << "<polygon fill=\"" << Rgb(s.color) << "\" fill-opacity=\"0.3\" stroke=\"none\" points=\"";
+          for (const auto& [x, y] : run) o << F(L.MapX(r, x)) << ',' << F(pl.MapY(y)) << ' ';
+          o << F(L.MapX(r, run.back().first)) << ',' << F(pl.MapY(0)) << ' '
+            << F(L.MapX(r, run.front().first)) << ',' << F(pl.MapY(0)) << "\"/>\n";
+        }
         o << "<polyline fill=\"none\" stroke=\"" << Rgb(s.color) << "\" stroke-width=\"1.5\"";
         if (s.dashed) o << " stroke-dasharray=\"6,4\"";
         o << " points=\"";
@@ -107,16 +139,13 @@ std::string RenderFigureSvg(const Figure& fig) {
       }
     }
     o << "</g>\n";
-    // Legend.
-    double ly = r.y + 12;
-    for (const auto& s : p.series) {
-      if (s.name.empty()) continue;
-      o << "<line x1=\"" << F(L.legend_x) << "\" y1=\"" << F(ly - 4) << "\" x2=\""
-        << F(L.legend_x + 24) << "\" y2=\"" << F(ly - 4) << "\" stroke=\"" << Rgb(s.color)
-        << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
-      Text(o, L.legend_x + 30, ly, s.name, "start", 11);
-      ly += 16;
+    for (double t : fig.cut_x) {  // shot boundaries, over the curves
+      const double x = L.MapX(r, t);
+      if (x < r.x || x > r.x + r.w) continue;
+      o << "<line x1=\"" << F(x) << "\" y1=\"" << F(r.y) << "\" x2=\"" << F(x) << "\" y2=\""
+        << F(r.y + r.h) << "\" stroke=\"" << Rgb(CutLineColor()) << "\" stroke-width=\"2\"/>\n";
     }
+    WriteLegend(o, fig, L, pi);
     o << "</g>\n";
   }
   if (!fig.x_label.empty()) {
