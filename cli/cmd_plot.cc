@@ -122,6 +122,102 @@ std::vector<TimeRange> ChoosePages(const PageChoice& c, double first_s, double l
   return PagesByDuration(from, to, 60 * c.page_minutes);
 }
 
+void AddPageOptions(CLI::App* sub, PageChoice* pages) {
+    sub->add_option("--from", pages->from,
+                    "start of the plotted range: seconds (90.5) or running time (1:30, 1:02:03.5)");
+    sub->add_option("--to", pages->to, "end of the plotted range (same forms as --from)");
+    sub->add_option("--page-minutes", pages->page_minutes,
+                    "cut the range into pages of this many minutes, written as PREFIX-001.png, "
+                    "PREFIX-002.png, ... (a two-hour film stays readable)")
+        ->check(FiniteRange(0.01, 1e5));
+    sub->add_flag("--page-per-shot", pages->per_shot,
+                  "one page per shot (the `shot` column), numbered as with --page-minutes")
+        ->excludes("--page-minutes");
+}
+
+// The pages of one plot: their time ranges and how to draw one.
+struct PlotPages {
+  std::vector<TimeRange> ranges;
+  std::function<Figure(const TimeRange&)> page;
+};
+
+// The camera figure is built once (relative poses, the classifier) and cropped per page.
+PlotPages CameraPages(const std::string& gt_file, const std::string& est_file,
+                      const CameraPlotOptions& opt, const PageChoice& choice) {
+  const CameraPath gt = ReadCameraPathFile(gt_file);
+  CameraPath est;
+  if (!est_file.empty()) est = ReadCameraPathFile(est_file);
+  auto whole = std::make_shared<Figure>(CameraPathFigure(gt, est_file.empty() ? nullptr : &est, opt));
+  PlotPages pages;
+  pages.ranges = ChoosePages(choice, gt.frames.front().time_s, gt.frames.back().time_s, whole->cut_x);
+  pages.page = [whole](const TimeRange& r) { return CropFigure(*whole, r.first, r.second); };
+  return pages;
+}
+
+// The tracks are cropped before the figure is built: a page of a two-hour
+// 1 kHz track (7 million rows) copies only its own rows.
+PlotPages HapticPages(const std::vector<std::string>& files, const std::string& camera_file,
+                      const std::string& title, const PageChoice& choice) {
+  auto tracks = std::make_shared<std::vector<HapticTrack>>();
+  std::string names;
+  for (const std::string& f : files) {
+    tracks->push_back(ReadHapticTrackFile(f));
+    names += (names.empty() ? "" : "  vs  ") + f + " (" + tracks->back().model + ")";
+  }
+  std::optional<PlotPanel> confidence;
+  std::vector<double> cuts = ShotCutTimes(tracks->front());
+  if (!camera_file.empty()) {
+    const CameraPath path = ReadCameraPathFile(camera_file);
+    confidence = ConfidencePanel(path, "estimate confidence");
+    if (cuts.empty()) cuts = ShotCutTimes(path);
+  }
+  const std::vector<std::string> legend = TrackLegendNames(*tracks, files);
+  const std::string fig_title = title.empty() ? names : title;
+  PlotPages pages;
+  pages.ranges = ChoosePages(choice, tracks->front().samples.front().time_s,
+                             tracks->front().samples.back().time_s, cuts);
+  pages.page = [tracks, confidence, cuts, legend, fig_title](const TimeRange& r) {
+    std::vector<HapticTrack> cropped;
+    for (const HapticTrack& t : *tracks) cropped.push_back(CropTrack(t, r.first, r.second));
+    std::vector<const HapticTrack*> ptrs;
+    for (const HapticTrack& t : cropped) ptrs.push_back(&t);
+    Figure fig = HapticTracksFigure(ptrs, fig_title, legend);
+    fig.cut_x = cuts;
+    if (confidence) fig.panels.insert(fig.panels.begin() + kNumActuators, *confidence);
+    return CropFigure(fig, r.first, r.second);
+  };
+  return pages;
+}
+
+// Every page's files are complete before any is renamed into place.
+void WritePages(const PlotPages& plot, const std::string& png, const std::string& svg,
+                const std::vector<NamedPath>& inputs, int width_px) {
+  const size_t n = plot.ranges.size();
+  std::vector<std::pair<std::string, std::string>> files;  // png, svg per page
+  std::vector<NamedPath> outputs;
+  for (size_t i = 0; i < n; ++i) {
+    files.push_back({png.empty() ? "" : PagePath(png, i, n), svg.empty() ? "" : PagePath(svg, i, n)});
+    outputs.push_back({files.back().first, "-o"});
+    outputs.push_back({files.back().second, "-o"});
+  }
+  OutputSet set(inputs, outputs);
+  Progress progress(std::cerr, ProgressModeFor(n < 5), "plot", "pages");
+  for (size_t i = 0; i < n; ++i) {
+    Figure fig = plot.page(plot.ranges[i]);
+    fig.width_px = width_px;
+    if (n > 1) fig.title += "  [" + std::to_string(i + 1) + "/" + std::to_string(n) + "]";
+    WriteOutputs(fig, files[i].first, files[i].second);
+    progress.Update(static_cast<double>(i + 1), static_cast<double>(n));
+  }
+  set.CommitAll();
+  progress.Finish(static_cast<double>(n));
+  for (const auto& [page_png, page_svg] : files) {
+    for (const std::string& written : {page_png, page_svg}) {
+      if (!written.empty()) std::cerr << "wrote " << written << "\n";
+    }
+  }
+}
+
 }  // namespace
 
 int RunPlot(int argc, char** argv) {
@@ -143,16 +239,7 @@ int RunPlot(int argc, char** argv) {
         ->capture_default_str()
         ->check(FiniteRange(300, 10000));
     sub->add_option("--title", title, "figure title (default: the input file names)");
-    sub->add_option("--from", pages.from,
-                    "start of the plotted range: seconds (90.5) or running time (1:30, 1:02:03.5)");
-    sub->add_option("--to", pages.to, "end of the plotted range (same forms as --from)");
-    sub->add_option("--page-minutes", pages.page_minutes,
-                    "cut the range into pages of this many minutes, written as PREFIX-001.png, "
-                    "PREFIX-002.png, ... (a two-hour film stays readable)")
-        ->check(FiniteRange(0.01, 1e5));
-    sub->add_flag("--page-per-shot", pages.per_shot,
-                  "one page per shot (the `shot` column), numbered as with --page-minutes")
-        ->excludes("--page-minutes");
+    AddPageOptions(sub, &pages);
   };
 
   std::string gt_file, est_file;
@@ -193,82 +280,21 @@ int RunPlot(int argc, char** argv) {
     const std::string png = format != "svg" ? PlotOutputPath(prefix, "png", single) : "";
     const std::string svg = format != "png" ? PlotOutputPath(prefix, "svg", single) : "";
     std::vector<NamedPath> inputs;
+    PlotPages plot;
     if (camera->parsed()) {
       inputs = {{gt_file, "GT"}, {est_file, "EST"}};
-    } else {
-      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
-      if (!confidence_file.empty()) inputs.push_back({confidence_file, "--camera"});
-    }
-    // One builder per page: the camera figure is built once and cropped; the
-    // tracks are cropped first (a two-hour 1 kHz track is 7 million rows).
-    std::function<Figure(const TimeRange&)> page_figure;
-    std::vector<TimeRange> ranges;
-    CameraPath gt, est, conf_path;
-    std::vector<HapticTrack> tracks;
-    Figure whole;
-    if (camera->parsed()) {
-      gt = ReadCameraPathFile(gt_file);
-      if (!est_file.empty()) est = ReadCameraPathFile(est_file);
       CameraPlotOptions opt;
       opt.relative_to_first = !absolute;
       opt.scale_estimate = !absolute && !no_scale;
       opt.effect_labels = !no_effects;
       opt.title = title.empty() ? gt_file + (est_file.empty() ? "" : "  vs  " + est_file) : title;
-      whole = CameraPathFigure(gt, est_file.empty() ? nullptr : &est, opt);
-      ranges = ChoosePages(pages, gt.frames.front().time_s, gt.frames.back().time_s, whole.cut_x);
-      page_figure = [&](const TimeRange& r) { return CropFigure(whole, r.first, r.second); };
+      plot = CameraPages(gt_file, est_file, opt, pages);
     } else {
-      std::string names;
-      for (const std::string& f : track_files) {
-        tracks.push_back(ReadHapticTrackFile(f));
-        names += (names.empty() ? "" : "  vs  ") + f + " (" + tracks.back().model + ")";
-      }
-      if (!confidence_file.empty()) conf_path = ReadCameraPathFile(confidence_file);
-      std::vector<double> cuts = ShotCutTimes(tracks.front());
-      if (cuts.empty() && !confidence_file.empty()) cuts = ShotCutTimes(conf_path);
-      const std::vector<std::string> legend = TrackLegendNames(tracks, track_files);
-      ranges = ChoosePages(pages, tracks.front().samples.front().time_s,
-                           tracks.front().samples.back().time_s, cuts);
-      page_figure = [&, cuts, legend, names](const TimeRange& r) {
-        std::vector<HapticTrack> cropped;
-        for (const HapticTrack& t : tracks) cropped.push_back(CropTrack(t, r.first, r.second));
-        std::vector<const HapticTrack*> ptrs;
-        for (const HapticTrack& t : cropped) ptrs.push_back(&t);
-        Figure fig = HapticTracksFigure(ptrs, title.empty() ? names : title, legend);
-        fig.cut_x = cuts;
-        if (!confidence_file.empty()) {
-          std::optional<PlotPanel> conf = ConfidencePanel(conf_path, "estimate confidence");
-          if (conf) fig.panels.insert(fig.panels.begin() + kNumActuators, std::move(*conf));
-        }
-        return CropFigure(fig, r.first, r.second);
-      };
+      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
+      inputs.push_back({confidence_file, "--camera"});
+      plot = HapticPages(track_files, confidence_file, title, pages);
     }
-    std::vector<std::pair<std::string, std::string>> page_files;  // png, svg per page
-    std::vector<NamedPath> outputs_named;
-    for (size_t i = 0; i < ranges.size(); ++i) {
-      page_files.push_back({png.empty() ? "" : PagePath(png, i, ranges.size()),
-                            svg.empty() ? "" : PagePath(svg, i, ranges.size())});
-      outputs_named.push_back({page_files.back().first, "-o"});
-      outputs_named.push_back({page_files.back().second, "-o"});
-    }
-    OutputSet outputs(inputs, outputs_named);
-    Progress progress(std::cerr, ProgressModeFor(ranges.size() < 5), "plot", "pages");
-    for (size_t i = 0; i < ranges.size(); ++i) {
-      Figure fig = page_figure(ranges[i]);
-      fig.width_px = width_px;
-      if (ranges.size() > 1) {
-        fig.title += "  [" + std::to_string(i + 1) + "/" + std::to_string(ranges.size()) + "]";
-      }
-      WriteOutputs(fig, page_files[i].first, page_files[i].second);
-      progress.Update(static_cast<double>(i + 1), static_cast<double>(ranges.size()));
-    }
-    outputs.CommitAll();
-    if (ranges.size() > 1) progress.Finish(static_cast<double>(ranges.size()));
-    for (const auto& [p, s] : page_files) {
-      for (const std::string& written : {p, s}) {
-        if (!written.empty()) std::cerr << "wrote " << written << "\n";
-      }
-    }
+    WritePages(plot, png, svg, inputs, width_px);
     return kExitOk;
   });
 }

@@ -32,6 +32,43 @@ void PadRange(double* lo, double* hi) {
   *hi += pad;
 }
 
+// The x range every panel shares: the figure's own, else the data's.
+void XRange(const Figure& fig, double* lo, double* hi) {
+  double x_lo = std::numeric_limits<double>::infinity();
+  double x_hi = -x_lo;
+  for (const auto& p : fig.panels) {
+    if (!(p.height_weight > 0)) throw UsageError("panel height weight must be > 0");
+    for (const auto& s : p.series) {
+      if (s.x.size() != s.y.size()) throw UsageError("series '" + s.name + "': x and y differ in length");
+      for (double x : s.x) {
+        if (std::isfinite(x)) {
+          x_lo = std::min(x_lo, x);
+          x_hi = std::max(x_hi, x);
+        }
+      }
+    }
+    for (const auto& b : p.bands) {
+      for (double x : {b.x_begin, b.x_end}) {
+        if (std::isfinite(x)) {
+          x_lo = std::min(x_lo, x);
+          x_hi = std::max(x_hi, x);
+        }
+      }
+    }
+  }
+  if (std::isfinite(fig.x_from) && std::isfinite(fig.x_to) && fig.x_to > fig.x_from) {
+    x_lo = fig.x_from;
+    x_hi = fig.x_to;
+  } else if (!std::isfinite(x_lo)) {
+    x_lo = 0;
+    x_hi = 1;
+  } else if (!(x_hi > x_lo)) {
+    PadRange(&x_lo, &x_hi);
+  }
+  *lo = x_lo;
+  *hi = x_hi;
+}
+
 }  // namespace
 
 PlotColor PaletteColor(int index) {
@@ -88,37 +125,8 @@ FigureLayout LayoutFigure(const Figure& fig) {
   }
   FigureLayout L;
   L.width_px = fig.width_px;
-  double x_lo = std::numeric_limits<double>::infinity();
-  double x_hi = -x_lo;
-  for (const auto& p : fig.panels) {
-    if (!(p.height_weight > 0)) throw UsageError("panel height weight must be > 0");
-    for (const auto& s : p.series) {
-      if (s.x.size() != s.y.size()) throw UsageError("series '" + s.name + "': x and y differ in length");
-      for (double x : s.x) {
-        if (std::isfinite(x)) {
-          x_lo = std::min(x_lo, x);
-          x_hi = std::max(x_hi, x);
-        }
-      }
-    }
-    for (const auto& b : p.bands) {
-      for (double x : {b.x_begin, b.x_end}) {
-        if (std::isfinite(x)) {
-          x_lo = std::min(x_lo, x);
-          x_hi = std::max(x_hi, x);
-        }
-      }
-    }
-  }
-  if (std::isfinite(fig.x_from) && std::isfinite(fig.x_to) && fig.x_to > fig.x_from) {
-    x_lo = fig.x_from;
-    x_hi = fig.x_to;
-  } else if (!std::isfinite(x_lo)) {
-    x_lo = 0;
-    x_hi = 1;
-  } else if (!(x_hi > x_lo)) {
-    PadRange(&x_lo, &x_hi);
-  }
+  double x_lo = 0, x_hi = 1;
+  XRange(fig, &x_lo, &x_hi);
   L.x_min = x_lo;
   L.x_max = x_hi;
   L.x_ticks = NiceTicks(x_lo, x_hi, 8);

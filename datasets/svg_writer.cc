@@ -41,6 +41,33 @@ void Text(std::ostream& o, double x, double y, const std::string& s, const char*
     << "\" text-anchor=\"" << anchor << "\"" << extra << ">" << Escape(s) << "</text>\n";
 }
 
+// The panel's series, clipped to its data area.
+void WriteSeries(std::ostream& o, const PlotPanel& p, const FigureLayout& L, const PanelLayout& pl,
+                 size_t pi) {
+  const PlotRect& r = pl.plot;
+  o << "<clipPath id=\"clip" << pi << "\"><rect x=\"" << F(r.x) << "\" y=\"" << F(r.y)
+    << "\" width=\"" << F(r.w) << "\" height=\"" << F(r.h) << "\"/></clipPath>\n";
+  o << "<g clip-path=\"url(#clip" << pi << ")\">\n";
+  for (const auto& s : p.series) {
+    for (const auto& run : SeriesRuns(s, L, r)) {
+      if (s.filled && run.size() > 1) {  // the area down to y = 0
+        o << "<polygon fill=\"" << Rgb(s.color) << "\" fill-opacity=\"0.3\" stroke=\"none\" points=\"";
+        for (const auto& [x, y] : run) o << F(L.MapX(r, x)) << ',' << F(pl.MapY(y)) << ' ';
+        o << F(L.MapX(r, run.back().first)) << ',' << F(pl.MapY(0)) << ' '
+          << F(L.MapX(r, run.front().first)) << ',' << F(pl.MapY(0)) << "\"/>\n";
+      }
+      o << "<polyline fill=\"none\" stroke=\"" << Rgb(s.color) << "\" stroke-width=\"1.5\"";
+      if (s.dashed) o << " stroke-dasharray=\"6,4\"";
+      o << " points=\"";
+      for (size_t i = 0; i < run.size(); ++i) {
+        if (i) o << ' ';
+        o << F(L.MapX(r, run[i].first)) << ',' << F(pl.MapY(run[i].second));
+      }
+      o << "\"/>\n";
+    }
+  }
+}
+
 void WriteLegend(std::ostream& o, const Figure& fig, const FigureLayout& L, size_t pi) {
   const PlotRect& r = L.panels[pi].plot;
   const std::vector<LegendEntry> entries = PanelLegend(fig, pi);
@@ -116,28 +143,7 @@ std::string RenderFigureSvg(const Figure& fig) {
     if (!p.title.empty()) Text(o, r.x + r.w / 2, r.y - 7, p.title, "middle", 13);
     if (!p.y_label.empty()) Text(o, r.x - 6, r.y - 7, p.y_label, "end", 11);
 
-    // Series, clipped to the data area.
-    o << "<clipPath id=\"clip" << pi << "\"><rect x=\"" << F(r.x) << "\" y=\"" << F(r.y)
-      << "\" width=\"" << F(r.w) << "\" height=\"" << F(r.h) << "\"/></clipPath>\n";
-    o << "<g clip-path=\"url(#clip" << pi << ")\">\n";
-    for (const auto& s : p.series) {
-      for (const auto& run : SeriesRuns(s, L, r)) {
-        if (s.filled && run.size() > 1) {  // the area down to y = 0
-          o << "<polygon fill=\"" << Rgb(s.color) << "\" fill-opacity=\"0.3\" stroke=\"none\" points=\"";
-          for (const auto& [x, y] : run) o << F(L.MapX(r, x)) << ',' << F(pl.MapY(y)) << ' ';
-          o << F(L.MapX(r, run.back().first)) << ',' << F(pl.MapY(0)) << ' '
-            << F(L.MapX(r, run.front().first)) << ',' << F(pl.MapY(0)) << "\"/>\n";
-        }
-        o << "<polyline fill=\"none\" stroke=\"" << Rgb(s.color) << "\" stroke-width=\"1.5\"";
-        if (s.dashed) o << " stroke-dasharray=\"6,4\"";
-        o << " points=\"";
-        for (size_t i = 0; i < run.size(); ++i) {
-          if (i) o << ' ';
-          o << F(L.MapX(r, run[i].first)) << ',' << F(pl.MapY(run[i].second));
-        }
-        o << "\"/>\n";
-      }
-    }
+    WriteSeries(o, p, L, pl, pi);
     o << "</g>\n";
     for (double t : fig.cut_x) {  // shot boundaries, over the curves
       const double x = L.MapX(r, t);
