@@ -64,7 +64,7 @@ int RunHaptics(int argc, char** argv) {
   app.add_option("--seat", seat_file,
                  "HapSeat geometry JSON overriding the built-in defaults (see --print-seat)");
   app.add_flag("--print-seat", print_seat, "print the seat geometry in use as JSON and exit");
-  app.add_option("--rate", rate, "output rate in Hz; default: the seat's rate_hz (1000)")
+  app.add_option("--rate", rate, "stored rate in Hz; default: the seat's rate_hz (100; the player interpolates to 1 kHz)")
       ->default_val(0)
       ->check(FiniteRange(0, 10000));
   app.add_option("--seed", opt.seed, "random model: seed of the noise")->default_val(opt.seed)

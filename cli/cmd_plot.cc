@@ -1,9 +1,12 @@
 // hapcine plot: camera paths and haptic tracks as PNG (OpenCV) and SVG
 // (written by hand), from one Figure description (datasets/plot_figure.h).
 
+#include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,8 +14,11 @@
 #include "cli/option_checks.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
+#include "core/error.h"
 #include "core/haptic_track.h"
 #include "core/output_files.h"
+#include "core/progress.h"
+#include "datasets/plot_pages.h"
 #include "datasets/plot_png.h"
 #include "datasets/plot_tracks.h"
 #include "datasets/svg_writer.h"
@@ -70,6 +76,148 @@ std::string PlotOutputPath(const std::string& prefix, const std::string& ext, bo
   return prefix + "." + ext;
 }
 
+// Legend names: the model, or the file's stem (no folder, no .haptic.csv)
+// when two tracks share a model.
+std::vector<std::string> TrackLegendNames(const std::vector<HapticTrack>& tracks,
+                                          const std::vector<std::string>& files) {
+  std::vector<std::string> legend;
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    bool shared = false;
+    for (size_t j = 0; j < tracks.size(); ++j) {
+      shared |= j != i && tracks[j].model == tracks[i].model;
+    }
+    legend.push_back(shared ? FileStem(files[i]) : tracks[i].model);
+  }
+  return legend;
+}
+
+// The rows of `track` inside [from, to] and one on either side: a page of a
+// two-hour track without copying the other pages' samples.
+HapticTrack CropTrack(const HapticTrack& track, double from, double to) {
+  HapticTrack out = track;
+  out.samples.clear();
+  auto before = [](const HapticSample& s, double t) { return s.time_s < t; };
+  auto after = [](double t, const HapticSample& s) { return t < s.time_s; };
+  auto begin = std::lower_bound(track.samples.begin(), track.samples.end(), from, before);
+  auto end = std::upper_bound(track.samples.begin(), track.samples.end(), to, after);
+  if (begin != track.samples.begin()) --begin;
+  if (end != track.samples.end()) ++end;
+  out.samples.assign(begin, end);
+  return out;
+}
+
+// What the pages show: the command's choices of range and paging.
+struct PageChoice {
+  std::string from, to;     // as typed; "" = the data's ends
+  double page_minutes = 0;  // 0 = one page
+  bool per_shot = false;
+};
+
+std::vector<TimeRange> ChoosePages(const PageChoice& c, double first_s, double last_s,
+                                   const std::vector<double>& cuts) {
+  const double from = c.from.empty() ? first_s : ParsePlotTime(c.from, "--from");
+  const double to = c.to.empty() ? last_s : ParsePlotTime(c.to, "--to");
+  if (!(to > from)) throw UsageError("--to must come after --from (and after the data's start)");
+  if (c.per_shot) return PagesByShot(from, to, cuts);
+  return PagesByDuration(from, to, 60 * c.page_minutes);
+}
+
+void AddPageOptions(CLI::App* sub, PageChoice* pages) {
+    sub->add_option("--from", pages->from,
+                    "start of the plotted range: seconds (90.5) or running time (1:30, 1:02:03.5)");
+    sub->add_option("--to", pages->to, "end of the plotted range (same forms as --from)");
+    sub->add_option("--page-minutes", pages->page_minutes,
+                    "cut the range into pages of this many minutes, written as PREFIX-001.png, "
+                    "PREFIX-002.png, ... (a two-hour film stays readable)")
+        ->check(FiniteRange(0.01, 1e5));
+    sub->add_flag("--page-per-shot", pages->per_shot,
+                  "one page per shot (the `shot` column), numbered as with --page-minutes")
+        ->excludes("--page-minutes");
+}
+
+// The pages of one plot: their time ranges and how to draw one.
+struct PlotPages {
+  std::vector<TimeRange> ranges;
+  std::function<Figure(const TimeRange&)> page;
+};
+
+// The camera figure is built once (relative poses, the classifier) and cropped per page.
+PlotPages CameraPages(const std::string& gt_file, const std::string& est_file,
+                      const CameraPlotOptions& opt, const PageChoice& choice) {
+  const CameraPath gt = ReadCameraPathFile(gt_file);
+  CameraPath est;
+  if (!est_file.empty()) est = ReadCameraPathFile(est_file);
+  auto whole = std::make_shared<Figure>(CameraPathFigure(gt, est_file.empty() ? nullptr : &est, opt));
+  PlotPages pages;
+  pages.ranges = ChoosePages(choice, gt.frames.front().time_s, gt.frames.back().time_s, whole->cut_x);
+  pages.page = [whole](const TimeRange& r) { return CropFigure(*whole, r.first, r.second); };
+  return pages;
+}
+
+// The tracks are cropped before the figure is built: a page of a two-hour
+// 1 kHz track (7 million rows) copies only its own rows.
+PlotPages HapticPages(const std::vector<std::string>& files, const std::string& camera_file,
+                      const std::string& title, const PageChoice& choice) {
+  auto tracks = std::make_shared<std::vector<HapticTrack>>();
+  std::string names;
+  for (const std::string& f : files) {
+    tracks->push_back(ReadHapticTrackFile(f));
+    names += (names.empty() ? "" : "  vs  ") + f + " (" + tracks->back().model + ")";
+  }
+  std::optional<PlotPanel> confidence;
+  std::vector<double> cuts = ShotCutTimes(tracks->front());
+  if (!camera_file.empty()) {
+    const CameraPath path = ReadCameraPathFile(camera_file);
+    confidence = ConfidencePanel(path, "estimate confidence");
+    if (cuts.empty()) cuts = ShotCutTimes(path);
+  }
+  const std::vector<std::string> legend = TrackLegendNames(*tracks, files);
+  const std::string fig_title = title.empty() ? names : title;
+  PlotPages pages;
+  pages.ranges = ChoosePages(choice, tracks->front().samples.front().time_s,
+                             tracks->front().samples.back().time_s, cuts);
+  pages.page = [tracks, confidence, cuts, legend, fig_title](const TimeRange& r) {
+    std::vector<HapticTrack> cropped;
+    for (const HapticTrack& t : *tracks) cropped.push_back(CropTrack(t, r.first, r.second));
+    std::vector<const HapticTrack*> ptrs;
+    for (const HapticTrack& t : cropped) ptrs.push_back(&t);
+    Figure fig = HapticTracksFigure(ptrs, fig_title, legend);
+    fig.cut_x = cuts;
+    if (confidence) fig.panels.insert(fig.panels.begin() + kNumActuators, *confidence);
+    return CropFigure(fig, r.first, r.second);
+  };
+  return pages;
+}
+
+// Every page's files are complete before any is renamed into place.
+void WritePages(const PlotPages& plot, const std::string& png, const std::string& svg,
+                const std::vector<NamedPath>& inputs, int width_px) {
+  const size_t n = plot.ranges.size();
+  std::vector<std::pair<std::string, std::string>> files;  // png, svg per page
+  std::vector<NamedPath> outputs;
+  for (size_t i = 0; i < n; ++i) {
+    files.push_back({png.empty() ? "" : PagePath(png, i, n), svg.empty() ? "" : PagePath(svg, i, n)});
+    outputs.push_back({files.back().first, "-o"});
+    outputs.push_back({files.back().second, "-o"});
+  }
+  OutputSet set(inputs, outputs);
+  Progress progress(std::cerr, ProgressModeFor(n < 5), "plot", "pages");
+  for (size_t i = 0; i < n; ++i) {
+    Figure fig = plot.page(plot.ranges[i]);
+    fig.width_px = width_px;
+    if (n > 1) fig.title += "  [" + std::to_string(i + 1) + "/" + std::to_string(n) + "]";
+    WriteOutputs(fig, files[i].first, files[i].second);
+    progress.Update(static_cast<double>(i + 1), static_cast<double>(n));
+  }
+  set.CommitAll();
+  progress.Finish(static_cast<double>(n));
+  for (const auto& [page_png, page_svg] : files) {
+    for (const std::string& written : {page_png, page_svg}) {
+      if (!written.empty()) std::cerr << "wrote " << written << "\n";
+    }
+  }
+}
+
 }  // namespace
 
 int RunPlot(int argc, char** argv) {
@@ -79,6 +227,7 @@ int RunPlot(int argc, char** argv) {
   app.require_subcommand(1);
   std::string prefix, format = "both", title;
   int width_px = 1200;
+  PageChoice pages;
   auto add_common = [&](CLI::App* sub) {
     sub->add_option("-o,--output", prefix,
                     "output prefix: writes PREFIX.png and/or PREFIX.svg (a trailing .png or .svg "
@@ -90,6 +239,7 @@ int RunPlot(int argc, char** argv) {
         ->capture_default_str()
         ->check(FiniteRange(300, 10000));
     sub->add_option("--title", title, "figure title (default: the input file names)");
+    AddPageOptions(sub, &pages);
   };
 
   std::string gt_file, est_file;
@@ -118,6 +268,11 @@ int RunPlot(int argc, char** argv) {
       "Figure 4");
   haptic->add_option("tracks", track_files, "haptic tracks (*.haptic.csv), one or more")
       ->required();
+  std::string confidence_file;
+  haptic->add_option("--camera", confidence_file,
+                     "the camera path the tracks were made from: its `confidence` column as a "
+                     "shaded panel under the curves, its `shot` column as cut lines when the "
+                     "tracks have none");
   add_common(haptic);
 
   return RunApp(app, argc, argv, [&]() {
@@ -125,51 +280,21 @@ int RunPlot(int argc, char** argv) {
     const std::string png = format != "svg" ? PlotOutputPath(prefix, "png", single) : "";
     const std::string svg = format != "png" ? PlotOutputPath(prefix, "svg", single) : "";
     std::vector<NamedPath> inputs;
+    PlotPages plot;
     if (camera->parsed()) {
       inputs = {{gt_file, "GT"}, {est_file, "EST"}};
-    } else {
-      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
-    }
-    OutputSet outputs(inputs,
-                      {{png, "-o"}, {svg, "-o"}});
-    Figure fig;
-    if (camera->parsed()) {
-      const CameraPath gt = ReadCameraPathFile(gt_file);
-      CameraPath est;
-      if (!est_file.empty()) est = ReadCameraPathFile(est_file);
       CameraPlotOptions opt;
       opt.relative_to_first = !absolute;
       opt.scale_estimate = !absolute && !no_scale;
       opt.effect_labels = !no_effects;
       opt.title = title.empty() ? gt_file + (est_file.empty() ? "" : "  vs  " + est_file) : title;
-      fig = CameraPathFigure(gt, est_file.empty() ? nullptr : &est, opt);
+      plot = CameraPages(gt_file, est_file, opt, pages);
     } else {
-      std::vector<HapticTrack> tracks;
-      std::string names;
-      for (const std::string& f : track_files) {
-        tracks.push_back(ReadHapticTrackFile(f));
-        names += (names.empty() ? "" : "  vs  ") + f + " (" + tracks.back().model + ")";
-      }
-      std::vector<const HapticTrack*> ptrs;
-      for (const HapticTrack& t : tracks) ptrs.push_back(&t);
-      // Legend names: the model, or the file's stem (no folder, no
-      // .haptic.csv) when two tracks share a model.
-      std::vector<std::string> legend;
-      for (size_t i = 0; i < tracks.size(); ++i) {
-        bool shared = false;
-        for (size_t j = 0; j < tracks.size(); ++j) {
-          shared |= j != i && tracks[j].model == tracks[i].model;
-        }
-        legend.push_back(shared ? FileStem(track_files[i]) : tracks[i].model);
-      }
-      fig = HapticTracksFigure(ptrs, title.empty() ? names : title, legend);
+      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
+      inputs.push_back({confidence_file, "--camera"});
+      plot = HapticPages(track_files, confidence_file, title, pages);
     }
-    fig.width_px = width_px;
-    WriteOutputs(fig, png, svg);
-    outputs.CommitAll();
-    for (const std::string& written : {png, svg}) {
-      if (!written.empty()) std::cerr << "wrote " << written << "\n";
-    }
+    WritePages(plot, png, svg, inputs, width_px);
     return kExitOk;
   });
 }

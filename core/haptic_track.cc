@@ -21,7 +21,55 @@ const std::vector<std::string> kRequired = {"time_s", "head_x",  "head_y",  "hea
 // A Falcon's workspace is ~0.1 m; anything beyond 1 m is a unit mistake.
 constexpr double kAbsurdPositionM = 1.0;
 
+// The slope of a monotone cubic at a row between an interval of length h0
+// and slope d0 and one of length h1 and slope d1: the three-point derivative
+// (exact for quadratics), zero at a local extremum or flat, and at most three
+// times the smaller secant, which keeps each piece monotone (Fritsch-Carlson).
+double MonotoneSlope(double h0, double d0, double h1, double d1) {
+  if (!(d0 * d1 > 0)) return 0;
+  const double m = (h1 * d0 + h0 * d1) / (h0 + h1);
+  const double limit = 3 * std::min(std::abs(d0), std::abs(d1));
+  return std::abs(m) <= limit ? m : std::copysign(limit, d0);
+}
+
+// Rows i and i+1 of the track at w in [0, 1] between them: cubic Hermite,
+// with the neighbours i-1 and i+2 (when they exist) for the slopes.
+void MonotoneCubic(const std::vector<HapticSample>& s, size_t i, double w,
+                   Eigen::Vector3d out[kNumActuators]) {
+  const double h = s[i + 1].time_s - s[i].time_s;
+  const double w2 = w * w, w3 = w2 * w;
+  const double h00 = 2 * w3 - 3 * w2 + 1, h10 = w3 - 2 * w2 + w;
+  const double h01 = -2 * w3 + 3 * w2, h11 = w3 - w2;
+  const bool has_before = i > 0, has_after = i + 2 < s.size();
+  const double h_before = has_before ? s[i].time_s - s[i - 1].time_s : 0;
+  const double h_after = has_after ? s[i + 2].time_s - s[i + 1].time_s : 0;
+  for (int a = 0; a < kNumActuators; ++a) {
+    for (int k = 0; k < 3; ++k) {
+      const double pa = s[i].pos_m[a][k], pb = s[i + 1].pos_m[a][k];
+      const double d = (pb - pa) / h;
+      // The end rows take the secant: a line there, never an overshoot.
+      const double ma = has_before
+                            ? MonotoneSlope(h_before, (pa - s[i - 1].pos_m[a][k]) / h_before, h, d)
+                            : d;
+      const double mb =
+          has_after ? MonotoneSlope(h, d, h_after, (s[i + 2].pos_m[a][k] - pb) / h_after) : d;
+      const double v = h00 * pa + h10 * h * ma + h01 * pb + h11 * h * mb;
+      // Mathematically inside [pa, pb] already; the clamp absorbs rounding.
+      out[a][k] = std::clamp(v, std::min(pa, pb), std::max(pa, pb));
+    }
+  }
+}
+
 }  // namespace
+
+const char* TrackInterpolationName(TrackInterpolation i) {
+  return i == TrackInterpolation::kMonotoneCubic ? "monotone_cubic" : "linear";
+}
+
+TrackInterpolation InterpolationForRate(double rate_hz) {
+  constexpr double kPlayerLoopHz = 1000;
+  return rate_hz < kPlayerLoopHz ? TrackInterpolation::kMonotoneCubic : TrackInterpolation::kLinear;
+}
 
 const char* ActuatorName(Actuator a) {
   switch (a) {
@@ -61,7 +109,11 @@ void HapticTrack::Sample(double t, Eigen::Vector3d out[kNumActuators],
   const HapticSample& a = samples[i];
   const HapticSample& b = samples[i + 1];
   const double w = (t - a.time_s) / (b.time_s - a.time_s);
-  for (int k = 0; k < kNumActuators; ++k) out[k] = (1 - w) * a.pos_m[k] + w * b.pos_m[k];
+  if (interpolation == TrackInterpolation::kMonotoneCubic) {
+    MonotoneCubic(samples, i, w, out);
+  } else {
+    for (int k = 0; k < kNumActuators; ++k) out[k] = (1 - w) * a.pos_m[k] + w * b.pos_m[k];
+  }
   if (hint) *hint = i;
 }
 
@@ -88,6 +140,14 @@ HapticTrack ReadHapticTrack(std::istream& in, const std::string& source_name) {
   }
   track.model = take("model");
   track.source = take("source");
+  if (auto it = track.metadata.find("interpolation"); it != track.metadata.end()) {
+    if (it->second == TrackInterpolationName(TrackInterpolation::kMonotoneCubic)) {
+      track.interpolation = TrackInterpolation::kMonotoneCubic;
+    } else if (it->second != TrackInterpolationName(TrackInterpolation::kLinear)) {
+      csv.Fail("interpolation '" + it->second + "' is not linear or monotone_cubic");
+    }
+    track.metadata.erase(it);
+  }
   csv.RequireLeadingColumns(kRequired);
   const int c_shot = csv.Column("shot");
   const int c_effect = csv.Column("effect");
@@ -144,8 +204,14 @@ void WriteHapticTrack(const HapticTrack& track, std::ostream& out) {
   WriteHeaderLine(out, "rate_hz", FormatDouble(track.rate_hz));
   WriteHeaderLine(out, "model", track.model);
   WriteHeaderLine(out, "source", track.source);
+  // Linear tracks carry no line: they stay as readers before it knew them.
+  if (track.interpolation != TrackInterpolation::kLinear) {
+    WriteHeaderLine(out, "interpolation", TrackInterpolationName(track.interpolation));
+  }
   for (const auto& [key, value] : track.metadata) {
-    if (key != "rate_hz" && key != "model" && key != "source") WriteHeaderLine(out, key, value);
+    if (key != "rate_hz" && key != "model" && key != "source" && key != "interpolation") {
+      WriteHeaderLine(out, key, value);
+    }
   }
   for (size_t i = 0; i < kRequired.size(); ++i) out << (i ? "," : "") << kRequired[i];
   if (any_shot) out << ",shot";

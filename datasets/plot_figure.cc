@@ -32,6 +32,43 @@ void PadRange(double* lo, double* hi) {
   *hi += pad;
 }
 
+// The x range every panel shares: the figure's own, else the data's.
+void XRange(const Figure& fig, double* lo, double* hi) {
+  double x_lo = std::numeric_limits<double>::infinity();
+  double x_hi = -x_lo;
+  for (const auto& p : fig.panels) {
+    if (!(p.height_weight > 0)) throw UsageError("panel height weight must be > 0");
+    for (const auto& s : p.series) {
+      if (s.x.size() != s.y.size()) throw UsageError("series '" + s.name + "': x and y differ in length");
+      for (double x : s.x) {
+        if (std::isfinite(x)) {
+          x_lo = std::min(x_lo, x);
+          x_hi = std::max(x_hi, x);
+        }
+      }
+    }
+    for (const auto& b : p.bands) {
+      for (double x : {b.x_begin, b.x_end}) {
+        if (std::isfinite(x)) {
+          x_lo = std::min(x_lo, x);
+          x_hi = std::max(x_hi, x);
+        }
+      }
+    }
+  }
+  if (std::isfinite(fig.x_from) && std::isfinite(fig.x_to) && fig.x_to > fig.x_from) {
+    x_lo = fig.x_from;
+    x_hi = fig.x_to;
+  } else if (!std::isfinite(x_lo)) {
+    x_lo = 0;
+    x_hi = 1;
+  } else if (!(x_hi > x_lo)) {
+    PadRange(&x_lo, &x_hi);
+  }
+  *lo = x_lo;
+  *hi = x_hi;
+}
+
 }  // namespace
 
 PlotColor PaletteColor(int index) {
@@ -42,6 +79,8 @@ PlotColor PaletteColor(int index) {
   const int n = sizeof(kPalette) / sizeof(kPalette[0]);
   return kPalette[((index % n) + n) % n];
 }
+
+PlotColor CutLineColor() { return PlotColor{200, 0, 110}; }
 
 bool BandLabelFits(const std::string& label, double width_px) {
   return !label.empty() && 6.5 * static_cast<double>(label.size()) + 4 <= width_px;
@@ -86,41 +125,15 @@ FigureLayout LayoutFigure(const Figure& fig) {
   }
   FigureLayout L;
   L.width_px = fig.width_px;
-  double x_lo = std::numeric_limits<double>::infinity();
-  double x_hi = -x_lo;
-  for (const auto& p : fig.panels) {
-    if (!(p.height_weight > 0)) throw UsageError("panel height weight must be > 0");
-    for (const auto& s : p.series) {
-      if (s.x.size() != s.y.size()) throw UsageError("series '" + s.name + "': x and y differ in length");
-      for (double x : s.x) {
-        if (std::isfinite(x)) {
-          x_lo = std::min(x_lo, x);
-          x_hi = std::max(x_hi, x);
-        }
-      }
-    }
-    for (const auto& b : p.bands) {
-      for (double x : {b.x_begin, b.x_end}) {
-        if (std::isfinite(x)) {
-          x_lo = std::min(x_lo, x);
-          x_hi = std::max(x_hi, x);
-        }
-      }
-    }
-  }
-  if (!std::isfinite(x_lo)) {
-    x_lo = 0;
-    x_hi = 1;
-  } else if (!(x_hi > x_lo)) {
-    PadRange(&x_lo, &x_hi);
-  }
+  double x_lo = 0, x_hi = 1;
+  XRange(fig, &x_lo, &x_hi);
   L.x_min = x_lo;
   L.x_max = x_hi;
   L.x_ticks = NiceTicks(x_lo, x_hi, 8);
   // The legend column widens for long names, up to a third of the figure.
   size_t longest = 0;
-  for (const auto& p : fig.panels)
-    for (const auto& ser : p.series) longest = std::max(longest, ser.name.size());
+  for (size_t i = 0; i < fig.panels.size(); ++i)
+    for (const LegendEntry& e : PanelLegend(fig, i)) longest = std::max(longest, e.name.size());
   const double legend_w =
       std::min(std::max(kLegendW, 40 + kLegendCharW * static_cast<double>(longest)),
                std::max(kLegendW, fig.width_px / 3.0));
@@ -144,8 +157,15 @@ FigureLayout LayoutFigure(const Figure& fig) {
           hi = std::max(hi, v);
         }
       }
+      if (s.filled && std::isfinite(lo)) {  // the shaded area reaches y = 0
+        lo = std::min(lo, 0.0);
+        hi = std::max(hi, 0.0);
+      }
     }
-    if (!std::isfinite(lo)) {
+    if (std::isfinite(p.y_min) && std::isfinite(p.y_max) && p.y_max > p.y_min) {
+      lo = p.y_min - 0.05 * (p.y_max - p.y_min);
+      hi = p.y_max + 0.05 * (p.y_max - p.y_min);
+    } else if (!std::isfinite(lo)) {
       lo = 0;
       hi = 1;
     } else {
@@ -202,6 +222,91 @@ std::vector<std::vector<std::pair<double, double>>> SeriesRuns(const PlotSeries&
   }
   flush();
   return runs;
+}
+
+namespace {
+
+// Indices [begin, end) of the points of increasing `x` to keep for [from, to]:
+// those inside and one on either side.
+std::pair<size_t, size_t> KeptRange(const std::vector<double>& x, double from, double to) {
+  size_t begin = static_cast<size_t>(std::lower_bound(x.begin(), x.end(), from) - x.begin());
+  size_t end = static_cast<size_t>(std::upper_bound(x.begin(), x.end(), to) - x.begin());
+  if (begin > 0) --begin;
+  if (end < x.size()) ++end;
+  return {begin, std::max(begin, end)};
+}
+
+PlotSeries CropSeries(const PlotSeries& s, double from, double to) {
+  PlotSeries out = s;
+  out.x.clear();
+  out.y.clear();
+  if (std::is_sorted(s.x.begin(), s.x.end())) {
+    const auto [begin, end] = KeptRange(s.x, from, to);
+    out.x.assign(s.x.begin() + static_cast<long>(begin), s.x.begin() + static_cast<long>(end));
+    out.y.assign(s.y.begin() + static_cast<long>(begin), s.y.begin() + static_cast<long>(end));
+    return out;
+  }
+  for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {  // rare: not a time series
+    if (s.x[i] >= from && s.x[i] <= to) {
+      out.x.push_back(s.x[i]);
+      out.y.push_back(s.y[i]);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Figure CropFigure(const Figure& fig, double from, double to) {
+  if (!(from < to)) throw UsageError("plot range: the start must come before the end");
+  Figure out;
+  out.title = fig.title;
+  out.x_label = fig.x_label;
+  out.width_px = fig.width_px;
+  out.panel_height_px = fig.panel_height_px;
+  out.x_from = from;
+  out.x_to = to;
+  for (const PlotPanel& p : fig.panels) {
+    PlotPanel q = p;
+    q.series.clear();
+    q.bands.clear();
+    for (const PlotSeries& s : p.series) q.series.push_back(CropSeries(s, from, to));
+    for (PlotBand b : p.bands) {
+      b.x_begin = std::max(b.x_begin, from);
+      b.x_end = std::min(b.x_end, to);
+      if (b.x_end > b.x_begin) q.bands.push_back(b);
+    }
+    out.panels.push_back(std::move(q));
+  }
+  for (double x : fig.cut_x) {
+    if (x >= from && x <= to) out.cut_x.push_back(x);
+  }
+  return out;
+}
+
+std::vector<LegendEntry> PanelLegend(const Figure& fig, size_t panel) {
+  std::vector<LegendEntry> entries;
+  const PlotPanel& p = fig.panels.at(panel);
+  for (const PlotSeries& s : p.series) {
+    if (!s.name.empty()) {
+      entries.push_back({s.name, s.color, s.dashed ? LegendEntry::kDashed : LegendEntry::kLine});
+    }
+  }
+  if (p.series.empty()) {  // a time line: its colours name the labels
+    std::vector<std::string> seen;
+    for (const PlotBand& b : p.bands) {
+      if (b.label.empty() || std::find(seen.begin(), seen.end(), b.label) != seen.end()) continue;
+      seen.push_back(b.label);
+      entries.push_back({b.label, b.color, LegendEntry::kSwatch});
+    }
+  }
+  if (panel == 0 && !fig.cut_x.empty()) entries.push_back({"cut", CutLineColor(), LegendEntry::kCut});
+  return entries;
+}
+
+size_t LegendRowsThatFit(const PlotRect& plot) {
+  // The column runs from the top of the data area to the x tick labels.
+  return static_cast<size_t>(std::max(1.0, std::floor((plot.h + 8) / kLegendRowPx)));
 }
 
 }  // namespace hapcine

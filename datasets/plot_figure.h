@@ -5,6 +5,7 @@
 // to SVG text, plot_png.h to an OpenCV image; both use the layout computed
 // here, so the two outputs show the same thing at the same places.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct PlotColor {
 };
 // A palette of distinguishable colours (Tableau 10); index wraps.
 PlotColor PaletteColor(int index);
+// The colour of the shot-boundary lines: in no palette entry, so a cut never
+// reads as a curve.
+PlotColor CutLineColor();
 
 struct PlotSeries {
   std::string name;       // legend entry; empty = no entry
@@ -22,6 +26,7 @@ struct PlotSeries {
   std::vector<double> y;
   PlotColor color;
   bool dashed = false;    // e.g. an estimate drawn over its ground truth
+  bool filled = false;    // the area between the line and y = 0 shaded (a confidence band)
 };
 
 struct PlotBand {
@@ -38,6 +43,9 @@ struct PlotPanel {
   std::vector<PlotBand> bands;
   double height_weight = 1.0;  // relative share of the figure height
   bool show_y_axis = true;     // false for a band-only time line
+  // A fixed y range (both finite, y_min < y_max); NaN = from the data.
+  double y_min = std::numeric_limits<double>::quiet_NaN();
+  double y_max = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Figure {
@@ -46,7 +54,21 @@ struct Figure {
   int width_px = 1200;
   int panel_height_px = 220;   // per unit of height_weight
   std::vector<PlotPanel> panels;
+  // Shot boundaries: a vertical line in CutLineColor() across every panel,
+  // and a "cut" entry in the first panel's legend.
+  std::vector<double> cut_x;
+  // The x range shown; NaN = the data's own.
+  double x_from = std::numeric_limits<double>::quiet_NaN();
+  double x_to = std::numeric_limits<double>::quiet_NaN();
 };
+
+// The part of `figure` inside [from, to] (from < to): series keep their
+// points inside and one on either side (their lines reach the edges, drawn
+// clipped), bands and cuts are cut to the range, and the x axis shows exactly
+// [from, to]. Series x must be increasing (times). Cheap on long series: a
+// two-hour 1 kHz track is cut into pages with a binary search each.
+Figure CropFigure(const Figure& figure, double from, double to);
+
 
 // ---- Layout shared by the renderers (pixels, y down) ----
 
@@ -92,5 +114,19 @@ std::string TickLabel(double v, double step);
 std::vector<std::vector<std::pair<double, double>>> SeriesRuns(
     const PlotSeries& s, const FigureLayout& layout, const PlotRect& rect,
     size_t max_points = 8000);
+
+// The legend entries of a panel: a name and colour per entry, each series
+// with a name, then (band-only panels) each distinct band label once, then
+// "cut" in the first panel of a figure with cuts in view.
+struct LegendEntry {
+  std::string name;
+  PlotColor color;
+  enum Kind { kLine, kDashed, kSwatch, kCut } kind = kLine;
+};
+std::vector<LegendEntry> PanelLegend(const Figure& figure, size_t panel);
+// How many legend rows (kLegendRowPx apart, from 12 px under the top of the
+// data area) fit beside a panel; the renderers end with "+N more" past that.
+constexpr double kLegendRowPx = 16;
+size_t LegendRowsThatFit(const PlotRect& plot);
 
 }  // namespace hapcine

@@ -105,5 +105,57 @@ TEST(PlotFigureTest, LegendWidensForLongNamesUpToAThird) {
   EXPECT_NEAR(LayoutFigure(fig).legend_x, fig.width_px * 2.0 / 3 + 10, 1e-9);
 }
 
+TEST(PlotFigureTest, CropKeepsOnePointBeyondEachEdgeAndCutsBandsAndCuts) {
+  Figure fig;
+  fig.panels.resize(2);
+  PlotSeries s;
+  for (int i = 0; i <= 100; ++i) {
+    s.x.push_back(i);
+    s.y.push_back(i * i);
+  }
+  fig.panels[0].series.push_back(s);
+  fig.panels[1].bands = {{0, 20, "pan"}, {20, 50, "zoom"}, {50, 100, "pan"}};
+  fig.cut_x = {20, 50};
+  const Figure page = CropFigure(fig, 30.5, 60);
+  const PlotSeries& kept = page.panels[0].series[0];
+  ASSERT_EQ(kept.x.size(), 32u);  // 30 .. 61
+  EXPECT_EQ(kept.x.front(), 30);
+  EXPECT_EQ(kept.x.back(), 61);
+  EXPECT_EQ(kept.y.back(), 61 * 61);
+  ASSERT_EQ(page.panels[1].bands.size(), 2u);
+  EXPECT_EQ(page.panels[1].bands[0].x_begin, 30.5);
+  EXPECT_EQ(page.panels[1].bands[1].x_end, 60);
+  EXPECT_EQ(page.cut_x, std::vector<double>{50});
+  const FigureLayout L = LayoutFigure(page);
+  EXPECT_EQ(L.x_min, 30.5);
+  EXPECT_EQ(L.x_max, 60);
+  // A range between two points still keeps the line through it.
+  EXPECT_EQ(CropFigure(fig, 40.2, 40.7).panels[0].series[0].x, (std::vector<double>{40, 41}));
+  EXPECT_THROW(CropFigure(fig, 5, 5), UsageError);
+}
+
+TEST(PlotFigureTest, LegendNamesSeriesBandColoursAndCuts) {
+  Figure fig;
+  fig.panels.resize(2);
+  PlotSeries s;
+  s.x = {0, 1};
+  s.y = {0, 1};
+  s.name = "x";
+  fig.panels[0].series.push_back(s);
+  fig.panels[1].bands = {{0, 0.3, "pan", PaletteColor(1)}, {0.3, 0.5, "zoom", PaletteColor(2)},
+                         {0.5, 1, "pan", PaletteColor(1)}};
+  EXPECT_EQ(PanelLegend(fig, 0).size(), 1u);
+  fig.cut_x = {0.5};
+  const std::vector<LegendEntry> first = PanelLegend(fig, 0);
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_EQ(first[1].name, "cut");
+  EXPECT_EQ(first[1].kind, LegendEntry::kCut);
+  const std::vector<LegendEntry> bands = PanelLegend(fig, 1);
+  ASSERT_EQ(bands.size(), 2u);  // each label once
+  EXPECT_EQ(bands[0].name, "pan");
+  EXPECT_EQ(bands[1].kind, LegendEntry::kSwatch);
+  EXPECT_EQ(bands[1].color.g, PaletteColor(2).g);
+}
+
 }  // namespace
 }  // namespace hapcine

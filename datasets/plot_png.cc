@@ -72,6 +72,54 @@ void Polyline(cv::Mat& img, const std::vector<cv::Point2d>& pts, const cv::Scala
   }
 }
 
+// The area between a run and y = 0, blended over the data area.
+void FillUnder(cv::Mat& area, const std::vector<cv::Point2d>& pts, double zero_y,
+               const cv::Scalar& color) {
+  if (pts.size() < 2) return;
+  std::vector<cv::Point> poly;
+  for (const cv::Point2d& p : pts) poly.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+  poly.emplace_back(poly.back().x, static_cast<int>(std::lround(zero_y)));
+  poly.emplace_back(poly.front().x, static_cast<int>(std::lround(zero_y)));
+  cv::Mat shade = area.clone();
+  cv::fillPoly(shade, std::vector<std::vector<cv::Point>>{poly}, color);
+  cv::addWeighted(shade, 0.3, area, 0.7, 0, area);
+}
+
+// Shot boundaries: solid, not anti-aliased, so their colour stays exact.
+void DrawCuts(cv::Mat& img, const Figure& fig, const FigureLayout& L, const PlotRect& r) {
+  for (double t : fig.cut_x) {
+    const int x = static_cast<int>(std::lround(L.MapX(r, t)));
+    if (x < r.x || x > r.x + r.w) continue;
+    cv::line(img, cv::Point(x, static_cast<int>(r.y) + 1), cv::Point(x, static_cast<int>(r.y + r.h) - 1),
+             Bgr(CutLineColor()), 2, cv::LINE_8);
+  }
+}
+
+void DrawLegend(cv::Mat& img, const Figure& fig, const FigureLayout& L, size_t pi) {
+  const PlotRect& r = L.panels[pi].plot;
+  const std::vector<LegendEntry> entries = PanelLegend(fig, pi);
+  const size_t rows = LegendRowsThatFit(r);
+  double ly = r.y + 12;
+  for (size_t i = 0; i < entries.size(); ++i, ly += kLegendRowPx) {
+    if (i + 1 == rows && entries.size() > rows) {
+      PutText(img, "+" + std::to_string(entries.size() - i) + " more", L.legend_x + 30, ly, 0, 0.38);
+      break;
+    }
+    const LegendEntry& e = entries[i];
+    if (e.kind == LegendEntry::kSwatch) {
+      cv::rectangle(img, cv::Point(static_cast<int>(L.legend_x), static_cast<int>(ly - 10)),
+                    cv::Point(static_cast<int>(L.legend_x + 24), static_cast<int>(ly)), Bgr(e.color), cv::FILLED);
+    } else if (e.kind == LegendEntry::kCut) {
+      cv::line(img, cv::Point(static_cast<int>(L.legend_x + 12), static_cast<int>(ly - 11)),
+               cv::Point(static_cast<int>(L.legend_x + 12), static_cast<int>(ly + 1)), Bgr(e.color), 2, cv::LINE_8);
+    } else {
+      Polyline(img, {P(L.legend_x, ly - 4), P(L.legend_x + 24, ly - 4)}, Bgr(e.color),
+               e.kind == LegendEntry::kDashed);
+    }
+    PutText(img, e.name, L.legend_x + 30, ly, 0, 0.38);
+  }
+}
+
 }  // namespace
 
 cv::Mat RenderFigurePng(const Figure& fig) {
@@ -123,19 +171,14 @@ cv::Mat RenderFigurePng(const Figure& fig) {
         std::vector<cv::Point2d> pts;
         pts.reserve(run.size());
         for (const auto& [x, y] : run) pts.push_back(P(L.MapX(r, x) - clip.x, pl.MapY(y) - clip.y));
+        if (s.filled) FillUnder(area, pts, pl.MapY(0) - clip.y, Bgr(s.color));
         Polyline(area, pts, Bgr(s.color), s.dashed);
       }
     }
     area.copyTo(img(clip));
+    DrawCuts(img, fig, L, r);
     cv::rectangle(img, clip.tl(), clip.br() - cv::Point(1, 1), kBlack, 1);
-
-    double ly = r.y + 12;
-    for (const auto& s : p.series) {
-      if (s.name.empty()) continue;
-      Polyline(img, {P(L.legend_x, ly - 4), P(L.legend_x + 24, ly - 4)}, Bgr(s.color), s.dashed);
-      PutText(img, s.name, L.legend_x + 30, ly, 0, 0.38);
-      ly += 16;
-    }
+    DrawLegend(img, fig, L, pi);
   }
   if (!fig.x_label.empty()) {
     const PlotRect& last = L.panels.back().plot;

@@ -1,6 +1,7 @@
 #include "datasets/plot_tracks.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/csv.h"
@@ -197,6 +198,13 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
     AddSeries(&pos, "z" + src.position_suffix, s.t, s.z, 5, src.dashed);
     AddSeries(&fov, "fov" + src.suffix, s.t, s.fov, 0, src.dashed);
   }
+  if (options.cuts) fig.cut_x = ShotCutTimes(gt);
+  if (options.confidence) {
+    std::optional<PlotPanel> conf;
+    if (est) conf = ConfidencePanel(*est, "estimate confidence");
+    if (!conf) conf = ConfidencePanel(gt, "estimate confidence");
+    if (conf) fig.panels.push_back(std::move(*conf));
+  }
   if (options.effect_labels) {
     std::map<std::string, int> colors;
     for (const auto& src : sources) {
@@ -205,6 +213,48 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
     }
   }
   return fig;
+}
+
+std::vector<double> ShotCutTimes(const CameraPath& path) {
+  std::vector<double> cuts;
+  for (size_t i = 1; i < path.frames.size(); ++i) {
+    const auto& before = path.frames[i - 1].shot;
+    const auto& now = path.frames[i].shot;
+    if (before && now && *before != *now) cuts.push_back(path.frames[i].time_s);
+  }
+  return cuts;
+}
+
+std::vector<double> ShotCutTimes(const HapticTrack& track) {
+  std::vector<double> cuts;
+  for (size_t i = 1; i < track.samples.size(); ++i) {
+    const auto& before = track.samples[i - 1].shot;
+    const auto& now = track.samples[i].shot;
+    if (before && now && *before != *now) cuts.push_back(track.samples[i].time_s);
+  }
+  return cuts;
+}
+
+std::optional<PlotPanel> ConfidencePanel(const CameraPath& path, const std::string& title) {
+  PlotSeries s;
+  s.name = "confidence";
+  s.color = PaletteColor(7);  // grey: under the curves, not one of them
+  s.filled = true;
+  bool any = false;
+  for (const CameraFrame& f : path.frames) {
+    any |= f.confidence.has_value();
+    s.x.push_back(f.time_s);
+    s.y.push_back(f.confidence.value_or(0.0));
+  }
+  if (!any) return std::nullopt;
+  PlotPanel panel;
+  panel.title = title;
+  panel.y_label = "0..1";
+  panel.height_weight = 0.6;
+  panel.series.push_back(std::move(s));
+  panel.y_min = 0;  // the same axis on every page and every film
+  panel.y_max = 1;
+  return panel;
 }
 
 PlotPanel EffectTimeline(const std::string& title, const std::vector<double>& t,
@@ -270,6 +320,7 @@ Figure HapticTracksFigure(const std::vector<const HapticTrack*>& tracks, const s
     }
   }
   for (auto& line : timelines) fig.panels.push_back(std::move(line));
+  fig.cut_x = ShotCutTimes(*tracks.front());
   return fig;
 }
 

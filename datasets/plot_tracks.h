@@ -11,6 +11,7 @@
 //    labelled bands.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,11 @@ struct CameraPlotOptions {
   // A time line of the classifier's effect labels under the curves, one row
   // per path (GT, est).
   bool effect_labels = true;
+  // Shot boundaries (the `shot` column) as cut lines, and the `confidence`
+  // column (the estimate's, else the first path's) as a shaded panel under
+  // the curves, when the paths have them.
+  bool cuts = true;
+  bool confidence = true;
   std::string title;
   void Check() const;  // throws UsageError
 };
@@ -40,7 +46,8 @@ Figure CameraPathFigure(const CameraPath& gt, const CameraPath* est,
                         const CameraPlotOptions& options = {});
 
 // Positions in millimetres; effect bands on a time line under the panels
-// when any sample has an `effect`.
+// when any sample has an `effect`; cut lines where the first track's `shot`
+// column changes.
 Figure HapticTrackFigure(const HapticTrack& track, const std::string& title = "");
 // Several tracks on the same panels: the first solid, the others dashed,
 // legend entries suffixed with `names` (default: each track's model); one
@@ -48,6 +55,14 @@ Figure HapticTrackFigure(const HapticTrack& track, const std::string& title = ""
 Figure HapticTracksFigure(const std::vector<const HapticTrack*>& tracks,
                           const std::string& title = "",
                           const std::vector<std::string>& names = {});
+
+// Shot boundaries: the times where the `shot` column changes (the first row of
+// each new shot). Empty without the column.
+std::vector<double> ShotCutTimes(const CameraPath& path);
+std::vector<double> ShotCutTimes(const HapticTrack& track);
+// The `confidence` column of a path as a shaded area over [0, 1] on a short
+// panel (lost frames read 0); nullopt when no frame has the column.
+std::optional<PlotPanel> ConfidencePanel(const CameraPath& path, const std::string& title);
 
 // Labelled bands (one per run of equal label) on a band-only panel; runs
 // labelled "none" are drawn light grey.

@@ -149,6 +149,38 @@ TEST(PlotTracksTest, SeveralHapticTracksOverlayLikeFigure4) {
   EXPECT_THROW(HapticTracksFigure({}), UsageError);
 }
 
+TEST(PlotTracksTest, CutsAndConfidenceComeFromTheShotAndConfidenceColumns) {
+  CameraPath path = Path(50, 1.0, Eigen::Quaterniond::Identity());
+  EXPECT_TRUE(ShotCutTimes(path).empty());
+  EXPECT_FALSE(ConfidencePanel(path, "c").has_value());
+  for (auto& f : path.frames) {
+    f.shot = f.frame < 20 ? 0 : f.frame < 35 ? 1 : 2;
+    if (f.frame % 2 == 0) f.confidence = 0.5;  // lost or unmeasured frames read 0
+  }
+  EXPECT_EQ(ShotCutTimes(path), (std::vector<double>{20 / 25.0, 35 / 25.0}));
+  const std::optional<PlotPanel> conf = ConfidencePanel(path, "c");
+  ASSERT_TRUE(conf.has_value());
+  EXPECT_TRUE(conf->series[0].filled);
+  EXPECT_EQ(conf->series[0].y[0], 0.5);
+  EXPECT_EQ(conf->series[0].y[1], 0.0);
+  EXPECT_EQ(conf->y_max, 1.0);
+  CameraPlotOptions opt;
+  opt.effect_labels = false;
+  const Figure fig = CameraPathFigure(path, nullptr, opt);
+  ASSERT_EQ(fig.panels.size(), 4u);  // rotation, centre, FOV, confidence
+  EXPECT_EQ(fig.cut_x.size(), 2u);
+
+  HapticTrack track;
+  for (int i = 0; i < 10; ++i) {
+    HapticSample s;
+    s.time_s = i * 0.01;
+    if (i > 0) s.shot = i < 6 ? 3 : 4;  // a row without a shot is no cut
+    track.samples.push_back(s);
+  }
+  EXPECT_EQ(ShotCutTimes(track), std::vector<double>{0.06});
+  EXPECT_EQ(HapticTrackFigure(track).cut_x, std::vector<double>{0.06});
+}
+
 TEST(PlotTracksTest, EmptyInputsAreUsageErrors) {
   EXPECT_THROW(CameraPathFigure(CameraPath(), nullptr), UsageError);
   EXPECT_THROW(HapticTrackFigure(HapticTrack()), UsageError);

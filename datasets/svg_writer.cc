@@ -41,6 +41,59 @@ void Text(std::ostream& o, double x, double y, const std::string& s, const char*
     << "\" text-anchor=\"" << anchor << "\"" << extra << ">" << Escape(s) << "</text>\n";
 }
 
+// The panel's series, clipped to its data area.
+void WriteSeries(std::ostream& o, const PlotPanel& p, const FigureLayout& L, const PanelLayout& pl,
+                 size_t pi) {
+  const PlotRect& r = pl.plot;
+  o << "<clipPath id=\"clip" << pi << "\"><rect x=\"" << F(r.x) << "\" y=\"" << F(r.y)
+    << "\" width=\"" << F(r.w) << "\" height=\"" << F(r.h) << "\"/></clipPath>\n";
+  o << "<g clip-path=\"url(#clip" << pi << ")\">\n";
+  for (const auto& s : p.series) {
+    for (const auto& run : SeriesRuns(s, L, r)) {
+      if (s.filled && run.size() > 1) {  // the area down to y = 0
+        o << "<polygon fill=\"" << Rgb(s.color) << "\" fill-opacity=\"0.3\" stroke=\"none\" points=\"";
+        for (const auto& [x, y] : run) o << F(L.MapX(r, x)) << ',' << F(pl.MapY(y)) << ' ';
+        o << F(L.MapX(r, run.back().first)) << ',' << F(pl.MapY(0)) << ' '
+          << F(L.MapX(r, run.front().first)) << ',' << F(pl.MapY(0)) << "\"/>\n";
+      }
+      o << "<polyline fill=\"none\" stroke=\"" << Rgb(s.color) << "\" stroke-width=\"1.5\"";
+      if (s.dashed) o << " stroke-dasharray=\"6,4\"";
+      o << " points=\"";
+      for (size_t i = 0; i < run.size(); ++i) {
+        if (i) o << ' ';
+        o << F(L.MapX(r, run[i].first)) << ',' << F(pl.MapY(run[i].second));
+      }
+      o << "\"/>\n";
+    }
+  }
+}
+
+void WriteLegend(std::ostream& o, const Figure& fig, const FigureLayout& L, size_t pi) {
+  const PlotRect& r = L.panels[pi].plot;
+  const std::vector<LegendEntry> entries = PanelLegend(fig, pi);
+  const size_t rows = LegendRowsThatFit(r);
+  double ly = r.y + 12;
+  for (size_t i = 0; i < entries.size(); ++i, ly += kLegendRowPx) {
+    if (i + 1 == rows && entries.size() > rows) {
+      Text(o, L.legend_x + 30, ly, "+" + std::to_string(entries.size() - i) + " more", "start", 11);
+      break;
+    }
+    const LegendEntry& e = entries[i];
+    if (e.kind == LegendEntry::kSwatch) {
+      o << "<rect x=\"" << F(L.legend_x) << "\" y=\"" << F(ly - 10) << "\" width=\"24\" height=\"10\" fill=\""
+        << Rgb(e.color) << "\"/>\n";
+    } else if (e.kind == LegendEntry::kCut) {
+      o << "<line x1=\"" << F(L.legend_x + 12) << "\" y1=\"" << F(ly - 11) << "\" x2=\"" << F(L.legend_x + 12)
+        << "\" y2=\"" << F(ly + 1) << "\" stroke=\"" << Rgb(e.color) << "\" stroke-width=\"2\"/>\n";
+    } else {
+      o << "<line x1=\"" << F(L.legend_x) << "\" y1=\"" << F(ly - 4) << "\" x2=\"" << F(L.legend_x + 24)
+        << "\" y2=\"" << F(ly - 4) << "\" stroke=\"" << Rgb(e.color) << "\" stroke-width=\"2\""
+        << (e.kind == LegendEntry::kDashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
+    }
+    Text(o, L.legend_x + 30, ly, e.name, "start", 11);
+  }
+}
+
 }  // namespace
 
 std::string RenderFigureSvg(const Figure& fig) {
@@ -90,33 +143,15 @@ std::string RenderFigureSvg(const Figure& fig) {
     if (!p.title.empty()) Text(o, r.x + r.w / 2, r.y - 7, p.title, "middle", 13);
     if (!p.y_label.empty()) Text(o, r.x - 6, r.y - 7, p.y_label, "end", 11);
 
-    // Series, clipped to the data area.
-    o << "<clipPath id=\"clip" << pi << "\"><rect x=\"" << F(r.x) << "\" y=\"" << F(r.y)
-      << "\" width=\"" << F(r.w) << "\" height=\"" << F(r.h) << "\"/></clipPath>\n";
-    o << "<g clip-path=\"url(#clip" << pi << ")\">\n";
-    for (const auto& s : p.series) {
-      for (const auto& run : SeriesRuns(s, L, r)) {
-        o << "<polyline fill=\"none\" stroke=\"" << Rgb(s.color) << "\" stroke-width=\"1.5\"";
-        if (s.dashed) o << " stroke-dasharray=\"6,4\"";
-        o << " points=\"";
-        for (size_t i = 0; i < run.size(); ++i) {
-          if (i) o << ' ';
-          o << F(L.MapX(r, run[i].first)) << ',' << F(pl.MapY(run[i].second));
-        }
-        o << "\"/>\n";
-      }
-    }
+    WriteSeries(o, p, L, pl, pi);
     o << "</g>\n";
-    // Legend.
-    double ly = r.y + 12;
-    for (const auto& s : p.series) {
-      if (s.name.empty()) continue;
-      o << "<line x1=\"" << F(L.legend_x) << "\" y1=\"" << F(ly - 4) << "\" x2=\""
-        << F(L.legend_x + 24) << "\" y2=\"" << F(ly - 4) << "\" stroke=\"" << Rgb(s.color)
-        << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
-      Text(o, L.legend_x + 30, ly, s.name, "start", 11);
-      ly += 16;
+    for (double t : fig.cut_x) {  // shot boundaries, over the curves
+      const double x = L.MapX(r, t);
+      if (x < r.x || x > r.x + r.w) continue;
+      o << "<line x1=\"" << F(x) << "\" y1=\"" << F(r.y) << "\" x2=\"" << F(x) << "\" y2=\""
+        << F(r.y + r.h) << "\" stroke=\"" << Rgb(CutLineColor()) << "\" stroke-width=\"2\"/>\n";
     }
+    WriteLegend(o, fig, L, pi);
     o << "</g>\n";
   }
   if (!fig.x_label.empty()) {

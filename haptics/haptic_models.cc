@@ -69,12 +69,14 @@ void LabelSamples(const CameraPath& path, const std::vector<ShotRange>& shots,
 // written with the track's six decimals; 1e8 s is over three years.
 constexpr double kMaxMediaClockS = 1e8;
 
-// Output sample times from the path's first frame to its last at `rate`.
-// Throws Error(source) if neighbouring times cannot be told apart.
+// Output sample times at `rate` from the path's first frame up to its last
+// one, and past it when it falls between two samples: a player interpolating
+// a 100 Hz track must reach the last frame's pose, not hold the sample up to
+// 10 ms before it. Throws Error(source) if neighbouring times cannot be told apart.
 std::vector<double> SampleTimes(const CameraPath& path, double rate, const std::string& source) {
   const double t0 = path.frames.front().time_s;
   const double t1 = path.frames.back().time_s;
-  const size_t n = static_cast<size_t>(std::floor((t1 - t0) * rate + 1e-9)) + 1;
+  const size_t n = static_cast<size_t>(std::ceil((t1 - t0) * rate - 1e-6)) + 1;
   std::vector<double> time_s(n);
   for (size_t i = 0; i < n; ++i) {
     time_s[i] = t0 + static_cast<double>(i) / rate;
@@ -165,6 +167,7 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
 
   HapticTrack track;
   track.rate_hz = rate;
+  track.interpolation = InterpolationForRate(rate);
   track.model = HapticModelName(o.model);
   track.source = o.source;
   // The samples are built in place (a two-hour film is 7.2 million of

@@ -39,7 +39,7 @@ HapticModel HapticModelFromName(const std::string& name);  // throws UsageError
 struct HapticOptions {
   HapticModel model = HapticModel::kCinematic;
   SeatGeometry seat;           // geometry, workspace, default rate
-  double rate_hz = 0;          // output rate; 0 = seat.rate_hz (1000 Hz)
+  double rate_hz = 0;          // output rate; 0 = seat.rate_hz (100 Hz)
   uint64_t seed = 1;           // random model
   WashoutOptions washout;      // high-pass, cut ramps, speed limit
   CinematicOptions cinematic;  // reference depth, gain caps, scaling scope

@@ -60,8 +60,9 @@ TEST(HapticModels, NoneIsAllZeroAtTheRate) {
   const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o);
   EXPECT_EQ(t.model, "none");
   EXPECT_EQ(t.source, "clip.camera.csv");
-  EXPECT_DOUBLE_EQ(t.rate_hz, 1000);
-  EXPECT_EQ(t.samples.size(), 7001u);  // 0 .. 7 s inclusive
+  EXPECT_DOUBLE_EQ(t.rate_hz, 100);  // the stored default: the player interpolates to 1 kHz
+  EXPECT_EQ(t.interpolation, TrackInterpolation::kMonotoneCubic);
+  EXPECT_EQ(t.samples.size(), 701u);  // 0 .. 7 s inclusive
   EXPECT_NEAR(t.samples.back().time_s, 7.0, 1e-9);
   EXPECT_EQ(MaxCoord(t), 0.0);
   EXPECT_FALSE(t.samples[0].shot.has_value());  // the path had no shot column
@@ -71,6 +72,7 @@ TEST(HapticModels, EveryModelMakesAValidTrack) {
   for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom,
                         HapticModel::kNone}) {
     HapticOptions o;
+    o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
     o.model = m;
     o.rate_hz = 200;
     const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kDutchAngle), o);
@@ -90,6 +92,7 @@ TEST(HapticModels, EveryModelMakesAValidTrack) {
 
 TEST(HapticModels, SemanticFromClassifierLabelsTheEffectColumn) {
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.model = HapticModel::kSemantic;
   const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kZoomIn), o);
   ASSERT_TRUE(t.samples[3500].effect.has_value());
@@ -105,6 +108,7 @@ TEST(HapticModels, SemanticFromKeyframesFile) {
     out << "start_s,end_s,effect,intensity\n2,4,inferiority,0.5\n";
   }
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.model = HapticModel::kSemantic;
   o.keyframes_file = file;
   const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o);
@@ -119,6 +123,7 @@ TEST(HapticModels, SemanticFromKeyframesFile) {
 TEST(HapticModels, FilmStaysInTheWorkspaceAndNeverJumps) {
   const CameraPath film = MakeFilm();
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.source = "film.camera.csv";
   const HapticTrack t = MakeHapticTrack(film, o);
   EXPECT_NEAR(t.duration_s(), 59.96, 1e-6);
@@ -191,6 +196,7 @@ CameraPath PanWithLostFrames() {
 TEST(HapticModels, LostFramesFadeToRestAndResumeWithoutASpike) {
   const CameraPath path = PanWithLostFrames();
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.washout.high_pass = false;  // a held pose would hold the actuators without it
   const HapticTrack t = MakeHapticTrack(path, o);
   const double rate = o.OutputRateHz();
@@ -228,6 +234,7 @@ TEST(HapticModels, LostFramesFadeToRestAndResumeWithoutASpike) {
 
 TEST(HapticModels, RejectsBadPaths) {
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.source = "bad.camera.csv";
   CameraPath gap = MakeEffectPath(CameraEffect::kTraveling);
   for (size_t i = 100; i < gap.frames.size(); ++i) gap.frames[i].time_s += 2.0;
@@ -297,6 +304,7 @@ TEST(HapticModels, NoAcceptedPathLeavesTheWorkspace) {
     }
     for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom}) {
       HapticOptions o;
+      o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
       o.model = m;
       o.rate_hz = 200;
       o.cinematic.per_film_scaling = trial % 4 == 0;
@@ -323,6 +331,7 @@ TEST(HapticModels, HugeMediaClockCountsFromTheFirstFrame) {
     far.frames[i].time_s = 1e15 + 0.125 * static_cast<double>(i);
   }
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.source = "far.camera.csv";
   const HapticTrack a = MakeHapticTrack(at_zero, o);
   const HapticTrack b = MakeHapticTrack(far, o);
@@ -340,6 +349,7 @@ TEST(HapticModels, HugeMediaClockCountsFromTheFirstFrame) {
 
 TEST(HapticModels, DifferenceOfTracks) {
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   const CameraPath path = MakeEffectPath(CameraEffect::kTraveling);
   const HapticTrack a = MakeHapticTrack(path, o);
   HapticDifference d = HapticTrackDifference(a, a);
@@ -361,6 +371,7 @@ TEST(HapticModels, ComparableTracksShareTheScaling) {
   const CameraPath ref = MakeEffectPath(CameraEffect::kTraveling, 1.0);
   const CameraPath est = MakeEffectPath(CameraEffect::kTraveling, 1.2);
   HapticOptions o;
+  o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
   o.washout.high_pass = false;
   const HapticDifference own =
       HapticTrackDifference(MakeHapticTrack(ref, o), MakeHapticTrack(est, o));

@@ -35,8 +35,9 @@ struct SeatGeometry {
   double usable_half_m = 0.045;
   // Last line of defence: every output coordinate is clamped to +-this.
   double clamp_half_m = 0.048;
-  // Output rate of haptic tracks.
-  double rate_hz = 1000;
+  // Stored rate of haptic tracks: the player interpolates them (monotone
+  // cubic) to its 1 kHz loop within 0.1 mm (docs/haptics.md, "Stored rate").
+  double rate_hz = 100;
 
   // Vector G -> G_A for actuator a.
   Eigen::Vector3d FromCenter(int a) const { return rest_m[a] - center_m; }
