@@ -13,6 +13,7 @@
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
 #include "core/output_files.h"
+#include "datasets/plot_platform.h"
 #include "datasets/plot_png.h"
 #include "datasets/plot_tracks.h"
 #include "datasets/svg_writer.h"
@@ -41,7 +42,7 @@ void WriteOutputs(const Figure& fig, const std::string& png_path, const std::str
 
 std::string FileStem(const std::string& path) {
   std::string name = path.substr(path.find_last_of('/') + 1);
-  for (const char* suffix : {".haptic.csv", ".csv"}) {
+  for (const char* suffix : {".haptic.csv", ".platform.csv", ".csv"}) {
     const std::string sfx = suffix;
     if (name.size() > sfx.size() && name.compare(name.size() - sfx.size(), sfx.size(), sfx) == 0) {
       return name.substr(0, name.size() - sfx.size());
@@ -68,6 +69,26 @@ std::string PlotOutputPath(const std::string& prefix, const std::string& ext, bo
                        !std::filesystem::is_directory(status);
   if (single_format && special) return prefix;
   return prefix + "." + ext;
+}
+
+// Platform tracks overlaid; legend names as for haptic tracks (the
+// platform's name, or the file's stem when two tracks share it).
+Figure PlatformFigureFromFiles(const std::vector<std::string>& files, const std::string& title) {
+  std::vector<PlatformTrack> tracks;
+  std::string names;
+  for (const std::string& f : files) {
+    tracks.push_back(ReadPlatformTrackFile(f));
+    names += (names.empty() ? "" : "  vs  ") + f;
+  }
+  std::vector<const PlatformTrack*> ptrs;
+  std::vector<std::string> legend;
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    ptrs.push_back(&tracks[i]);
+    bool shared = false;
+    for (size_t j = 0; j < tracks.size(); ++j) shared |= j != i && tracks[j].platform == tracks[i].platform;
+    legend.push_back(shared ? FileStem(files[i]) : tracks[i].platform);
+  }
+  return PlatformTracksFigure(ptrs, title.empty() ? names : title, legend);
 }
 
 }  // namespace
@@ -120,6 +141,15 @@ int RunPlot(int argc, char** argv) {
       ->required();
   add_common(haptic);
 
+  std::vector<std::string> platform_files;
+  CLI::App* platform = app.add_subcommand(
+      "platform",
+      "motion platform poses (sway/heave/surge in mm, pitch/yaw/roll in degrees) and Stewart "
+      "leg extensions over time; several tracks overlaid (the first solid, the others dashed)");
+  platform->add_option("tracks", platform_files, "platform tracks (*.platform.csv), one or more")
+      ->required();
+  add_common(platform);
+
   return RunApp(app, argc, argv, [&]() {
     const bool single = format != "both";
     const std::string png = format != "svg" ? PlotOutputPath(prefix, "png", single) : "";
@@ -128,7 +158,8 @@ int RunPlot(int argc, char** argv) {
     if (camera->parsed()) {
       inputs = {{gt_file, "GT"}, {est_file, "EST"}};
     } else {
-      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
+      for (const std::string& f : platform->parsed() ? platform_files : track_files)
+        inputs.push_back({f, "TRACK"});
     }
     OutputSet outputs(inputs,
                       {{png, "-o"}, {svg, "-o"}});
@@ -143,6 +174,8 @@ int RunPlot(int argc, char** argv) {
       opt.effect_labels = !no_effects;
       opt.title = title.empty() ? gt_file + (est_file.empty() ? "" : "  vs  " + est_file) : title;
       fig = CameraPathFigure(gt, est_file.empty() ? nullptr : &est, opt);
+    } else if (platform->parsed()) {
+      fig = PlatformFigureFromFiles(platform_files, title);
     } else {
       std::vector<HapticTrack> tracks;
       std::string names;

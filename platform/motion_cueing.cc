@@ -174,9 +174,13 @@ std::vector<PlatformPose> TiltCoordination(const CueGrid& g, const PlatformConfi
   const int pitch = static_cast<int>(Dof::kPitch), roll = static_cast<int>(Dof::kRoll);
   const double budget[2] = {TiltBudget(cfg, pitch), TiltBudget(cfg, roll)};
   if (budget[0] <= 0 && budget[1] <= 0) return tilt;
-  double force_lp[2] = {0, 0};  // surge (z) and sway (x) specific force, m/s^2
-  double angle[2] = {0, 0};     // pitch, roll
-  const double alpha = g.dt / (q.tilt_lowpass_s + g.dt);
+  // Surge (z) and sway (x) specific force, m/s^2, through two first-order
+  // sections of tilt_lowpass_s / 2 each: the camera's frames make the
+  // acceleration on the output grid a train of impulses, which one section
+  // would leave as a ripple in the tilt.
+  double force_lp[2] = {0, 0}, force_lp1[2] = {0, 0};
+  double angle[2] = {0, 0};  // pitch, roll
+  const double alpha = g.dt / (0.5 * q.tilt_lowpass_s + g.dt);
   for (size_t i = 1; i + 1 < g.size(); ++i) {
     const bool inside = !g.cut[i] && !g.cut[i + 1];
     for (int k = 0; k < 2; ++k) {
@@ -184,7 +188,8 @@ std::vector<PlatformPose> TiltCoordination(const CueGrid& g, const PlatformConfi
       const double acc =
           inside ? (g.raw[i + 1][axis] - 2 * g.raw[i][axis] + g.raw[i - 1][axis]) / (g.dt * g.dt)
                  : 0.0;
-      force_lp[k] += alpha * (q.specific_force_gain * acc - force_lp[k]);
+      force_lp1[k] += alpha * (q.specific_force_gain * acc - force_lp1[k]);
+      force_lp[k] += alpha * (force_lp1[k] - force_lp[k]);
       // Forward (-z) acceleration: front up; rightward (+x): right side up.
       const double f = k == 0 ? -force_lp[k] : force_lp[k];
       const double target = std::asin(std::clamp(f / kGravity, -1.0, 1.0));

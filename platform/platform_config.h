@@ -65,8 +65,8 @@ struct CueingParams {
   double return_speed_m_s = 0.05;
   double return_rate_rad_s = 0.0523598775598;      // 3 deg/s
   double return_accel_rad_s2 = 0.0523598775598;    // 3 deg/s^2
-  // Tilt coordination: low-passed specific force (first order, time
-  // constant tilt_lowpass_s) rendered as pitch/roll so gravity gives a
+  // Tilt coordination: low-passed specific force (two first-order sections
+  // of tilt_lowpass_s / 2) rendered as pitch/roll so gravity gives a
   // sustained acceleration, at most tilt_max and turning at most
   // tilt_rate (3 deg/s, below the canals' threshold).
   double tilt_max_rad = 0.0872664625997;   // 5 deg
