@@ -102,36 +102,59 @@ struct ChannelParams {
   double dt = 0.01;
 };
 
+// The signal's speed over the last kSpeedWindowS (a window, so that
+// estimation noise does not read as motion), restarting at cuts, and the
+// still threshold per sample: the absolute one, or 2 % of the shot's
+// fastest speed when that is lower (a long shot scaled down to fit moves
+// slowly all along; its ease-out is still motion).
+constexpr double kSpeedWindowS = 0.25;
+constexpr double kStillFractionOfPeak = 0.02;
+
+void WindowedSpeed(const std::vector<double>& c, const std::vector<char>& cut,
+                   const ChannelParams& p, std::vector<double>* speed,
+                   std::vector<double>* still) {
+  const size_t n = c.size();
+  const size_t lag = std::max<size_t>(1, static_cast<size_t>(std::lround(kSpeedWindowS / p.dt)));
+  speed->assign(n, 0.0);
+  still->assign(n, p.still);
+  size_t shot_start = 0;
+  for (size_t i = 0; i <= n; ++i) {
+    if (i == n || (i > 0 && cut[i])) {  // close the shot [shot_start, i)
+      double peak = 0;
+      for (size_t j = shot_start; j < i; ++j) peak = std::max(peak, std::abs((*speed)[j]));
+      for (size_t j = shot_start; j < i; ++j)
+        (*still)[j] = std::min(p.still, kStillFractionOfPeak * peak);
+      shot_start = i;
+      if (i == n) break;
+    }
+    const size_t from = std::max(shot_start, i >= lag ? i - lag : 0);
+    (*speed)[i] = i > from ? (c[i] - c[from]) / ((i - from) * p.dt) : 0.0;
+  }
+}
+
 // The platform's position for one DOF: the scaled camera signal c minus a
 // return r that brings it home without false cues (motion_cueing.h).
 // Starts at home; at a cut (cut[i]) the signal restarts from the new shot's
-// first frame and r absorbs the jump, so the pose is continuous. The signal
-// counts as moving when its speed over the last kSpeedWindowS exceeds the
-// still threshold (a window, so that estimation noise does not read as
-// motion); while it moves, a return may only go the camera's way.
-constexpr double kSpeedWindowS = 0.25;
-
+// first frame and r absorbs the jump, so the pose is continuous. While the
+// signal moves, a return may only go the camera's way.
 std::vector<double> FollowWithReturns(const std::vector<double>& c, const std::vector<char>& cut,
                                       const ChannelParams& p) {
-  std::vector<double> out(c.size());
+  std::vector<double> out(c.size()), speed, still;
+  WindowedSpeed(c, cut, p, &speed, &still);
   double r = c.empty() ? 0 : c[0], u = 0, window = 0;
-  const size_t lag = std::max<size_t>(1, static_cast<size_t>(std::lround(kSpeedWindowS / p.dt)));
-  size_t shot_start = 0;
   for (size_t i = 0; i < c.size(); ++i) {
     if (i > 0 && cut[i]) {
       r += c[i] - c[i - 1];
       window = p.cut_window_s;
-      shot_start = i;
     }
-    const size_t from = std::max(shot_start, i >= lag ? i - lag : 0);
-    const double s = i > from ? (c[i] - c[from]) / ((i - from) * p.dt) : 0.0;
+    const double s = speed[i];
     const ReturnLimits& lim = window > 0 ? p.fast : p.slow;
     const double e = c[i] - r;  // the pose without a further return
     const double u_want = std::copysign(std::min(lim.speed, std::sqrt(2 * lim.accel * std::abs(e))), e);
     // Leaving a cut's window, a fast return slows down at the fast rate.
     const double accel = std::abs(u) > lim.speed ? p.fast.accel : lim.accel;
     u = std::clamp(u_want, u - accel * p.dt, u + accel * p.dt);
-    if (window <= 0 && std::abs(s) > p.still) u = s > 0 ? std::min(u, 0.0) : std::max(u, 0.0);
+    if (window <= 0 && std::abs(s) > still[i]) u = s > 0 ? std::min(u, 0.0) : std::max(u, 0.0);
     if (u * e > 0 && std::abs(u * p.dt) > std::abs(e)) u = e / p.dt;  // no overshoot of home
     r += u * p.dt;
     window -= p.dt;
