@@ -53,7 +53,7 @@ struct View {
 // Behind the seat: X right, Y up. Right side: -Z (the screen) left, Y up.
 // Above: X right, -Z (the screen) up.
 const View kViews[3] = {
-    {"behind", 0, 1, 1, 1}, {"right side, screen <", 2, 1, 1, 1}, {"above, screen ^", 0, 2, 1, -1}};
+    {"behind", 0, 1, 1, 1}, {"side, screen <", 2, 1, 1, 1}, {"top, screen ^", 0, 2, 1, -1}};
 
 void DrawView(cv::Mat& img, const cv::Rect& r, const View& v, const PlatformPose& pose) {
   const double scale = std::min(r.width, r.height) / 1.6;  // metres -> pixels
@@ -76,7 +76,7 @@ void DrawView(cv::Mat& img, const cv::Rect& r, const View& v, const PlatformPose
   for (const Segment& s : SeatWireframe()) {
     cv::line(img, px(shift + rot * s.a), px(shift + rot * s.b), {40, 220, 255}, 1, cv::LINE_AA);
   }
-  const double font = std::max(0.3, r.height / 300.0);
+  const double font = std::max(0.3, std::min(r.height / 300.0, r.width / 330.0));
   cv::putText(img, v.name, cv::Point(r.x + 4, r.y + static_cast<int>(14 * font / 0.4)),
               cv::FONT_HERSHEY_SIMPLEX, font, {230, 230, 230}, 1, cv::LINE_AA);
 }

@@ -3,9 +3,9 @@
 // drawn seat on its platform that moves with the track, so a person can
 // judge the cueing without hardware. Three orthographic views of the same
 // wireframe (seat pan, backrest, top plate, the fixed base and a jack), side
-// by side: from behind the seat (X right, Y up: heave, sway, roll), from its
-// right side (screen to the left: heave, surge, pitch) and from above
-// (screen up: sway, surge, yaw). The home pose is drawn grey under the
+// by side: "behind" the seat (X right, Y up: heave, sway, roll), "side" from
+// its right (screen to the left: heave, surge, pitch) and "top" (screen up:
+// sway, surge, yaw). The home pose is drawn grey under the
 // moving seat; the pose is printed under the views. Real size: a 0.1 m
 // heave is a tenth of the seat's height.
 
