@@ -13,8 +13,10 @@
 // rate). Classical washout high-passes these; a linear high-pass moves the
 // platform back while the camera still moves forward (a false cue), so here
 // the low-frequency part is removed by a return to home that
-//  - never moves against a camera signal while it keeps its sign (above the
-//    still threshold, CueingParams::still_speed_m_s / still_rate_rad_s),
+//  - never moves against a camera signal while it moves (its speed over
+//    0.25 s above the still threshold: CueingParams::still_speed_m_s /
+//    still_rate_rad_s, or 2 % of the shot's fastest speed when lower): it
+//    may then only go the camera's way,
 //  - runs in still moments below the vestibular thresholds (0.05 m/s^2,
 //    3 deg/s: CueingParams),
 //  - and at a cut, for cut_ramp_s, faster (half the DOF's limits): the
@@ -30,9 +32,11 @@
 // for all translations, keeping the direction; at most usable / fill_motion_u)
 // and m (<= 1: never more than the camera's own angles) such that the
 // simulated poses, returns included, stay within usable_fraction of each
-// DOF's position limit (rotations: less the tilt budget). A Stewart pose
-// whose legs leave the usable stroke is scaled back towards home. Every
-// sample then passes PlatformSafety (platform_safety.h).
+// DOF's position limit (rotations: less the tilt budget, a quarter of the
+// usable pitch and roll); for a Stewart platform both then shrink together
+// until every pose of the shot keeps its legs inside the stroke less a
+// margin. Where shots meet, a pose still outside is scaled back towards
+// home. Every sample then passes PlatformSafety (platform_safety.h).
 
 #include "core/camera_path.h"
 #include "platform/platform_config.h"

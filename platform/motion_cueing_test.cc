@@ -179,6 +179,29 @@ TEST(MotionCueing, LimitsHoldOnAdversarialCameraPaths) {
   }
 }
 
+// A run of lost frames followed by a pose nothing measured (the estimator
+// placed the camera 5 units away) is no motion: the platform stays home.
+TEST(MotionCueing, LostFramesAreNotMotion) {
+  CameraPath path;
+  for (int i = 0; i < 150; ++i) {
+    CameraFrame f;
+    f.frame = i;
+    f.time_s = i / 30.0;
+    f.fov_deg = 50;
+    if (i >= 50 && i < 70) {
+      f.model = std::string(kLostModel);
+      f.confidence = 0;
+    }
+    if (i >= 70) f.center.x() = 5;
+    path.frames.push_back(f);
+  }
+  const PlatformTrack t = Make(path, Stewart());
+  EXPECT_LT(std::max(Max(t, kSway), -Min(t, kSway)), 1e-6);
+  // The same jump without the lost frames is a (very fast) traveling right.
+  for (auto& f : path.frames) f.model.reset();
+  EXPECT_GT(Max(Make(path, Stewart()), kSway), 0.01);
+}
+
 TEST(MotionCueing, OneFramePathAndNoneModelStayHome) {
   CameraPath one;
   one.frames.resize(1);

@@ -67,8 +67,9 @@ struct CueingParams {
   double return_accel_rad_s2 = 0.0523598775598;    // 3 deg/s^2
   // Tilt coordination: low-passed specific force (two first-order sections
   // of tilt_lowpass_s / 2) rendered as pitch/roll so gravity gives a
-  // sustained acceleration, at most tilt_max and turning at most
-  // tilt_rate (3 deg/s, below the canals' threshold).
+  // sustained acceleration, at most tilt_max (and a quarter of the usable
+  // pitch or roll) and turning at most tilt_rate (3 deg/s, below the canals'
+  // threshold).
   double tilt_max_rad = 0.0872664625997;   // 5 deg
   double tilt_rate_rad_s = 0.0523598775598;  // 3 deg/s
   double tilt_lowpass_s = 1.0;
@@ -103,10 +104,9 @@ struct PlatformConfig {
   std::optional<StewartGeometry> stewart;
   CueingParams cueing;
   int NumEnabled() const;
-  // Throws UsageError: at least one DOF, limits finite and > 0 (<= 1 m,
-  // <= 60 deg), rate in [10, 10000], Stewart legs within stroke at home and
-  // at every single-DOF pose within the usable range is NOT required (the
-  // clamp scales poses back into the stroke).
+  // Throws UsageError: at least one DOF, limits finite and > 0 (position
+  // <= 1 m or 60 deg), rate in [10, 10000], cueing parameters in range, and
+  // a Stewart platform's legs at home inside the usable stroke.
   void Check() const;
 };
 
