@@ -90,6 +90,25 @@ TEST(MotionCueing, Table1DirectionsOnAThreeDofSeat) {
   for (const auto& s : travel.samples) EXPECT_EQ(s.pose[kSway], 0.0);
 }
 
+TEST(MotionCueing, ATwoDofPitchRollSeat) {
+  const PlatformConfig cfg = ParsePlatformJson(
+      R"({"type": "platform", "name": "2-DOF",
+          "dofs": {"pitch": {"position": 10, "velocity": 20, "acceleration": 100},
+                   "roll": {"position": 10, "velocity": 20, "acceleration": 100}}})",
+      "2dof.json");
+  const PlatformTrack tilt = Make(MakeEffectPath(CameraEffect::kTilting), cfg);
+  EXPECT_GT(Max(tilt, kPitch), 0.5 * Usable(cfg, kPitch));
+  const PlatformTrack dutch = Make(MakeEffectPath(CameraEffect::kDutchAngle), cfg);
+  EXPECT_GT(Max(dutch, kRoll), 0.5 * Usable(cfg, kRoll));
+  const PlatformTrack crane = Make(MakeEffectPath(CameraEffect::kCraneShot), cfg);
+  EXPECT_LT(Min(crane, kPitch), -DegToRad(1));  // no heave: the crane's tilt down remains
+  for (const auto& t : {tilt, dutch, crane}) {
+    const PlatformLimitCheck c = MeasurePlatformLimits(t, cfg);
+    EXPECT_EQ(c.disabled_max, 0.0);
+    EXPECT_LE(c.acceleration_ratio, 1 + 1e-9);
+  }
+}
+
 // While the camera signal of a DOF keeps its sign (the eased motion of a
 // Table 1 clip, 1-6 s), the platform never moves against it; in the last
 // still second it returns below the otoliths' threshold.
