@@ -28,7 +28,8 @@ int RunPreview(int argc, char** argv) {
   app.add_option("--platform", o.platform_track,
                  "Draw a motion platform track (*.platform.csv, from `hapcine haptics --seat\n"
                  "platform.json`) instead of the HapSeat: a seat that moves, seen from behind,\n"
-                 "from its right side and from above, over its home pose");
+                 "from its right side and from above, over its home pose; unless --no-sim,\n"
+                 "a simulated platform (drives of 3 Hz, damping 0.7) in light blue");
   app.add_option("--max-side", o.max_side, "Longest side of the output in pixels (0 = as decoded)")
       ->capture_default_str()
       ->check(FiniteRange(0, 16384));
@@ -49,6 +50,7 @@ int RunPreview(int argc, char** argv) {
       ->capture_default_str()
       ->check(FiniteRange(0, 50));
   return RunApp(app, argc, argv, [&] {
+    o.simulate_platform = !no_sim && !o.platform_track.empty();
     if (!no_sim) {
       loop.Check();
       o.simulate = [&loop](const HapticTrack& t) { return SimulateSeat(t, loop); };

@@ -10,6 +10,7 @@
 #include "datasets/preview_platform.h"
 #include "datasets/video_writer.h"
 #include "extract/frame_source.h"
+#include "platform/sim_platform.h"
 
 namespace hapcine {
 namespace {
@@ -94,8 +95,9 @@ void PreviewOptions::Check() const {
 int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& progress) {
   o.Check();
   std::string track_path = o.track;
-  PlatformTrack platform;
+  PlatformTrack platform, platform_sim;
   if (!o.platform_track.empty()) platform = ReadPlatformTrackFile(o.platform_track);
+  if (o.simulate_platform) platform_sim = SimulatePlatform(platform);
   if (track_path.empty() && o.platform_track.empty()) {
     const std::filesystem::path v(o.video);
     track_path = (v.parent_path() / (v.stem().string() + ".haptic.csv")).string();
@@ -126,7 +128,8 @@ int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& 
     const int inset_w = std::max(48, static_cast<int>(w * o.inset_fraction)) / 3 * 3;
     if (!o.platform_track.empty()) {
       const int inset_h = std::min(h, std::max(40, inset_w * 2 / 5));
-      DrawPlatformInset(img, cv::Rect(w - inset_w, h - inset_h, inset_w, inset_h), platform, frame.time_s);
+      DrawPlatformInset(img, cv::Rect(w - inset_w, h - inset_h, inset_w, inset_h), platform,
+                        frame.time_s, o.simulate_platform ? &platform_sim : nullptr);
       writer.Write(img);
       ++n;
       if (progress && n % 10 == 0) progress(n, total);

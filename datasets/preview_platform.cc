@@ -55,7 +55,8 @@ struct View {
 const View kViews[3] = {
     {"behind", 0, 1, 1, 1}, {"side, screen <", 2, 1, 1, 1}, {"top, screen ^", 0, 2, 1, -1}};
 
-void DrawView(cv::Mat& img, const cv::Rect& r, const View& v, const PlatformPose& pose) {
+void DrawView(cv::Mat& img, const cv::Rect& r, const View& v, const PlatformPose& pose,
+              const PlatformPose* actual) {
   const double scale = std::min(r.width, r.height) / 1.6;  // metres -> pixels
   const cv::Point2d centre(r.x + r.width / 2.0, r.y + r.height * (v.v_axis == 1 ? 0.62 : 0.5));
   auto px = [&](const Eigen::Vector3d& p) {
@@ -72,6 +73,14 @@ void DrawView(cv::Mat& img, const cv::Rect& r, const View& v, const PlatformPose
   }
   for (const Segment& s : SeatWireframe()) {
     cv::line(img, px(s.a), px(s.b), {90, 90, 90}, 1, cv::LINE_AA);  // home
+  }
+  if (actual) {  // the simulated platform, under the target
+    const Eigen::Matrix3d rot_a = PoseRotation(*actual);
+    const Eigen::Vector3d shift_a = actual->head<3>();
+    for (const Segment& s : SeatWireframe()) {
+      cv::line(img, px(shift_a + rot_a * s.a), px(shift_a + rot_a * s.b), {255, 200, 60}, 1,
+               cv::LINE_AA);
+    }
   }
   for (const Segment& s : SeatWireframe()) {
     cv::line(img, px(shift + rot * s.a), px(shift + rot * s.b), {40, 220, 255}, 1, cv::LINE_AA);
@@ -96,14 +105,19 @@ PlatformPose PlatformPoseAt(const PlatformTrack& track, double t) {
   return a.pose + w * (b.pose - a.pose);
 }
 
-void DrawPlatformInset(cv::Mat& img, const cv::Rect& r, const PlatformTrack& track, double t) {
+void DrawPlatformInset(cv::Mat& img, const cv::Rect& r, const PlatformTrack& track, double t,
+                       const PlatformTrack* response) {
   cv::Mat roi = img(r);
   cv::Mat shade(roi.size(), roi.type(), cv::Scalar(30, 30, 30));
   cv::addWeighted(shade, 0.75, roi, 0.25, 0, roi);
   const PlatformPose pose = PlatformPoseAt(track, t);
   const int text_h = std::max(16, r.height / 5);
   const int w = r.width / 3;
-  for (int i = 0; i < 3; ++i) DrawView(img, cv::Rect(r.x + i * w, r.y, w, r.height - text_h), kViews[i], pose);
+  const PlatformPose actual = response ? PlatformPoseAt(*response, t) : PlatformPose::Zero();
+  for (int i = 0; i < 3; ++i) {
+    DrawView(img, cv::Rect(r.x + i * w, r.y, w, r.height - text_h), kViews[i], pose,
+             response ? &actual : nullptr);
+  }
   char lines[2][96];
   std::snprintf(lines[0], sizeof lines[0], "sway %+5.1f  heave %+5.1f  surge %+5.1f mm",
                 1000 * pose[0], 1000 * pose[1], 1000 * pose[2]);

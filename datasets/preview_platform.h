@@ -15,8 +15,11 @@
 
 namespace hapcine {
 
-// Draws the platform at time t (the track interpolated) into `r` of `img`.
-void DrawPlatformInset(cv::Mat& img, const cv::Rect& r, const PlatformTrack& track, double t);
+// Draws the platform at time t (the track interpolated) into `r` of `img`,
+// and, when `response` is given (platform/sim_platform.h), where a
+// simulated platform is, in light blue.
+void DrawPlatformInset(cv::Mat& img, const cv::Rect& r, const PlatformTrack& track, double t,
+                       const PlatformTrack* response = nullptr);
 
 // The track's pose at time t: linear interpolation, clamped to the ends.
 PlatformPose PlatformPoseAt(const PlatformTrack& track, double t);

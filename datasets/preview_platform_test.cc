@@ -84,6 +84,7 @@ TEST(PreviewPlatform, RendersAPreviewWithAPlatformTrackOnly) {
   PreviewOptions o;
   o.video = video.string();
   o.platform_track = (d / "clip.platform.csv").string();
+  o.simulate_platform = true;
   o.output = (d / "out.mp4").string();
   EXPECT_EQ(RenderPreview(o), 20);
   FrameSourceOptions fo;
