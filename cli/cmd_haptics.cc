@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/cmd_haptics_platform.h"
 #include "cli/command.h"
 #include "cli/option_checks.h"
 #include "core/atomic_file.h"
@@ -22,6 +23,7 @@
 #include "haptics/hjif_export.h"
 #include "haptics/keyframes.h"
 #include "haptics/seat_geometry.h"
+#include "platform/platform_config.h"
 
 namespace hapcine::cli {
 namespace {
@@ -62,7 +64,9 @@ int RunHaptics(int argc, char** argv) {
   app.add_option("--hjif", hjif,
                  "also write an MPEG-I Haptics interchange file (.hjif, ISO/IEC 23090-31)");
   app.add_option("--seat", seat_file,
-                 "HapSeat geometry JSON overriding the built-in defaults (see --print-seat)");
+                 "HapSeat geometry JSON overriding the built-in defaults (see --print-seat), or\n"
+                 "a motion platform (\"type\": \"platform\", e.g. haptics/platform_3dof.json):\n"
+                 "then -o writes a platform track (*.platform.csv: pose and Stewart legs)");
   app.add_flag("--print-seat", print_seat, "print the seat geometry in use as JSON and exit");
   app.add_option("--rate", rate, "stored rate in Hz; default: the seat's rate_hz (100; the player interpolates to 1 kHz)")
       ->default_val(0)
@@ -118,6 +122,11 @@ int RunHaptics(int argc, char** argv) {
       ->check(FiniteRange(0, 10000));
 
   return RunApp(app, argc, argv, [&]() -> int {
+    if (!seat_file.empty() && IsPlatformFile(seat_file)) {
+      return RunPlatformHaptics({seat_file, input, output, model, print_seat, rate,
+                                 opt.cinematic.reference_depth_u, opt.max_gap_s,
+                                 !hjif.empty() || !effects_out.empty()});
+    }
     if (!seat_file.empty()) opt.seat = LoadSeatGeometryFile(seat_file);
     if (print_seat) {
       std::cout << SeatGeometryToJson(opt.seat);

@@ -19,6 +19,7 @@
 #include "core/output_files.h"
 #include "core/progress.h"
 #include "datasets/plot_pages.h"
+#include "datasets/plot_platform.h"
 #include "datasets/plot_png.h"
 #include "datasets/plot_tracks.h"
 #include "datasets/svg_writer.h"
@@ -47,7 +48,7 @@ void WriteOutputs(const Figure& fig, const std::string& png_path, const std::str
 
 std::string FileStem(const std::string& path) {
   std::string name = path.substr(path.find_last_of('/') + 1);
-  for (const char* suffix : {".haptic.csv", ".csv"}) {
+  for (const char* suffix : {".haptic.csv", ".platform.csv", ".csv"}) {
     const std::string sfx = suffix;
     if (name.size() > sfx.size() && name.compare(name.size() - sfx.size(), sfx.size(), sfx) == 0) {
       return name.substr(0, name.size() - sfx.size());
@@ -189,6 +190,34 @@ PlotPages HapticPages(const std::vector<std::string>& files, const std::string& 
   return pages;
 }
 
+// Platform tracks overlaid; legend names as for haptic tracks (the
+// platform's name, or the file's stem when two tracks share it). Built once
+// and cropped per page.
+PlotPages PlatformPages(const std::vector<std::string>& files, const std::string& title,
+                        const PageChoice& choice) {
+  std::vector<PlatformTrack> tracks;
+  std::string names;
+  for (const std::string& f : files) {
+    tracks.push_back(ReadPlatformTrackFile(f));
+    if (tracks.back().samples.empty()) throw Error(f, "no samples");
+    names += (names.empty() ? "" : "  vs  ") + f;
+  }
+  std::vector<const PlatformTrack*> ptrs;
+  std::vector<std::string> legend;
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    ptrs.push_back(&tracks[i]);
+    bool shared = false;
+    for (size_t j = 0; j < tracks.size(); ++j) shared |= j != i && tracks[j].platform == tracks[i].platform;
+    legend.push_back(shared ? FileStem(files[i]) : tracks[i].platform);
+  }
+  auto whole = std::make_shared<Figure>(PlatformTracksFigure(ptrs, title.empty() ? names : title, legend));
+  PlotPages pages;
+  pages.ranges = ChoosePages(choice, tracks.front().samples.front().time_s,
+                             tracks.front().samples.back().time_s, whole->cut_x);
+  pages.page = [whole](const TimeRange& r) { return CropFigure(*whole, r.first, r.second); };
+  return pages;
+}
+
 // Every page's files are complete before any is renamed into place.
 void WritePages(const PlotPages& plot, const std::string& png, const std::string& svg,
                 const std::vector<NamedPath>& inputs, int width_px) {
@@ -275,6 +304,15 @@ int RunPlot(int argc, char** argv) {
                      "tracks have none");
   add_common(haptic);
 
+  std::vector<std::string> platform_files;
+  CLI::App* platform = app.add_subcommand(
+      "platform",
+      "motion platform poses (sway/heave/surge in mm, pitch/yaw/roll in degrees) and Stewart "
+      "leg extensions over time; several tracks overlaid (the first solid, the others dashed)");
+  platform->add_option("tracks", platform_files, "platform tracks (*.platform.csv), one or more")
+      ->required();
+  add_common(platform);
+
   return RunApp(app, argc, argv, [&]() {
     const bool single = format != "both";
     const std::string png = format != "svg" ? PlotOutputPath(prefix, "png", single) : "";
@@ -289,6 +327,9 @@ int RunPlot(int argc, char** argv) {
       opt.effect_labels = !no_effects;
       opt.title = title.empty() ? gt_file + (est_file.empty() ? "" : "  vs  " + est_file) : title;
       plot = CameraPages(gt_file, est_file, opt, pages);
+    } else if (platform->parsed()) {
+      for (const std::string& f : platform_files) inputs.push_back({f, "TRACK"});
+      plot = PlatformPages(platform_files, title, pages);
     } else {
       for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
       inputs.push_back({confidence_file, "--camera"});

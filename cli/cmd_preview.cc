@@ -25,6 +25,11 @@ int RunPreview(int argc, char** argv) {
   app.add_option("--track", o.track,
                  "Haptic track (*.haptic.csv). Default: <video stem>.haptic.csv beside the video");
   app.add_option("-o,--output", o.output, "Output MP4 (H.264), written atomically")->required();
+  app.add_option("--platform", o.platform_track,
+                 "Draw a motion platform track (*.platform.csv, from `hapcine haptics --seat\n"
+                 "platform.json`) instead of the HapSeat: a seat that moves, seen from behind,\n"
+                 "from its right side and from above, over its home pose; unless --no-sim,\n"
+                 "a simulated platform (drives of 3 Hz, damping 0.7) in light blue");
   app.add_option("--max-side", o.max_side, "Longest side of the output in pixels (0 = as decoded)")
       ->capture_default_str()
       ->check(FiniteRange(0, 16384));
@@ -45,6 +50,7 @@ int RunPreview(int argc, char** argv) {
       ->capture_default_str()
       ->check(FiniteRange(0, 50));
   return RunApp(app, argc, argv, [&] {
+    o.simulate_platform = !no_sim && !o.platform_track.empty();
     if (!no_sim) {
       loop.Check();
       o.simulate = [&loop](const HapticTrack& t) { return SimulateSeat(t, loop); };
@@ -54,7 +60,9 @@ int RunPreview(int argc, char** argv) {
     const std::string track = o.track.empty()
                                   ? (v.parent_path() / (v.stem().string() + ".haptic.csv")).string()
                                   : o.track;
-    OutputSet outputs({{o.video, "VIDEO"}, {track, "--track"}}, {{o.output, "-o"}});
+    OutputSet outputs({{o.video, "VIDEO"}, {o.platform_track.empty() ? track : o.track, "--track"},
+                       {o.platform_track, "--platform"}},
+                      {{o.output, "-o"}});
     Progress progress(std::cerr, ProgressModeFor(false), "preview", "frames");
     const int n = RenderPreview(o, [&](int done, int total) { progress.Update(done, total); });
     progress.Close();

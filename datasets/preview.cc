@@ -7,8 +7,10 @@
 
 #include "core/error.h"
 #include "core/haptic_track.h"
+#include "datasets/preview_platform.h"
 #include "datasets/video_writer.h"
 #include "extract/frame_source.h"
+#include "platform/sim_platform.h"
 
 namespace hapcine {
 namespace {
@@ -93,15 +95,18 @@ void PreviewOptions::Check() const {
 int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& progress) {
   o.Check();
   std::string track_path = o.track;
-  if (track_path.empty()) {
+  PlatformTrack platform, platform_sim;
+  if (!o.platform_track.empty()) platform = ReadPlatformTrackFile(o.platform_track);
+  if (o.simulate_platform) platform_sim = SimulatePlatform(platform);
+  if (track_path.empty() && o.platform_track.empty()) {
     const std::filesystem::path v(o.video);
     track_path = (v.parent_path() / (v.stem().string() + ".haptic.csv")).string();
     if (!std::filesystem::exists(track_path))
       throw Error(o.video, "no --track given and no " + track_path + " beside the video");
   }
-  const HapticTrack track = ReadHapticTrackFile(track_path);
+  const HapticTrack track = o.platform_track.empty() ? ReadHapticTrackFile(track_path) : HapticTrack();
   HapticTrack response;
-  if (o.simulate) response = o.simulate(track);
+  if (o.simulate && o.platform_track.empty()) response = o.simulate(track);
   FrameSourceOptions fo;
   fo.max_working_side = o.max_side;
   fo.want_color = true;
@@ -121,6 +126,15 @@ int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& 
     if (w != img.cols || h != img.rows) img = img(cv::Rect(0, 0, w, h)).clone();
     if (!writer.is_open()) writer.Open(o.output, w, h, info.fps > 0 ? info.fps : 25.0, vo);
     const int inset_w = std::max(48, static_cast<int>(w * o.inset_fraction)) / 3 * 3;
+    if (!o.platform_track.empty()) {
+      const int inset_h = std::min(h, std::max(40, inset_w * 2 / 5));
+      DrawPlatformInset(img, cv::Rect(w - inset_w, h - inset_h, inset_w, inset_h), platform,
+                        frame.time_s, o.simulate_platform ? &platform_sim : nullptr);
+      writer.Write(img);
+      ++n;
+      if (progress && n % 10 == 0) progress(n, total);
+      continue;
+    }
     const int panel_w = inset_w / 3;
     const int panel_h = std::min(h, std::max(32, panel_w * 5 / 4));
     const int x0 = w - inset_w, y0 = h - panel_h;

@@ -22,6 +22,12 @@ namespace hapcine {
 struct PreviewOptions {
   std::string video;             // input film
   std::string track;             // *.haptic.csv (default: <video stem>.haptic.csv)
+  // A motion platform track (*.platform.csv) to draw instead of the HapSeat's
+  // actuators: a seat that moves (datasets/preview_platform.h).
+  std::string platform_track;
+  // With platform_track: also draw where a simulated platform is
+  // (platform/sim_platform.h: drives with lag and overshoot).
+  bool simulate_platform = false;
   std::string output;            // output .mp4
   int max_side = 1280;           // longest side of the output, pixels (0: as decoded)
   double inset_fraction = 0.45;  // inset width as a fraction of the frame width
