@@ -22,7 +22,7 @@ namespace hapcine::batch {
 constexpr const char* kMakeStateDir = ".hapcine";
 
 struct MakeOptions {
-  std::string film;     // the video
+  std::string film;     // the video, image folder or pattern
   std::string out_dir;  // empty: the film's folder
   std::string model = "cinematic";
   std::vector<std::string> estimate_args;  // words for `hapcine estimate`
@@ -47,8 +47,15 @@ std::vector<std::string> MakeStepNames(const FilmLayout& layout);
 // The BatchOptions the runner gets for these make options.
 BatchOptions MakeBatchOptions(const MakeOptions& options);
 
+// True for an image folder or a printf pattern ("plates/plate.%04d.exr").
+bool IsImageSequenceInput(const std::string& film);
+
 // The film's plan: absolute path, id, stem, sampled content hash. Throws
 // Error(film, reason) for a missing, unreadable, non-regular or empty file.
+// An image folder or pattern (docs/extract.md) is a film too: its stem is
+// the folder's name or the pattern's text before the number ("plate"), its
+// content the names and sizes of its images plus the sampled hash of the
+// first and last.
 FilmPlan MakeFilmPlan(const std::string& film);
 
 // Runs (or reuses) the steps. Throws Error(film, reason) when a step fails,

@@ -1,6 +1,7 @@
 // End-to-end: a VFX-style plate (plate.%04d.png numbered from 1001) through
 // `hapcine estimate --fps 25`: the rate in the header and the times, each
-// image's number in the `source_frame` column; --fps on a video is refused.
+// image's number in the `source_frame` column; the same through `hapcine
+// make`, which reuses its camera path; --fps on a video is refused.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -39,6 +40,21 @@ TEST(ImageSequenceTest, PlateFrom1001KeepsItsNumbersAndRate) {
     EXPECT_NEAR(path.frames[i].time_s, i / 25.0, 1e-6);
     EXPECT_EQ(path.frames[i].source_frame, static_cast<int>(1001 + i));
   }
+
+  // make: the same plate is a film; outputs beside the images' folder (not
+  // among the images), named after the text before the number.
+  const std::string pattern = Quote(dir / "plate" / "plate.%04d.png");
+  r = RunHapcine("make " + pattern + " --fps 25 -q", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "plate.camera.csv"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "plate.haptic.csv"));
+  EXPECT_EQ(hapcine::ReadCameraPathFile((dir / "plate.camera.csv").string()).frames[7].source_frame, 1008);
+  r = RunHapcine("make " + pattern + " --fps 25 -q --model semantic", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("estimate            reused"), std::string::npos) << r.err;
+  r = RunHapcine("make " + pattern + " --preview", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--preview needs a video file"), std::string::npos) << r.err;
 
   r = RunHapcine("estimate " + Quote(dir / "clip.mp4") + " --fps 25 -o " + Quote(dir / "v.camera.csv"), dir);
   EXPECT_EQ(r.exit_code, 2);
