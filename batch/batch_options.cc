@@ -81,6 +81,11 @@ nlohmann::json SettingsJson(const BatchOptions& options) {
                       {"estimate_args", options.estimate_args},
                       {"haptics_args", options.haptics_args},
                       {"models", options.models}};
+  // Only when they differ from a batch's, so batch settings hashes stay
+  // what they were.
+  if (!options.hjif) j["hjif"] = false;
+  if (options.preview) j["preview"] = true;
+  if (options.plot) j["plot"] = true;
   // Only when there are any, so settings hashes of runs without file
   // arguments stay what they were.
   if (const auto f = ArgumentFileHashes(options.estimate_args); !f.empty()) {

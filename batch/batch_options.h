@@ -32,6 +32,11 @@ struct BatchOptions {
   std::string step_exe;
   // Redo every film even if its outputs are up to date.
   bool force = false;
+  // Outputs beyond the camera path and haptic tracks (`hapcine make`):
+  // a .hjif per model (batch: always), a preview video, camera and haptic plots.
+  bool hjif = true;
+  bool preview = false;
+  bool plot = false;
   // Process only the films of shard `shard_index` of `shard_count` (Slurm
   // array tasks); 0 of 1 = everything.
   int shard_index = 0;

@@ -35,41 +35,77 @@ std::string HostName() {
 struct Step {
   std::string name;
   std::string key;                   // settings key of the step (stamp)
-  std::vector<std::string> outputs;  // file names inside the film folder
+  std::vector<std::string> outputs;  // file names inside the output folder
   std::vector<std::string> command;  // writes those names inside .tmp/
 };
 
+// The optional steps after haptics: a preview of the first model's track and
+// the plots. Each reads the FINAL files of the steps before it.
+void AddReviewSteps(const BatchOptions& options, const std::string& exe, const FilmPlan& film,
+                    const FilmLayout& layout, std::vector<Step>* steps) {
+  if (layout.models.empty()) return;
+  const fs::path out(layout.output_dir), tmp = fs::path(layout.state_dir) / kTempDir;
+  const ModelOutputs& first = layout.models.front();
+  const std::string key = HapticsStepKey(options, first.model);
+  if (!layout.preview.empty()) {
+    steps->push_back({"preview", key, {layout.preview},
+                      {exe, "preview", film.path, "--track", (out / first.haptic).string(), "-o",
+                       (tmp / layout.preview).string()}});
+  }
+  // plot writes PREFIX.png: the prefix is the name without ".png".
+  auto prefix = [&](const std::string& png) {
+    return (tmp / png.substr(0, png.size() - 4)).string();
+  };
+  if (!layout.camera_plot.empty()) {
+    steps->push_back({"plot-camera", EstimateStepKey(options), {layout.camera_plot},
+                      {exe, "plot", "camera", (out / layout.camera).string(), "--format", "png",
+                       "-o", prefix(layout.camera_plot)}});
+  }
+  if (!layout.haptic_plot.empty()) {
+    steps->push_back({"plot-haptic", key, {layout.haptic_plot},
+                      {exe, "plot", "haptic", (out / first.haptic).string(), "--format", "png",
+                       "-o", prefix(layout.haptic_plot)}});
+  }
+}
+
 std::vector<Step> StepsOf(const BatchOptions& options, const std::string& exe, const FilmPlan& film,
-                          const fs::path& dir) {
-  const fs::path tmp = dir / kTempDir;
-  const std::string camera = film.stem + ".camera.csv";
+                          const FilmLayout& layout) {
+  const fs::path out(layout.output_dir), tmp = fs::path(layout.state_dir) / kTempDir;
   std::vector<Step> steps;
   steps.push_back({"estimate",
                    EstimateStepKey(options),
-                   {camera},
-                   EstimateCommand(options, exe, film.path, (tmp / camera).string())});
-  for (const std::string& model : options.models) {
-    const std::string haptic = film.stem + "." + model + ".haptic.csv";
-    const std::string hjif = film.stem + "." + model + ".hjif";
+                   {layout.camera},
+                   EstimateCommand(options, exe, film.path, (tmp / layout.camera).string())});
+  for (const ModelOutputs& m : layout.models) {
+    std::vector<std::string> outputs = {m.haptic};
+    if (!m.hjif.empty()) outputs.push_back(m.hjif);
     // haptics reads the FINAL camera path: it was renamed in when estimate succeeded.
-    steps.push_back({"haptics-" + model,
-                     HapticsStepKey(options, model),
-                     {haptic, hjif},
-                     HapticsCommand(options, exe, (dir / camera).string(), model,
-                                    (tmp / haptic).string(), (tmp / hjif).string())});
+    steps.push_back({"haptics-" + m.model, HapticsStepKey(options, m.model), outputs,
+                     HapticsCommand(options, exe, (out / layout.camera).string(), m.model,
+                                    (tmp / m.haptic).string(),
+                                    m.hjif.empty() ? "" : (tmp / m.hjif).string())});
   }
+  AddReviewSteps(options, exe, film, layout, &steps);
   return steps;
 }
 
-bool StepIsDone(const fs::path& dir, const Step& step, const FilmPlan& film) {
-  const auto stamp = ReadJsonFile((dir / kStepsDir / (step.name + ".json")).string());
+// A step is done when its stamp has this input and key and its outputs are
+// there with the contents the stamp recorded (two models of `make` write the
+// same haptic file name: the other model's file is not this step's result).
+bool StepIsDone(const FilmLayout& layout, const Step& step, const FilmPlan& film) {
+  const auto stamp = ReadJsonFile((fs::path(layout.state_dir) / kStepsDir / (step.name + ".json")).string());
   if (!stamp || stamp->value("input_hash", "") != film.input_hash ||
       stamp->value("key", "") != step.key) {
     return false;
   }
   std::error_code ec;
-  for (const std::string& out : step.outputs) {
-    if (!fs::is_regular_file(dir / out, ec)) return false;
+  // In step.outputs' order; stamps of earlier versions have none: existence
+  // is all they promise.
+  const nlohmann::json hashes = stamp->value("output_hashes", nlohmann::json::array());
+  for (size_t i = 0; i < step.outputs.size(); ++i) {
+    const fs::path p = fs::path(layout.output_dir) / step.outputs[i];
+    if (!fs::is_regular_file(p, ec)) return false;
+    if (i < hashes.size() && hashes[i] != FullFileHash(p.string())) return false;
   }
   return true;
 }
@@ -168,23 +204,24 @@ std::vector<std::string> EstimateCommand(const BatchOptions& options, const std:
 std::vector<std::string> HapticsCommand(const BatchOptions& options, const std::string& exe,
                                         const std::string& camera_csv, const std::string& model,
                                         const std::string& haptic_csv, const std::string& hjif) {
-  std::vector<std::string> cmd = {exe,  "haptics",  camera_csv, "--model", model,
-                                  "-o", haptic_csv, "--hjif",   hjif};
+  std::vector<std::string> cmd = {exe, "haptics", camera_csv, "--model", model, "-o", haptic_csv};
+  if (!hjif.empty()) cmd.insert(cmd.end(), {"--hjif", hjif});
   cmd.insert(cmd.end(), options.haptics_args.begin(), options.haptics_args.end());
   return cmd;
 }
 
-bool FilmIsDone(const std::string& film_dir, const FilmPlan& film,
-                const std::string& settings_hash) {
-  const auto done = ReadJsonFile((fs::path(film_dir) / kDoneFile).string());
+bool FilmIsDone(const std::string& state_dir, const FilmPlan& film,
+                const std::string& settings_hash, const std::string& output_dir) {
+  const auto done = ReadJsonFile((fs::path(state_dir) / kDoneFile).string());
   if (!done || done->value("input_hash", "") != film.input_hash ||
       done->value("settings_hash", "") != settings_hash) {
     return false;
   }
+  const fs::path out_dir = output_dir.empty() ? fs::path(state_dir) : fs::path(output_dir);
   std::error_code ec;
   try {
     for (const auto& out : done->value("outputs", nlohmann::json::array())) {
-      const fs::path p = fs::path(film_dir) / BytesFromJson(out.at("file"));
+      const fs::path p = out_dir / BytesFromJson(out.at("file"));
       if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) != out.value("bytes", uint64_t{0})) {
         return false;
       }
@@ -195,18 +232,117 @@ bool FilmIsDone(const std::string& film_dir, const FilmPlan& film,
   return true;
 }
 
-FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe,
-                        const std::string& settings_hash, const FilmPlan& film) {
+FilmLayout BatchFilmLayout(const BatchOptions& options, const FilmPlan& film) {
+  FilmLayout layout;
+  layout.output_dir = layout.state_dir = (fs::path(options.out_dir) / film.id).string();
+  layout.camera = film.stem + ".camera.csv";
+  for (const std::string& model : options.models) {
+    layout.models.push_back({model, film.stem + "." + model + ".haptic.csv",
+                             options.hjif ? film.stem + "." + model + ".hjif" : ""});
+  }
+  return layout;
+}
+
+namespace {
+
+// Runs one step into .tmp/ and renames its outputs into place; "" on
+// success, else the one-line reason.
+std::string RunStep(const FilmLayout& layout, const FilmPlan& film, const Step& step,
+                    StepRecord* record) {
+  const fs::path state(layout.state_dir), out(layout.output_dir);
+  std::error_code ec;
+  fs::remove(state / kStepsDir / (step.name + ".json"), ec);
+  const ProcessResult r = RunProcess(step.command, (state / kLogsDir / (step.name + ".log")).string());
+  record->seconds = r.seconds;
+  if (!r.ok()) return step.name + ": " + r.Reason();
+  for (const std::string& name : step.outputs) {
+    if (!fs::is_regular_file(state / kTempDir / name, ec)) {
+      return step.name + ": exited 0 but did not write " + name;
+    }
+  }
+  nlohmann::json hashes = nlohmann::json::array();
+  for (const std::string& name : step.outputs) {
+    fs::rename(state / kTempDir / name, out / name, ec);
+    if (ec) return step.name + ": cannot rename " + name + ": " + ec.message();
+    hashes.push_back(FullFileHash((out / name).string()));
+  }
+  WriteJsonAtomic((state / kStepsDir / (step.name + ".json")).string(),
+                  {{"input_hash", film.input_hash},
+                   {"key", step.key},
+                   {"seconds", r.seconds},
+                   {"command", step.command},
+                   {"output_hashes", hashes}});
+  return "";
+}
+
+// True when the film ends before its steps (a duplicate, a precheck failure,
+// up to date), with the outcome filled.
+bool FinishedBeforeSteps(const BatchOptions& options, const std::string& settings_hash,
+                         const FilmPlan& film, const FilmLayout& layout, FilmOutcome* outcome) {
+  const fs::path dir(layout.state_dir);
+  std::error_code ec;
+  if (!film.duplicate_of.empty()) {
+    fs::remove(dir / kDoneFile, ec);
+    fs::remove(dir / kFailedFile, ec);
+    WriteJsonAtomic((dir / kDuplicateFile).string(), {{"id", film.id},
+                                                      {"path", JsonFromBytes(film.path)},
+                                                      {"input_hash", film.input_hash},
+                                                      {"duplicate_of", film.duplicate_of}});
+    outcome->status = FilmStatus::kDuplicate;
+    outcome->duplicate_of = film.duplicate_of;
+    return true;
+  }
+  fs::remove(dir / kDuplicateFile, ec);
+  if (!film.precheck_error.empty()) {
+    fs::remove(dir / kDoneFile, ec);
+    RecordFailure(dir, film, settings_hash, "", film.precheck_error, 0.0);
+    outcome->reason = film.precheck_error;
+    return true;
+  }
+  if (!options.force && FilmIsDone(dir.string(), film, settings_hash, layout.output_dir)) {
+    fs::remove(dir / kFailedFile, ec);
+    outcome->status = FilmStatus::kSkipped;
+    ReadShotQualityCounts((fs::path(layout.output_dir) / layout.camera).string(), outcome);
+    return true;
+  }
+  return false;
+}
+
+void WriteDoneRecord(const BatchOptions& options, const std::string& settings_hash,
+                     const FilmPlan& film, const FilmLayout& layout, const FilmOutcome& outcome,
+                     const nlohmann::json& outputs) {
+  WriteJsonAtomic((fs::path(layout.state_dir) / kDoneFile).string(),
+                  {{"id", film.id},
+                   {"path", JsonFromBytes(film.path)},
+                   {"stem", JsonFromBytes(film.stem)},
+                   {"input_hash", film.input_hash},
+                   {"size_bytes", film.size_bytes},
+                   {"settings_hash", settings_hash},
+                   {"settings", SettingsJson(options)},
+                   {"outputs", outputs},
+                   {"steps", OutcomeToJson(outcome)["steps"]},
+                   {"seconds", outcome.seconds},
+                   {"host", HostName()},
+                   {"finished_utc", UtcNow()}});
+}
+
+}  // namespace
+
+FilmOutcome RunFilm(const BatchOptions& options, const std::string& step_exe,
+                    const std::string& settings_hash, const FilmPlan& film,
+                    const FilmLayout& layout, FilmObserver* observer) {
   const auto t0 = Clock::now();
   FilmOutcome outcome;
   outcome.id = film.id;
   outcome.path = film.path;
-  const fs::path dir = fs::path(options.out_dir) / film.id;
+  const fs::path dir(layout.state_dir), out_dir(layout.output_dir);
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    outcome.reason = dir.string() + ": cannot create folder: " + ec.message();
-    return outcome;
+  for (const fs::path& d : {dir, out_dir}) {
+    fs::create_directories(d, ec);
+    if (ec) {
+      outcome.reason = d.string() + ": cannot create folder: " + ec.message();
+      return outcome;
+    }
   }
   FilmLock lock(dir.string());
   if (!lock.locked()) {
@@ -215,33 +351,7 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
     return outcome;
   }
   CleanFilmTemp(dir.string());
-
-  if (!film.duplicate_of.empty()) {
-    fs::remove(dir / kDoneFile, ec);
-    fs::remove(dir / kFailedFile, ec);
-    WriteJsonAtomic((dir / kDuplicateFile).string(), {{"id", film.id},
-                                                      {"path", JsonFromBytes(film.path)},
-                                                      {"input_hash", film.input_hash},
-                                                      {"duplicate_of", film.duplicate_of}});
-    outcome.status = FilmStatus::kDuplicate;
-    outcome.duplicate_of = film.duplicate_of;
-    outcome.seconds = SecondsSince(t0);
-    return outcome;
-  }
-  fs::remove(dir / kDuplicateFile, ec);
-
-  if (!film.precheck_error.empty()) {
-    fs::remove(dir / kDoneFile, ec);
-    RecordFailure(dir, film, settings_hash, "", film.precheck_error, 0.0);
-    outcome.reason = film.precheck_error;
-    outcome.seconds = SecondsSince(t0);
-    return outcome;
-  }
-
-  if (!options.force && FilmIsDone(dir.string(), film, settings_hash)) {
-    fs::remove(dir / kFailedFile, ec);
-    outcome.status = FilmStatus::kSkipped;
-    ReadShotQualityCounts((dir / (film.stem + ".camera.csv")).string(), &outcome);
+  if (FinishedBeforeSteps(options, settings_hash, film, layout, &outcome)) {
     outcome.seconds = SecondsSince(t0);
     return outcome;
   }
@@ -250,31 +360,17 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
   fs::remove(dir / kDoneFile, ec);
   fs::remove(dir / kFailedFile, ec);
   if (options.force) fs::remove_all(dir / kStepsDir, ec);
-  fs::create_directories(dir / kTempDir, ec);
-  fs::create_directories(dir / kStepsDir, ec);
-  fs::create_directories(dir / kLogsDir, ec);
+  for (const char* sub : {kTempDir, kStepsDir, kLogsDir}) fs::create_directories(dir / sub, ec);
 
   nlohmann::json outputs = nlohmann::json::array();
-  for (const Step& step : StepsOf(options, step_exe, film, dir)) {
-    StepRecord record{step.name, 0.0, false};
-    if (StepIsDone(dir, step, film)) {
-      record.reused = true;
-    } else {
-      fs::remove(dir / kStepsDir / (step.name + ".json"), ec);
-      const ProcessResult r =
-          RunProcess(step.command, (dir / kLogsDir / (step.name + ".log")).string());
-      record.seconds = r.seconds;
-      std::string reason;
-      if (!r.ok()) {
-        reason = step.name + ": " + r.Reason();
-      } else {
-        for (const std::string& out : step.outputs) {
-          if (!fs::is_regular_file(dir / kTempDir / out, ec)) {
-            reason = step.name + ": exited 0 but did not write " + out;
-            break;
-          }
-        }
-      }
+  for (const Step& step : StepsOf(options, step_exe, film, layout)) {
+    StepRecord record{step.name, 0.0, StepIsDone(layout, step, film)};
+    if (observer) {
+      observer->StepStarted(step.name, (dir / kLogsDir / (step.name + ".log")).string(),
+                            record.reused);
+    }
+    if (!record.reused) {
+      const std::string reason = RunStep(layout, film, step, &record);
       if (!reason.empty()) {
         outcome.steps.push_back(record);
         outcome.reason = reason;
@@ -283,47 +379,26 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
         fs::remove_all(dir / kTempDir, ec);
         return outcome;
       }
-      for (const std::string& out : step.outputs) {
-        fs::rename(dir / kTempDir / out, dir / out, ec);
-        if (ec) {
-          outcome.reason = step.name + ": cannot rename " + out + ": " + ec.message();
-          RecordFailure(dir, film, settings_hash, step.name, outcome.reason, SecondsSince(t0));
-          fs::remove_all(dir / kTempDir, ec);
-          return outcome;
-        }
-      }
-      WriteJsonAtomic((dir / kStepsDir / (step.name + ".json")).string(),
-                      {{"input_hash", film.input_hash},
-                       {"key", step.key},
-                       {"seconds", r.seconds},
-                       {"command", step.command}});
     }
-    for (const std::string& out : step.outputs) {
-      outputs.push_back({{"file", JsonFromBytes(out)},
+    for (const std::string& name : step.outputs) {
+      outputs.push_back({{"file", JsonFromBytes(name)},
                          {"step", step.name},
-                         {"bytes", fs::file_size(dir / out, ec)},
-                         {"hash", FullFileHash((dir / out).string())}});
+                         {"bytes", fs::file_size(out_dir / name, ec)},
+                         {"hash", FullFileHash((out_dir / name).string())}});
     }
     outcome.steps.push_back(record);
   }
   fs::remove_all(dir / kTempDir, ec);
   outcome.status = FilmStatus::kDone;
-  ReadShotQualityCounts((dir / (film.stem + ".camera.csv")).string(), &outcome);
+  ReadShotQualityCounts((out_dir / layout.camera).string(), &outcome);
   outcome.seconds = SecondsSince(t0);
-  nlohmann::json steps = OutcomeToJson(outcome)["steps"];
-  WriteJsonAtomic((dir / kDoneFile).string(), {{"id", film.id},
-                                               {"path", JsonFromBytes(film.path)},
-                                               {"stem", JsonFromBytes(film.stem)},
-                                               {"input_hash", film.input_hash},
-                                               {"size_bytes", film.size_bytes},
-                                               {"settings_hash", settings_hash},
-                                               {"settings", SettingsJson(options)},
-                                               {"outputs", outputs},
-                                               {"steps", steps},
-                                               {"seconds", outcome.seconds},
-                                               {"host", HostName()},
-                                               {"finished_utc", UtcNow()}});
+  WriteDoneRecord(options, settings_hash, film, layout, outcome, outputs);
   return outcome;
+}
+
+FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe,
+                        const std::string& settings_hash, const FilmPlan& film) {
+  return RunFilm(options, step_exe, settings_hash, film, BatchFilmLayout(options, film));
 }
 
 }  // namespace hapcine::batch

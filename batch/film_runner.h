@@ -1,8 +1,13 @@
 #pragma once
-// Processes one film of a batch: estimate, then haptics for each model, each
-// step a child process writing into <film>/.tmp/, its outputs renamed into
-// <film>/ on success, done.json written last. Holds the film's lock while it
-// works, so two batches (or Slurm tasks) never process the same film at once.
+// Processes one film: estimate, then haptics for each model (then, on
+// request, a preview and plots), each step a child process writing into
+// <state>/.tmp/, its outputs renamed into the output folder on success,
+// done.json written last. Holds the film's lock while it works, so two
+// processes never work on the same film at once. `hapcine batch` runs it for
+// every film of a library (outputs and state in OUT_DIR/<id>/), `hapcine
+// make` for one film (outputs beside the film or in -o DIR, state in
+// <that folder>/.hapcine/<id>/): one implementation of step reuse,
+// atomicity and failure records for both.
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -42,6 +47,34 @@ struct FilmOutcome {
   int shots = -1, doubtful_shots = 0, lost_frames = 0;
 };
 
+// Where one film's outputs and state go, and which outputs it has.
+struct ModelOutputs {
+  std::string model;   // "cinematic", ...
+  std::string haptic;  // haptic track file name
+  std::string hjif;    // .hjif file name; empty: none
+};
+struct FilmLayout {
+  std::string output_dir;  // outputs are renamed into this folder
+  std::string state_dir;   // done.json, failed.json, .steps/, logs/, .tmp/, .lock
+  std::string camera;      // camera path file name
+  std::vector<ModelOutputs> models;
+  std::string preview;      // preview video of the first model's track; empty: none
+  std::string camera_plot;  // plot PNG file names; empty: none
+  std::string haptic_plot;
+};
+// batch's: everything in OUT_DIR/<id>/, "<stem>.<model>.haptic.csv" and
+// "<stem>.<model>.hjif" for every model.
+FilmLayout BatchFilmLayout(const BatchOptions& options, const FilmPlan& film);
+
+// Told of each step as it starts (`hapcine make` draws its progress from the
+// step's log). Called from the thread running the film.
+class FilmObserver {
+ public:
+  virtual ~FilmObserver() = default;
+  // `reused`: kept from an earlier run, nothing runs.
+  virtual void StepStarted(const std::string& step, const std::string& log_path, bool reused) = 0;
+};
+
 // Fills the three counts above from a camera path's header lines.
 void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* outcome);
 
@@ -54,15 +87,21 @@ std::vector<std::string> EstimateCommand(const BatchOptions& options, const std:
 std::vector<std::string> HapticsCommand(const BatchOptions& options, const std::string& exe,
                                         const std::string& camera_csv, const std::string& model,
                                         const std::string& haptic_csv, const std::string& hjif);
+// `hjif` empty: no --hjif.
 
-// Processes (or skips) one film. Never throws for a failing film; the
-// failure is in the outcome and in <film>/failed.json.
+// Processes (or skips) one film laid out as `layout`. Never throws for a
+// failing film; the failure is in the outcome and in <state>/failed.json.
+FilmOutcome RunFilm(const BatchOptions& options, const std::string& step_exe,
+                    const std::string& settings_hash, const FilmPlan& film,
+                    const FilmLayout& layout, FilmObserver* observer = nullptr);
+// RunFilm with BatchFilmLayout.
 FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe,
                         const std::string& settings_hash, const FilmPlan& film);
 
-// True if <film>/done.json records this content and these settings and every
-// output it lists is present with its recorded size.
-bool FilmIsDone(const std::string& film_dir, const FilmPlan& film,
-                const std::string& settings_hash);
+// True if <state_dir>/done.json records this content and these settings and
+// every output it lists is present in output_dir (default: state_dir) with
+// its recorded size.
+bool FilmIsDone(const std::string& state_dir, const FilmPlan& film,
+                const std::string& settings_hash, const std::string& output_dir = "");
 
 }  // namespace hapcine::batch

@@ -3,6 +3,7 @@
 // EstimateCameraPathFromFile() in estimate/camera_estimator.h, documented in
 // docs/estimate.md.
 
+#include <filesystem>
 #include <iostream>
 #include <set>
 
@@ -57,6 +58,11 @@ int RunEstimate(int argc, char** argv) {
       ->required();
   app.add_option("-o,--output", output, "output camera path (*.camera.csv), written atomically")
       ->required();
+  double fps = 0;
+  app.add_option("--fps", fps,
+                 "frame rate of an image folder or pattern (default 24), written in the header; "
+                 "a video's times come from its timestamps")
+      ->check(FiniteRange(0.001, 1000));
   app.add_flag("--fast", fast,
                "cheaper analysis (docs/estimate.md \"Speed\"): " + FastPresetSummary() +
                    "; options given beside it win");
@@ -194,6 +200,12 @@ int RunEstimate(int argc, char** argv) {
     if (no_freedom_test) opt.estimator.freedom_test = false;
     if (no_plane_prior) opt.estimator.motion_plane_prior = false;
     if (no_klt_predict) opt.tracker.klt_predict = false;
+    if (fps > 0) {
+      std::error_code ec;
+      if (video.find('%') == std::string::npos && !std::filesystem::is_directory(video, ec))
+        throw UsageError("--fps is for image folders and patterns; a video's times come from its timestamps");
+      opt.frames.image_sequence_fps = fps;
+    }
     opt.Check();
     OutputSet outputs({{video, "VIDEO"}}, {{output, "-o"}, {report, "--report"}});
     std::set<std::string> kinds{"stage", "window", "lens_distortion"};

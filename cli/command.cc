@@ -7,8 +7,18 @@
 #include "core/input_file.h"
 
 namespace hapcine::cli {
+namespace {
+thread_local AppProbe* current_probe = nullptr;
+}  // namespace
+
+ScopedAppProbe::ScopedAppProbe(AppProbe probe) : probe_(std::move(probe)), previous_(current_probe) {
+  current_probe = &probe_;
+}
+
+ScopedAppProbe::~ScopedAppProbe() { current_probe = previous_; }
 
 int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  if (current_probe) return (*current_probe)(app, argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

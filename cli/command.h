@@ -19,6 +19,23 @@ constexpr int kExitUsage = 2;
 // std::exceptions -> 1 with "hapcine <cmd>: <message>" on stderr.
 int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
+// Lets one command use another's options without a copy of them (`hapcine
+// make` takes every option of estimate and haptics): while a probe is set on
+// this thread, RunApp hands the command's CLI::App and arguments to it
+// instead of parsing and running, and returns what the probe returns.
+using AppProbe = std::function<int(CLI::App& app, int argc, char** argv)>;
+class ScopedAppProbe {
+ public:
+  explicit ScopedAppProbe(AppProbe probe);
+  ~ScopedAppProbe();
+  ScopedAppProbe(const ScopedAppProbe&) = delete;
+  ScopedAppProbe& operator=(const ScopedAppProbe&) = delete;
+
+ private:
+  AppProbe probe_;
+  AppProbe* previous_;
+};
+
 // One function per subcommand; argv[0] is "hapcine <name>".
 int RunSynth(int argc, char** argv);
 int RunEstimate(int argc, char** argv);
@@ -30,5 +47,6 @@ int RunPlot(int argc, char** argv);
 int RunBatch(int argc, char** argv);
 int RunStudy(int argc, char** argv);
 int RunConvert(int argc, char** argv);
+int RunMake(int argc, char** argv);
 
 }  // namespace hapcine::cli

@@ -28,6 +28,8 @@ const Subcommand kSubcommands[] = {
     {"preview", "render a video with an inset showing the actuators", hapcine::cli::RunPreview},
     {"eval", "compare an estimated camera path against ground truth", hapcine::cli::RunEval},
     {"plot", "draw camera paths and haptic tracks as PNG and SVG", hapcine::cli::RunPlot},
+    {"make", "film in, camera path and haptic track out, in one command (reuses the camera path)",
+     hapcine::cli::RunMake},
     {"batch", "process a whole video library, locally or on Slurm", hapcine::cli::RunBatch},
     {"study", "plan, run and analyse a pairwise user study", hapcine::cli::RunStudy},
     {"convert",

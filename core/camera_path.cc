@@ -64,6 +64,7 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
   const int c_shot = csv.Column("shot");
   const int c_model = csv.Column("model");
   const int c_conf = csv.Column("confidence");
+  const int c_source = csv.Column("source_frame");
 
   CameraPath path;
   path.metadata = csv.metadata();
@@ -84,6 +85,7 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
       csv.Fail("too many distinct values in column 'model'");
     }
     if (c_conf >= 0 && !f[c_conf].empty()) fr.confidence = csv.Double(f, c_conf, "confidence");
+    if (c_source >= 0 && !f[c_source].empty()) fr.source_frame = csv.Int(f, c_source, "source_frame");
     const std::string bad = ValidateCameraFrame(fr);
     if (!bad.empty()) csv.Fail(bad);
     if (!path.frames.empty()) {
@@ -103,7 +105,7 @@ CameraPath ReadCameraPathFile(const std::string& file) {
 }
 
 void WriteCameraPath(const CameraPath& path, std::ostream& out) {
-  bool any_focal = false, any_shot = false, any_model = false, any_conf = false;
+  bool any_focal = false, any_shot = false, any_model = false, any_conf = false, any_source = false;
   for (const auto& fr : path.frames) {
     const std::string bad = ValidateCameraFrame(fr);
     if (!bad.empty()) {
@@ -113,6 +115,7 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
     any_shot |= fr.shot.has_value();
     any_model |= fr.model.has_value();
     any_conf |= fr.confidence.has_value();
+    any_source |= fr.source_frame.has_value();
   }
   for (const auto& [key, value] : path.metadata) WriteHeaderLine(out, key, value);
   out << "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg";
@@ -121,6 +124,7 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
   if (any_shot) out << ",shot";
   if (any_model) out << ",model";
   if (any_conf) out << ",confidence";
+  if (any_source) out << ",source_frame";
   out << "\n";
   for (const auto& fr : path.frames) {
     const Eigen::Quaterniond q = CanonicalQuaternion(fr.world_from_cam);
@@ -135,6 +139,7 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
     if (any_shot) out << ',' << (fr.shot ? std::to_string(*fr.shot) : "");
     if (any_model) out << ',' << fr.model.value_or("");
     if (any_conf) out << ',' << (fr.confidence ? FormatFixed(*fr.confidence, 4) : "");
+    if (any_source) out << ',' << (fr.source_frame ? std::to_string(*fr.source_frame) : "");
     out << '\n';
   }
 }

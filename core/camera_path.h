@@ -29,6 +29,7 @@ struct CameraFrame {
   // Optional columns (written when set; also shot and model above).
   std::optional<double> focal_px;
   std::optional<double> confidence;  // [0, 1]
+  std::optional<int> source_frame;   // optional column: the image's number in its file name
 };
 
 // The `model` of a frame the estimator could not place (docs/formats.md): its

@@ -177,5 +177,26 @@ TEST(CameraPathTest, FailedFileWriteLeavesNothing) {
   EXPECT_FALSE(std::ifstream(file).good());
 }
 
+// An image sequence's frame numbers (plate.1001.exr) ride in the optional
+// `source_frame` column; a path without them has no such column.
+TEST(CameraPathTest, SourceFrameColumnIsOptional) {
+  CameraPath p = MakePath(3);
+  std::stringstream plain;
+  WriteCameraPath(p, plain);
+  EXPECT_EQ(plain.str().find("source_frame"), std::string::npos);
+  for (CameraFrame& f : p.frames) f.source_frame = 1001 + f.frame;
+  p.frames[1].source_frame.reset();  // a frame without one: an empty cell
+  std::stringstream ss;
+  WriteCameraPath(p, ss);
+  EXPECT_NE(ss.str().find(",confidence,source_frame\n"), std::string::npos) << ss.str();
+  const CameraPath q = ReadCameraPath(ss, "mem");
+  ASSERT_EQ(q.frames.size(), 3u);
+  EXPECT_EQ(q.frames[0].source_frame, 1001);
+  EXPECT_FALSE(q.frames[1].source_frame.has_value());
+  EXPECT_EQ(q.frames[2].source_frame, 1003);
+  std::stringstream again(plain.str());
+  EXPECT_FALSE(ReadCameraPath(again, "mem").frames[0].source_frame.has_value());
+}
+
 }  // namespace
 }  // namespace hapcine

@@ -34,6 +34,9 @@ struct VideoInfo {
   // Still images (a folder or pattern): consecutive frames need not be close
   // in time or viewpoint, so the tracker links them by descriptors.
   bool stills = false;
+  // Image sequences: the number in each image's file name, by frame index
+  // (plate.1001.exr -> 1001); empty when the names carry none, and for video.
+  std::vector<int> source_frames;
 };
 
 struct Frame {

@@ -536,6 +536,104 @@ TEST_F(FrameSourceTest, ImageFolderAndPattern) {
   ExpectError(empty_folder.string(), "no image files");
 }
 
+// A VFX plate: plate.%04d.png starting at 1001 (FFmpeg's image2 alone looks
+// at 0..4), its numbers kept, a gap ending the sequence with a warning; a
+// folder ordered by the numbers (999 before 1000), not by name.
+TEST_F(FrameSourceTest, PlateNumbersFromTheFileNames) {
+  const fs::path plates = *dir_ / "plates";
+  fs::create_directories(plates);
+  const cv::Mat img(36, 64, CV_8UC3, cv::Scalar(40, 80, 120));
+  for (int n : {1001, 1002, 1003, 1004, 1007}) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "plate.%04d.png", n);
+    cv::imwrite((plates / name).string(), img);
+  }
+  cv::imwrite((plates / "plate.01001.png").string(), img);  // other padding: not the pattern's
+  FrameSourceOptions o;
+  o.image_sequence_fps = 25;
+  auto source = OpenFrameSource((plates / "plate.%04d.png").string(), o);
+  EXPECT_EQ(source->info().source_frames, (std::vector<int>{1001, 1002, 1003, 1004}));
+  EXPECT_DOUBLE_EQ(source->info().fps, 25);
+  std::vector<Frame> frames;
+  for (Frame f; source->Next(&f);) frames.push_back(f);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_EQ(frames[0].index, 0);
+  EXPECT_NEAR(frames[3].time_s, 3 / 25.0, 1e-12);
+  ASSERT_EQ(source->Warnings().size(), 1u);
+  EXPECT_NE(source->Warnings()[0].find("1 image(s) after the gap at number 1005 ignored"),
+            std::string::npos)
+      << source->Warnings()[0];
+
+  const fs::path unpadded = *dir_ / "unpadded";
+  fs::create_directories(unpadded);
+  for (int n : {998, 999, 1000, 1001}) cv::imwrite((unpadded / ("p." + std::to_string(n) + ".png")).string(), img);
+  EXPECT_EQ(OpenFrameSource(unpadded.string())->info().source_frames,
+            (std::vector<int>{998, 999, 1000, 1001}));
+  cv::imwrite((unpadded / "cover.png").string(), img);  // a name without a number: by name, none kept
+  EXPECT_TRUE(OpenFrameSource(unpadded.string())->info().source_frames.empty());
+}
+
+// What VFX delivers besides PNG: 16-bit PNG and TIFF, float OpenEXR (scene
+// linear, shown through a 2.2 gamma) by OpenCV, 10-bit DPX by FFmpeg; a
+// file neither reads is one line naming it.
+TEST_F(FrameSourceTest, VfxPlateFormats) {
+  const cv::Scalar bgr8(40, 120, 200);
+  cv::Mat img8(48, 64, CV_8UC3, bgr8);
+  cv::Mat img16, linear;
+  img8.convertTo(img16, CV_16UC3, 257.0);
+  img8.convertTo(linear, CV_32FC3, 1 / 255.0);
+  cv::pow(linear, 2.2, linear);  // what a viewer shows as img8
+  struct Case {
+    std::string name;
+    cv::Mat image;
+  };
+  const fs::path folder = *dir_ / "formats";
+  fs::create_directories(folder);
+  for (const Case& c : {Case{"a.png", img16}, Case{"b.tif", img16}, Case{"c.exr", linear}})
+    ASSERT_TRUE(cv::imwrite((folder / c.name).string(), c.image)) << c.name;
+  // Each as a two-image folder of its own.
+  for (const std::string name : {"a.png", "b.tif", "c.exr"}) {
+    const fs::path one = *dir_ / ("one_" + name);
+    fs::create_directories(one);
+    fs::copy_file(folder / name, one / ("f0001" + fs::path(name).extension().string()));
+    fs::copy_file(folder / name, one / ("f0002" + fs::path(name).extension().string()));
+    const std::vector<Frame> frames = ReadAll(one.string());
+    ASSERT_EQ(frames.size(), 2u) << name;
+    const cv::Vec3b px = frames[0].bgr.at<cv::Vec3b>(10, 10);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(px[ch], bgr8[ch], 2) << name << " channel " << ch;
+  }
+  const fs::path dpx = *dir_ / "dpx";
+  fs::create_directories(dpx);
+  for (const std::string n : {"1001", "1002"})
+    Make("dpx/plate." + n + ".dpx",
+         "-f lavfi -i color=c=0xc87828:size=64x48 -frames:v 1 -pix_fmt gbrp10le");
+  const std::vector<Frame> frames = ReadAll((dpx / "plate.%04d.dpx").string());
+  ASSERT_EQ(frames.size(), 2u);
+  const cv::Vec3b px = frames[1].bgr.at<cv::Vec3b>(10, 10);
+  EXPECT_NEAR(px[0], 0x28, 3);
+  EXPECT_NEAR(px[1], 0x78, 3);
+  EXPECT_NEAR(px[2], 0xc8, 3);
+
+  const fs::path bad = *dir_ / "bad";
+  fs::create_directories(bad);
+  for (const std::string name : {"f0001.exr", "f0001.dpx"}) {
+    fs::remove_all(bad);
+    fs::create_directories(bad);
+    std::ofstream(bad / name) << "not an image\n";
+    try {
+      ReadAll(bad.string());
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), (bad / name).string());
+      EXPECT_EQ(e.reason().rfind(name == "f0001.exr" ? "not an image OpenCV can read"
+                                                     : "not an image FFmpeg can read",
+                                 0),
+                0u)
+          << e.what();
+    }
+  }
+}
+
 // A PNG or JPEG cut short in the middle of a sequence is an error naming
 // that image (not a grey half-frame, not a second line from libpng/libjpeg).
 TEST_F(FrameSourceTest, TruncatedImageInASequence) {

@@ -1,7 +1,12 @@
-// FrameSource over still images: a folder (every image file in it, sorted by
-// name) or a printf pattern ("shots/img_%05d.png", first index 0 or 1 as
-// ffmpeg's image2 demuxer would find it, up to 4). Image files carry no
-// timestamps: frame i is at i / image_sequence_fps seconds.
+// FrameSource over still images: a folder (every image file in it, in the
+// order of the number at the end of their names when all have one, else by
+// name) or a printf pattern ("plates/plate.%04d.png", from the lowest number
+// present — 1001 for a VFX plate — up to the first missing one, as FFmpeg's
+// image2 demuxer reads a sequence). Image files carry no timestamps: frame i
+// is at i / image_sequence_fps seconds; the number in each file's name is
+// kept (VideoInfo::source_frames). PNG, JPEG, TIFF, BMP, WebP, PNM, JPEG 2000
+// and OpenEXR are read by OpenCV (EXR's linear light shown through a 2.2
+// gamma), DPX and Cineon by FFmpeg.
 
 #include <unistd.h>
 
@@ -131,7 +136,9 @@ cv::Mat ReadImageQuietly(const std::string& path, std::vector<std::string>* warn
   std::string printed;
   {
     StderrCapture capture;
-    image = cv::imread(path, cv::IMREAD_COLOR);
+    // Any depth: 16-bit and float images are brought to 8 bits below, with
+    // the scale their depth means (imread's own conversion truncates floats).
+    image = cv::imread(path, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH);
     printed = capture.Take();
   }
   if (image.empty()) {
@@ -143,15 +150,85 @@ cv::Mat ReadImageQuietly(const std::string& path, std::vector<std::string>* warn
   return image;
 }
 
+// 8-bit BGR from what imread gave: 16-bit scaled by 1/257; float (EXR: scene
+// linear light) clamped to [0, 1] and shown through a 2.2 gamma, as a
+// viewer would, so that the trackers see contrast where a viewer does.
+cv::Mat ToBgr8(const cv::Mat& image, bool linear_light) {
+  if (image.depth() == CV_8U) return image;
+  cv::Mat out;
+  if (image.depth() == CV_16U) {
+    image.convertTo(out, CV_8U, 1.0 / 257.0);
+    return out;
+  }
+  cv::Mat unit;
+  image.convertTo(unit, CV_32F);
+  cv::min(cv::max(unit, 0.0), 1.0, unit);
+  if (linear_light) cv::pow(unit, 1.0 / 2.2, unit);
+  unit.convertTo(out, CV_8U, 255.0);
+  return out;
+}
+
+// DPX and Cineon, which OpenCV does not read: one frame through FFmpeg's
+// image2 demuxer and its decoder.
+cv::Mat ReadImageWithFfmpeg(const std::string& path) {
+  FrameSourceOptions options;
+  options.max_working_side = 0;
+  Frame frame;
+  try {
+    auto source = OpenFfmpegSource(path, options);
+    if (source->Next(&frame) && !frame.bgr.empty()) return frame.bgr;
+  } catch (const Error& e) {
+    throw Error(path, "not an image FFmpeg can read (" + e.reason() + ")");
+  }
+  throw Error(path, "not an image FFmpeg can read (no frame decoded)");
+}
+
 bool HasImageExtension(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  static const char* kExts[] = {".png",  ".jpg", ".jpeg", ".bmp", ".tif", ".tiff",
-                                ".webp", ".pgm", ".ppm",  ".pnm", ".exr", ".jp2"};
+  static const char* kExts[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp",
+                                ".pgm", ".ppm", ".pnm",  ".exr", ".jp2", ".dpx", ".cin"};
   for (const char* e : kExts)
     if (ext == e) return true;
   return false;
+}
+
+std::string LowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// The number at the end of a file's stem ("plate.1001.exr" -> 1001), or -1.
+long TrailingNumber(const fs::path& file) {
+  const std::string stem = file.stem().string();
+  size_t begin = stem.size();
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(stem[begin - 1]))) --begin;
+  if (begin == stem.size() || stem.size() - begin > 9) return -1;
+  return std::stol(stem.substr(begin));
+}
+
+// A folder's image files in the order of their trailing numbers when every
+// one has a distinct one (plate.999 before plate.1000), else by name; the
+// numbers go to *numbers (empty when not used).
+std::vector<std::string> OrderedFolderImages(std::vector<std::string> files,
+                                             std::vector<long>* numbers) {
+  std::sort(files.begin(), files.end());
+  std::vector<std::pair<long, std::string>> numbered;
+  for (const std::string& f : files) numbered.emplace_back(TrailingNumber(f), f);
+  std::sort(numbered.begin(), numbered.end());
+  bool usable = !numbered.empty() && numbered.front().first >= 0;
+  for (size_t i = 1; usable && i < numbered.size(); ++i)
+    usable = numbered[i].first != numbered[i - 1].first;
+  numbers->clear();
+  if (!usable) return files;
+  files.clear();
+  for (const auto& [n, f] : numbered) {
+    numbers->push_back(n);
+    files.push_back(f);
+  }
+  return files;
 }
 
 // `pattern` has been checked to hold exactly one %d-style (int) conversion.
@@ -160,6 +237,38 @@ std::string Format(const std::string& pattern, long i) {
   const int n = std::snprintf(buf, sizeof(buf), pattern.c_str(), static_cast<int>(i));
   if (n < 0 || n >= static_cast<int>(sizeof(buf))) return {};
   return buf;
+}
+
+// Any image of a sequence, 8-bit BGR.
+cv::Mat ReadImage(const std::string& path, std::vector<std::string>* warnings) {
+  const std::string ext = LowerExtension(path);
+  if (ext == ".dpx" || ext == ".cin") return ReadImageWithFfmpeg(path);
+  return ToBgr8(ReadImageQuietly(path, warnings), ext == ".exr" || ext == ".hdr");
+}
+
+// The numbers of the pattern's files present in its folder, ascending; empty
+// when the conversion is in a folder name or the folder cannot be listed.
+std::vector<long> PatternNumbers(const std::string& pattern) {
+  const fs::path p(pattern);
+  const std::string name = p.filename().string();
+  const size_t conv = name.find('%');
+  if (conv == std::string::npos) return {};
+  std::string head = name.substr(0, conv);  // the literal text before the number
+  std::vector<long> numbers;
+  std::error_code ec;
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string file = entry.path().filename().string();
+    if (file.compare(0, head.size(), head) != 0) continue;
+    size_t end = head.size();
+    while (end < file.size() && std::isdigit(static_cast<unsigned char>(file[end]))) ++end;
+    if (end == head.size() || end - head.size() > 9) continue;
+    const long n = std::stol(file.substr(head.size(), end - head.size()));
+    // The pattern must give back exactly this name (its padding, its tail).
+    if (fs::path(Format(pattern, n)).filename().string() == file) numbers.push_back(n);
+  }
+  std::sort(numbers.begin(), numbers.end());
+  return numbers;
 }
 
 class ImageSequenceSource : public FrameSource {
@@ -173,21 +282,18 @@ class ImageSequenceSource : public FrameSource {
     if (path.find('%') != std::string::npos) {
       pattern_ = path;
       ValidatePattern();
-      for (long first = 0; first <= 4; ++first) {
-        if (fs::exists(Format(pattern_, first))) {
-          next_index_ = first;
-          break;
-        }
-      }
-      if (next_index_ < 0) throw Error(path, "no image matches the pattern (tried indices 0..4)");
+      FindPatternRange();
     } else {
       std::error_code ec;
+      std::vector<std::string> files;
       for (const auto& entry : fs::directory_iterator(path, ec))
         if (entry.is_regular_file() && HasImageExtension(entry.path()))
-          files_.push_back(entry.path().string());
+          files.push_back(entry.path().string());
       if (ec) throw Error(path, "cannot list folder (" + ec.message() + ")");
-      if (files_.empty()) throw Error(path, "folder holds no image files");
-      std::sort(files_.begin(), files_.end());
+      if (files.empty()) throw Error(path, "folder holds no image files");
+      std::vector<long> numbers;
+      files_ = OrderedFolderImages(files, &numbers);
+      info_.source_frames.assign(numbers.begin(), numbers.end());
       info_.frame_count = static_cast<long>(files_.size());
       info_.duration_s = files_.size() / info_.fps;
     }
@@ -250,6 +356,29 @@ class ImageSequenceSource : public FrameSource {
       throw Error(info_.path, "image pattern must contain exactly one conversion like %05d");
   }
 
+  // From the lowest number present to the first missing one, as FFmpeg's
+  // image2 reads a sequence (which by itself looks only at 0..4 unless
+  // given -start_number); numbers after a gap are named in a warning.
+  void FindPatternRange() {
+    const std::vector<long> numbers = PatternNumbers(pattern_);
+    if (numbers.empty()) {  // the number is in a folder's name: try 0..4 as image2 does
+      for (long first = 0; first <= 4 && next_index_ < 0; ++first)
+        if (fs::exists(Format(pattern_, first))) next_index_ = first;
+      if (next_index_ < 0) throw Error(info_.path, "no image matches the pattern");
+      return;
+    }
+    next_index_ = numbers.front();
+    size_t run = 1;
+    while (run < numbers.size() && numbers[run] == numbers[run - 1] + 1) ++run;
+    for (size_t i = 0; i < run; ++i) info_.source_frames.push_back(static_cast<int>(numbers[i]));
+    info_.frame_count = static_cast<long>(run);
+    info_.duration_s = run / info_.fps;
+    if (run < numbers.size())
+      warnings_.push_back(info_.path + ": " + std::to_string(numbers.size() - run) +
+                          " image(s) after the gap at number " + std::to_string(numbers[run - 1] + 1) +
+                          " ignored (a sequence ends at its first missing number)");
+  }
+
   // Path of the next image, or empty at the end.
   std::string NextPath() {
     if (!pattern_.empty()) {
@@ -270,7 +399,7 @@ class ImageSequenceSource : public FrameSource {
     if (fs::file_size(p, ec) == 0) throw Error(p, "empty image file (0 bytes)");
     const std::string truncated = TruncatedImageReason(p);
     if (!truncated.empty()) throw Error(p, truncated);
-    *image = ReadImageQuietly(p, &warnings_);
+    *image = ReadImage(p, &warnings_);
     if (image->cols > kMaxFrameSidePx || image->rows > kMaxFrameSidePx)
       throw Error(p, "absurd image size");
     if (emitted_ + (have_first_ ? 1 : 0) > 0 && info_.width > 0 &&

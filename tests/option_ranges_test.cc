@@ -46,7 +46,8 @@ Outcome RunCommand(const std::vector<std::string>& words) {
       {"haptics", hapcine::cli::RunHaptics}, {"play", hapcine::cli::RunPlay},
       {"preview", hapcine::cli::RunPreview}, {"eval", hapcine::cli::RunEval},
       {"plot", hapcine::cli::RunPlot},       {"batch", hapcine::cli::RunBatch},
-      {"study", hapcine::cli::RunStudy},     {"convert", hapcine::cli::RunConvert}};
+      {"study", hapcine::cli::RunStudy},     {"convert", hapcine::cli::RunConvert},
+      {"make", hapcine::cli::RunMake}};
   std::vector<std::string> args = words;
   args[0] = "hapcine " + words[0];
   std::vector<char*> argv;
@@ -109,6 +110,7 @@ const Command kCommands[] = {
     {"study run", "DIR/missing.plan.json --participant 1 -o DIR/r.results.json"},
     {"study analyze", "DIR/missing.results.json"},
     {"convert", "--from-tum DIR/missing.txt -o DIR/out.camera.csv"},
+    {"make", "DIR/missing.mp4"},
 };
 
 class OptionRangesTest : public ::testing::Test {
