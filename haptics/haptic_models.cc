@@ -95,6 +95,38 @@ std::string JoinScales(const CinematicScaling& s, bool rotation) {
   return out.str();
 }
 
+// Per shot, the adaptive washout's return time constant (0 = none).
+std::string JoinReturnTaus(const CinematicScaling& s) {
+  std::ostringstream out;
+  for (size_t i = 0; i < s.per_shot.size(); ++i) {
+    out << (i ? ";" : "") << FormatDouble(s.per_shot[i].return_tau_s);
+  }
+  return out.str();
+}
+
+// The cinematic model's samples (Equations 2-6, scaling, washout) and its
+// metadata: the factors, return time constants and reference depths per shot.
+void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& shots,
+                          const HapticOptions& o, HapticTrack* track) {
+  const CinematicScaling scaling =
+      o.cinematic_scaling ? *o.cinematic_scaling
+                          : ComputeCinematicScaling(path, o.seat, o.cinematic, o.washout);
+  const auto per_frame = CinematicFrames(path, o.seat, o.cinematic, o.washout, scaling);
+  ResampleFrames(path, shots, per_frame, &track->samples);
+  track->metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
+  track->metadata["cinematic_m"] = JoinScales(scaling, true);
+  if (o.washout.mode == WashoutMode::kAdaptive) {
+    track->metadata["return_tau_s"] = JoinReturnTaus(scaling);
+    track->metadata["return_accel_m_s2"] = FormatDouble(o.washout.return_accel_m_s2);
+  }
+  std::string depths;
+  for (const ShotRange& r : shots) {
+    depths += (depths.empty() ? "" : ";") +
+              FormatDouble(ShotReferenceDepth(path, r, o.cinematic.reference_depth_u));
+  }
+  track->metadata["reference_depth"] = depths;
+}
+
 }  // namespace
 
 const char* HapticModelName(HapticModel m) {
@@ -175,22 +207,9 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   switch (o.model) {
     case HapticModel::kNone:
       break;  // samples start centred
-    case HapticModel::kCinematic: {
-      const CinematicScaling scaling =
-          o.cinematic_scaling ? *o.cinematic_scaling
-                              : ComputeCinematicScaling(path, o.seat, o.cinematic, o.washout);
-      const auto per_frame = CinematicFrames(path, o.seat, o.cinematic, o.washout, scaling);
-      ResampleFrames(path, shots, per_frame, &track.samples);
-      track.metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
-      track.metadata["cinematic_m"] = JoinScales(scaling, true);
-      std::string depths;
-      for (const ShotRange& r : shots) {
-        depths += (depths.empty() ? "" : ";") +
-                  FormatDouble(ShotReferenceDepth(path, r, o.cinematic.reference_depth_u));
-      }
-      track.metadata["reference_depth"] = depths;
+    case HapticModel::kCinematic:
+      MakeCinematicSamples(path, shots, o, &track);
       break;
-    }
     case HapticModel::kSemantic: {
       const std::vector<EffectSegment> segs = o.keyframes_file.empty()
                                                   ? ClassifyEffects(path, o.classifier)
@@ -213,10 +232,11 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &track.samples);
   const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &track.samples);
   const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &track.samples);
-  // The high-pass acts on camera signals, i.e. on the cinematic model only.
-  const bool high_pass = o.washout.high_pass && o.model == HapticModel::kCinematic;
-  track.metadata["washout"] = high_pass ? "highpass" : "off";
-  if (high_pass) {
+  // The washout acts on camera motion, i.e. on the cinematic model only.
+  const WashoutMode washout =
+      o.model == HapticModel::kCinematic ? o.washout.mode : WashoutMode::kOff;
+  track.metadata["washout"] = WashoutModeName(washout);
+  if (washout == WashoutMode::kHighPass) {
     track.metadata["washout_tau_s"] = FormatDouble(o.washout.tau_s);
     track.metadata["washout_order"] = std::to_string(o.washout.order);
   }

@@ -156,15 +156,26 @@ TEST(HapticModels, FilmStaysInTheWorkspaceAndNeverJumps) {
             << t.metadata.at("rate_limited_samples") << "\n";
   // Without the washout the drift holds at the edge of the usable range but
   // still never leaves it.
-  o.washout.high_pass = false;
+  o.washout.mode = WashoutMode::kOff;
   const HapticTrack raw = MakeHapticTrack(film, o);
   EXPECT_LE(MaxCoord(raw), o.seat.usable_half_m + 1e-12);
   EXPECT_LE(MaxStep(raw), max_step_bound + 1e-15);
   EXPECT_EQ(raw.metadata.at("clamped_samples"), "0");
   EXPECT_NEAR(raw.samples[24900].pos_m[0].x(), o.seat.usable_half_m, 1e-3);
-  // With the (second-order) washout the 25 s drift has returned close to
-  // the centre by the end of the shot instead of being pinned at the edge.
-  EXPECT_LT(std::abs(t.samples[24900].pos_m[0].x()), 0.1 * o.seat.usable_half_m);
+  // The default (adaptive) washout never moves back while the drift goes on:
+  // it holds, and the cut returns it. (It was the second-order high-pass,
+  // which returned to the centre during the drift: a false cue.)
+  for (int i = 1000; i < 24900; i += 100) {
+    EXPECT_GE(t.samples[i].pos_m[0].x(), t.samples[i - 100].pos_m[0].x() - 1e-3) << i;
+  }
+  // It is felt sooner than with scaling alone (a 7 s window's gain)...
+  EXPECT_GT(t.samples[5000].pos_m[0].x(), 2 * raw.samples[5000].pos_m[0].x());
+  // ... and holds near the edge.
+  EXPECT_GT(t.samples[24900].pos_m[0].x(), 0.8 * o.seat.usable_half_m);
+  // The high-pass washout returns close to the centre during the drift.
+  o.washout.mode = WashoutMode::kHighPass;
+  const HapticTrack hp = MakeHapticTrack(film, o);
+  EXPECT_LT(std::abs(hp.samples[24900].pos_m[0].x()), 0.1 * o.seat.usable_half_m);
 }
 
 // 10 s of a pan (3 deg/s) with a sideways drift; frames 100-149 (4-6 s)
@@ -191,7 +202,7 @@ CameraPath PanWithLostFrames() {
 TEST(HapticModels, LostFramesFadeToRestAndResumeWithoutASpike) {
   const CameraPath path = PanWithLostFrames();
   HapticOptions o;
-  o.washout.high_pass = false;  // a held pose would hold the actuators without it
+  o.washout.mode = WashoutMode::kOff;  // a held pose would hold the actuators without it
   const HapticTrack t = MakeHapticTrack(path, o);
   const double rate = o.OutputRateHz();
   // At rest once the ramp from the last placed frame (3.96 s) is over, until the motion resumes at 6 s.
@@ -300,8 +311,9 @@ TEST(HapticModels, NoAcceptedPathLeavesTheWorkspace) {
       o.model = m;
       o.rate_hz = 200;
       o.cinematic.per_film_scaling = trial % 4 == 0;
-      for (bool washout : {true, false}) {
-        o.washout.high_pass = washout;
+      for (WashoutMode washout :
+           {WashoutMode::kAdaptive, WashoutMode::kHighPass, WashoutMode::kOff}) {
+        o.washout.mode = washout;
         const HapticTrack track = MakeHapticTrack(p, o);
         EXPECT_LE(MaxCoord(track), o.seat.usable_half_m + 1e-12) << trial << " " << track.model;
         EXPECT_EQ(track.metadata.at("clamped_samples"), "0") << trial << " " << track.model;
@@ -361,7 +373,7 @@ TEST(HapticModels, ComparableTracksShareTheScaling) {
   const CameraPath ref = MakeEffectPath(CameraEffect::kTraveling, 1.0);
   const CameraPath est = MakeEffectPath(CameraEffect::kTraveling, 1.2);
   HapticOptions o;
-  o.washout.high_pass = false;
+  o.washout.mode = WashoutMode::kOff;
   const HapticDifference own =
       HapticTrackDifference(MakeHapticTrack(ref, o), MakeHapticTrack(est, o));
   EXPECT_LT(own.max_m[0], 1e-9);
