@@ -15,6 +15,7 @@
 #include "core/haptic_track.h"
 #include "core/input_file.h"
 #include "estimate/camera_estimator.h"
+#include "haptics/confidence.h"
 #include "haptics/haptic_models.h"
 #include "haptics/camera_signals.h"
 #include "haptics/effect_classifier.h"
@@ -199,11 +200,15 @@ int RunHaptics(int argc, char** argv) {
     if (hj) hj->Commit();
     if (fx) fx->Commit();
     outputs.CommitAll();
+    for (const ShotConfidence& c : AssessShotConfidence(path, SplitShots(path))) {
+      if (c.low) std::cerr << "hapcine haptics: " << input << ": warning: " << LowQualityShotLine(c) << "\n";
+    }
     std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
               << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
               << (hjif.empty() ? "" : " + " + hjif)
               << (effects_out.empty() ? "" : " + " + effects_out)
-              << "; clamped samples: " << track.metadata.at("clamped_samples") << "\n";
+              << "; clamped samples: " << track.metadata.at("clamped_samples")
+              << "; low-quality shots: " << track.metadata.at("low_quality_shots") << "\n";
     return kExitOk;
   });
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "haptics/confidence.h"
 
 namespace hapcine {
 namespace {
@@ -277,6 +278,7 @@ std::vector<CameraSignals> CinematicShotSignals(const CameraPath& read_path,
   std::vector<CameraSignals> out;
   for (const ShotRange& r : shots) {
     CameraSignals s = ExtractShotSignals(path, r, ShotReferenceDepth(path, r, o.reference_depth_u));
+    ApplyConfidenceGain(FrameConfidenceGains(path, r), &s);
     FadeOverLostFrames(path, r, w.cut_ramp_s, &s);
     if (w.HighPass()) {
       std::vector<double> ch(s.size());
@@ -320,6 +322,12 @@ CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeome
         scaling.per_shot[i] = AdaptiveReturnForShot(signals[i], seat, o, w, scaling.per_shot[i]);
       }
     }
+  }
+  // A shot of mostly low confidence is felt weakly: scaling must not blow
+  // its confidence-weighted motion back up to the full range.
+  for (size_t i = 0; i < shots.size(); ++i) {
+    const double quality = ShotQualityGain(FrameConfidenceGains(path, shots[i]));
+    if (quality < 1) scaling.per_shot[i] = Scaled(scaling.per_shot[i], quality);
   }
   return scaling;
 }

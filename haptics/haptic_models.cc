@@ -7,6 +7,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "haptics/camera_signals.h"
+#include "haptics/confidence.h"
 #include "haptics/keyframes.h"
 
 namespace hapcine {
@@ -125,6 +126,11 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
               FormatDouble(ShotReferenceDepth(path, r, o.cinematic.reference_depth_u));
   }
   track->metadata["reference_depth"] = depths;
+  std::string gains;
+  for (const ShotRange& r : shots) {
+    gains += (gains.empty() ? "" : ";") + FormatDouble(ShotQualityGain(FrameConfidenceGains(path, r)));
+  }
+  track->metadata["confidence_gain"] = gains;
 }
 
 }  // namespace
@@ -243,6 +249,9 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   track.metadata["max_step_m"] = FormatDouble(o.washout.max_speed_m_s / rate);
   track.metadata["rate_limited_samples"] = std::to_string(limited);
   track.metadata["clamped_samples"] = std::to_string(clamped);
+  const std::vector<ShotConfidence> quality = AssessShotConfidence(read_path, SplitShots(read_path));
+  track.metadata["low_quality_shots"] = std::to_string(
+      std::count_if(quality.begin(), quality.end(), [](const ShotConfidence& c) { return c.low; }));
   LabelSamples(path, shots, effects, &track.samples);
   return track;
 }
