@@ -82,7 +82,7 @@ int RunHaptics(int argc, char** argv) {
       "  cinematic  feel the camera's movement (Equations 2-6; a zoom-in is a forward move)\n"
       "  semantic   feel a metaphor of the camera effect (Table 2), on effects found by the\n"
       "             classifier or placed by hand with --keyframes\n"
-      "  random     0.5 Hz low-pass filtered white noise (seeded)\n"
+      "  random     white noise low-passed at 0.5 Hz (-3 dB), seeded by the film (--seed)\n"
       "  none       actuators stay centred\n"
       "Films are processed per shot (`shot` column) with a washout so no actuator leaves its\n"
       "workspace. Details and file formats: docs/haptics.md.",
@@ -109,7 +109,10 @@ int RunHaptics(int argc, char** argv) {
   app.add_option("--rate", rate, "output rate in Hz; default: the seat's rate_hz (1000)")
       ->default_val(0)
       ->check(FiniteRange(0, 10000));
-  app.add_option("--seed", opt.seed, "random model: seed of the noise")->default_val(opt.seed)
+  uint64_t seed = 0;
+  app.add_option("--seed", seed,
+                 "random model: seed of the noise (default: a hash of the camera path, so each\n"
+                 "film gets its own noise and the same film always the same)")
       ->check(FiniteRange(0, 4294967295));
   app.add_option("--cutoff", opt.random_cutoff_hz, "random model: low-pass cutoff, Hz")
       ->default_val(opt.random_cutoff_hz)
@@ -157,6 +160,7 @@ int RunHaptics(int argc, char** argv) {
     opt.model = HapticModelFromName(model);
     opt.rate_hz = rate;
     opt.keyframes_file = keyframes;
+    if (app.count("--seed") > 0) opt.seed = seed;
     opt.washout.mode = WashoutModeFromName(no_washout ? "off" : washout);
     opt.source = input;
     opt.Check();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "core/csv.h"
@@ -135,6 +136,27 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
 
 }  // namespace
 
+uint64_t DefaultRandomSeed(const CameraPath& path) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&](double v) {
+    uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int b = 0; b < 8; ++b) {
+      h ^= (bits >> (8 * b)) & 0xff;
+      h *= 0x100000001b3ull;
+    }
+  };
+  for (const CameraFrame& f : path.frames) {
+    mix(f.time_s);
+    for (int k = 0; k < 3; ++k) mix(f.center[k]);
+    const Eigen::Quaterniond& q = f.world_from_cam;
+    for (double c : {q.w(), q.x(), q.y(), q.z()}) mix(c);
+    mix(f.fov_deg);
+    mix(f.shot ? *f.shot : -1.0);
+  }
+  return h;
+}
+
 const char* HapticModelName(HapticModel m) {
   switch (m) {
     case HapticModel::kCinematic:
@@ -170,6 +192,9 @@ void HapticOptions::Check() const {
   RandomOptions r;
   r.cutoff_hz = random_cutoff_hz;
   r.Check();
+  if (!(random_cutoff_hz < OutputRateHz() / 4)) {
+    throw UsageError("random cutoff must be below a quarter of the output rate");
+  }
   if (!(max_gap_s > 0 && max_gap_s <= 600)) throw UsageError("max gap must be in (0, 600] s");
   if (!keyframes_file.empty() && model != HapticModel::kSemantic) {
     throw UsageError("keyframes only apply to the semantic model");
@@ -227,10 +252,11 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
     }
     case HapticModel::kRandom: {
       RandomOptions r;
-      r.seed = o.seed;
+      r.seed = o.seed ? *o.seed : DefaultRandomSeed(read_path);
       r.cutoff_hz = o.random_cutoff_hz;
       CopyPositions(RandomFrames(n, rate, o.seat, r), &track.samples);
-      track.metadata["seed"] = std::to_string(o.seed);
+      track.metadata["seed"] = std::to_string(r.seed);
+      track.metadata["seed_from"] = o.seed ? "option" : "content";
       track.metadata["cutoff_hz"] = FormatDouble(o.random_cutoff_hz);
       break;
     }
@@ -282,6 +308,7 @@ HapticDifference HapticTrackDifference(const HapticTrack& a, const HapticTrack& 
 std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath& reference,
                                                                const CameraPath& other,
                                                                HapticOptions o) {
+  if (!o.seed) o.seed = DefaultRandomSeed(reference);  // one noise for both
   if (o.model == HapticModel::kCinematic && !o.cinematic_scaling) {
     o.Check();
     ValidatePathForHaptics(reference, o.source.empty() ? "reference camera path" : o.source,

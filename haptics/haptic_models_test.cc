@@ -366,6 +366,35 @@ TEST(HapticModels, DifferenceOfTracks) {
   EXPECT_EQ(HapticTrackDifference(a, HapticTrack()).num_samples, 0u);
 }
 
+// Each film gets its own noise by default (a content hash), the same film
+// always the same; --seed fixes it.
+TEST(HapticModels, RandomSeedComesFromTheFilmUnlessGiven) {
+  const CameraPath a = MakeEffectPath(CameraEffect::kTraveling);
+  const CameraPath b = MakeEffectPath(CameraEffect::kZoomIn);
+  HapticOptions o;
+  o.model = HapticModel::kRandom;
+  o.rate_hz = 100;
+  const HapticTrack ta = MakeHapticTrack(a, o), ta2 = MakeHapticTrack(a, o);
+  const HapticTrack tb = MakeHapticTrack(b, o);
+  EXPECT_EQ(ta.metadata.at("seed"), std::to_string(DefaultRandomSeed(a)));
+  EXPECT_EQ(ta.metadata.at("seed_from"), "content");
+  EXPECT_NE(DefaultRandomSeed(a), DefaultRandomSeed(b));
+  EXPECT_EQ(ta.samples[300].pos_m[1], ta2.samples[300].pos_m[1]);
+  EXPECT_NE(ta.samples[300].pos_m[1], tb.samples[300].pos_m[1]);
+  CameraPath moved = a;  // one coordinate of one frame changes the noise
+  moved.frames[50].center.x() += 1e-9;
+  EXPECT_NE(DefaultRandomSeed(moved), DefaultRandomSeed(a));
+  o.seed = 7;
+  const HapticTrack fa = MakeHapticTrack(a, o), fb = MakeHapticTrack(b, o);
+  EXPECT_EQ(fa.metadata.at("seed"), "7");
+  EXPECT_EQ(fa.metadata.at("seed_from"), "option");
+  EXPECT_EQ(fa.samples[300].pos_m[1], fb.samples[300].pos_m[1]);
+  // Comparable tracks share one noise (the reference's).
+  o.seed.reset();
+  const auto [ca, cb] = MakeComparableHapticTracks(a, b, o);
+  EXPECT_EQ(ca.samples[300].pos_m[1], cb.samples[300].pos_m[1]);
+}
+
 TEST(HapticModels, ComparableTracksShareTheScaling) {
   // An "estimate" that travels 20 % too far: with its own scaling it would
   // also fill the workspace and look perfect; with the reference's scaling
