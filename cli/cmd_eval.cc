@@ -12,10 +12,13 @@
 #include "cli/option_checks.h"
 #include "core/atomic_file.h"
 #include "core/camera_path.h"
+#include "core/error.h"
 #include "core/output_files.h"
 #include "datasets/eval.h"
 #include "datasets/eval_haptics.h"
+#include "core/haptic_track.h"
 #include "haptics/camera_signals.h"
+#include "haptics/false_cues.h"
 #include "haptics/hjif_import.h"
 
 namespace hapcine::cli {
@@ -42,6 +45,51 @@ HapticEvalReport HapticReport(const CameraPath& gt, const CameraPath& est,
   return EvaluateHapticDifferenceToTrack(reference, gt, est, report, ho);
 }
 
+// The false cues of --track, or of the default cinematic track of `path`.
+std::vector<ShotFalseCue> FalseCuesOf(const CameraPath& path, const std::string& path_file,
+                                      const std::string& track_file, double rate_hz) {
+  HapticOptions ho;
+  ho.rate_hz = rate_hz;
+  ho.source = path_file;
+  ho.Check();
+  const std::vector<int> lines = CsvDataRowLines(path_file);
+  ValidatePathForHaptics(path, path_file, ho.max_gap_s, &lines);
+  const HapticTrack track =
+      track_file.empty() ? MakeHapticTrack(path, ho) : ReadAnyHapticTrackFile(track_file);
+  return MeasureFalseCues(path, track, ho.seat, ho.cinematic);
+}
+
+void AddFalseCueOptions(CLI::App& app, bool* false_cues, std::string* track_file) {
+  app.add_flag("--false-cues", *false_cues,
+               "per shot of --gt, the largest counter-motion of a haptic track (mm) and its\n"
+               "duration: how far an actuator moves back while the camera keeps moving the\n"
+               "same way (docs/haptics.md). The track: --track, else the default cinematic track\n"
+               "of --gt");
+  app.add_option("--track", *track_file, "haptic track measured by --false-cues (*.haptic.csv)");
+}
+
+// `eval --false-cues` without --est: the false cues of one track.
+int RunFalseCues(const std::string& gt_file, const std::string& track_file, bool json,
+                 const std::string& json_out, double rate_hz) {
+  OutputSet outputs({{gt_file, "--gt"}, {track_file, "--track"}}, {{json_out, "-o"}});
+  const CameraPath path = ReadCameraPathFile(gt_file);
+  const std::vector<ShotFalseCue> cues = FalseCuesOf(path, gt_file, track_file, rate_hz);
+  nlohmann::json j = {{"gt", gt_file}, {"track", track_file.empty() ? "default" : track_file},
+                      {"false_cues", FalseCuesToJson(cues)}};
+  if (!json_out.empty()) {
+    AtomicFile out(json_out);
+    out.stream() << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    out.Commit();
+  }
+  outputs.CommitAll();
+  if (json) {
+    std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  } else {
+    std::cout << FormatFalseCueTable(cues);
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int RunEval(int argc, char** argv) {
@@ -57,8 +105,8 @@ int RunEval(int argc, char** argv) {
   EvalOptions opt;
   app.add_option("--gt", gt_file, "ground-truth camera path (*.camera.csv)")
       ->required();
-  app.add_option("--est", est_file, "estimated camera path (*.camera.csv)")
-      ->required();
+  app.add_option("--est", est_file,
+                 "estimated camera path (*.camera.csv); not needed with --false-cues alone");
   app.add_flag("--json", json, "print the report as JSON instead of a table");
   app.add_option("-o,--output", json_out, "also write the JSON report to this file (atomic)");
   app.add_option("--align", align,
@@ -103,12 +151,22 @@ int RunEval(int argc, char** argv) {
       ->capture_default_str()
       ->check(FiniteRange(10, 10000));
 
+  bool false_cues = false;
+  std::string track_file;
+  AddFalseCueOptions(app, &false_cues, &track_file);
+
   return RunApp(app, argc, argv, [&]() {
+    if (!track_file.empty() && !false_cues) throw UsageError("--track needs --false-cues");
+    if (false_cues && est_file.empty()) {
+      return RunFalseCues(gt_file, track_file, json, json_out, haptic_rate);
+    }
+    if (est_file.empty()) throw UsageError("--est is required (or --false-cues alone)");
     opt.align = ParseTrajectoryAlignment(align);
     opt.matching = ParseFrameMatching(matching);
     opt.per_shot = !no_per_shot;
     opt.Check();
-    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}, {haptic_track, "--haptic-track"}},
+    OutputSet outputs({{gt_file, "--gt"}, {est_file, "--est"}, {haptic_track, "--haptic-track"},
+                       {track_file, "--track"}},
                       {{json_out, "-o"}, {per_frame_out, "--per-frame"}});
     const CameraPath gt = ReadCameraPathFile(gt_file);
     const CameraPath est = ReadCameraPathFile(est_file);
@@ -120,6 +178,11 @@ int RunEval(int argc, char** argv) {
     if (haptic || app.count("--haptic-model") > 0 || !haptic_track.empty()) {
       haptic_report = HapticReport(gt, est, report, haptic_model, haptic_rate, haptic_track);
       j["haptic"] = HapticEvalToJson(*haptic_report);
+    }
+    std::vector<ShotFalseCue> cues;
+    if (false_cues) {
+      cues = FalseCuesOf(gt, gt_file, track_file, haptic_rate);
+      j["false_cues"] = FalseCuesToJson(cues);
     }
     if (!json_out.empty()) {
       AtomicFile out(json_out);
@@ -133,6 +196,7 @@ int RunEval(int argc, char** argv) {
     } else {
       std::cout << FormatEvalTable(report);
       if (haptic_report) std::cout << "\n" << FormatHapticEvalTable(*haptic_report);
+      if (false_cues) std::cout << "\n" << FormatFalseCueTable(cues);
     }
     return kExitOk;
   });

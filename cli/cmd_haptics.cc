@@ -17,6 +17,7 @@
 #include "core/haptic_track.h"
 #include "core/input_file.h"
 #include "estimate/camera_estimator.h"
+#include "haptics/confidence.h"
 #include "haptics/haptic_models.h"
 #include "haptics/camera_signals.h"
 #include "haptics/effect_classifier.h"
@@ -35,6 +36,47 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+namespace {
+
+// The washout options (docs/haptics.md, "Washout and film safety").
+void AddWashoutOptions(CLI::App& app, WashoutOptions* w, std::string* washout, bool* no_washout) {
+  app.add_option("--washout", *washout,
+                 "cinematic: adaptive (no false cue: the paper's Equations 2-6 with per-shot\n"
+                 "scaling, plus a slow return to centre in still moments for shots too long to\n"
+                 "fit by scaling alone), highpass (the classical washout: the camera signals\n"
+                 "high-passed, which moves back while the camera keeps moving), off")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"adaptive", "highpass", "off"}));
+  app.add_flag("--no-washout", *no_washout,
+               "same as --washout off (the paper's plain Equations 2-6; cut crossfades, speed\n"
+               "limit and clamp still apply)");
+  app.add_option("--return-accel", w->return_accel_m_s2,
+                 "adaptive washout: largest acceleration of a return to centre, m/s^2 (below\n"
+                 "the vestibular threshold: docs/haptics.md)")
+      ->default_val(w->return_accel_m_s2)
+      ->check(FiniteRange(0.0001, 100));
+  app.add_option("--washout-window", w->window_s,
+                 "adaptive washout: a shot whose whole motion is under twice its largest motion\n"
+                 "within this many seconds is fitted by scaling alone, s")
+      ->default_val(w->window_s)
+      ->check(FiniteRange(0.1, 3600));
+  app.add_option("--washout-tau", w->tau_s, "highpass washout: time constant, s")
+      ->default_val(w->tau_s)
+      ->check(FiniteRange(0.05, 600));
+  app.add_option("--washout-order", w->order, "highpass washout: order (1 or 2)")
+      ->default_val(w->order)
+      ->check(FiniteRange(1, 2));
+  app.add_option("--cut-ramp", w->cut_ramp_s, "crossfade at a shot cut, s")
+      ->default_val(w->cut_ramp_s)
+      ->check(FiniteRange(0, 10));
+  app.add_option("--max-speed", w->max_speed_m_s,
+                 "largest actuator speed per axis, m/s (bounds every step)")
+      ->default_val(w->max_speed_m_s)
+      ->check(FiniteRange(0, 10));
+}
+
+}  // namespace
+
 int RunHaptics(int argc, char** argv) {
   CLI::App app{
       "Turn a camera path (*.camera.csv) into a haptic track (*.haptic.csv) for the HapSeat:\n"
@@ -43,7 +85,7 @@ int RunHaptics(int argc, char** argv) {
       "  cinematic  feel the camera's movement (Equations 2-6; a zoom-in is a forward move)\n"
       "  semantic   feel a metaphor of the camera effect (Table 2), on effects found by the\n"
       "             classifier or placed by hand with --keyframes\n"
-      "  random     0.5 Hz low-pass filtered white noise (seeded)\n"
+      "  random     white noise low-passed at 0.5 Hz (-3 dB), seeded by the film (--seed)\n"
       "  none       actuators stay centred\n"
       "Films are processed per shot (`shot` column) with a washout so no actuator leaves its\n"
       "workspace. Details and file formats: docs/haptics.md.",
@@ -53,6 +95,7 @@ int RunHaptics(int argc, char** argv) {
   HjifOptions hjif_opt;
   double rate = 0;
   bool no_washout = false;
+  std::string washout = "adaptive";
   bool print_seat = false;
   app.add_option("INPUT", input,
                  "camera path (*.camera.csv / *.csv), or a video: its camera path is then\n"
@@ -71,7 +114,10 @@ int RunHaptics(int argc, char** argv) {
   app.add_option("--rate", rate, "stored rate in Hz; default: the seat's rate_hz (100; the player interpolates to 1 kHz)")
       ->default_val(0)
       ->check(FiniteRange(0, 10000));
-  app.add_option("--seed", opt.seed, "random model: seed of the noise")->default_val(opt.seed)
+  uint64_t seed = 0;
+  app.add_option("--seed", seed,
+                 "random model: seed of the noise (default: a hash of the camera path, so each\n"
+                 "film gets its own noise and the same film always the same)")
       ->check(FiniteRange(0, 4294967295));
   app.add_option("--cutoff", opt.random_cutoff_hz, "random model: low-pass cutoff, Hz")
       ->default_val(opt.random_cutoff_hz)
@@ -82,22 +128,7 @@ int RunHaptics(int argc, char** argv) {
   app.add_option("--effects-out", effects_out,
                  "also write the effect segments (the classifier's, or --keyframes) as a\n"
                  "keyframe file: edit it and pass it back with --keyframes");
-  app.add_flag("--no-washout", no_washout,
-               "no high-pass on the camera signals (the paper's plain Equations 2-6; cut\n"
-               "crossfades, speed limit and clamp still apply)");
-  app.add_option("--washout-tau", opt.washout.tau_s, "washout high-pass time constant, s")
-      ->default_val(opt.washout.tau_s)
-      ->check(FiniteRange(0.05, 600));
-  app.add_option("--washout-order", opt.washout.order, "washout high-pass order (1 or 2)")
-      ->default_val(opt.washout.order)
-      ->check(FiniteRange(1, 2));
-  app.add_option("--cut-ramp", opt.washout.cut_ramp_s, "crossfade at a shot cut, s")
-      ->default_val(opt.washout.cut_ramp_s)
-      ->check(FiniteRange(0, 10));
-  app.add_option("--max-speed", opt.washout.max_speed_m_s,
-                 "largest actuator speed per axis, m/s (bounds every step)")
-      ->default_val(opt.washout.max_speed_m_s)
-      ->check(FiniteRange(0, 10));
+  AddWashoutOptions(app, &opt.washout, &washout, &no_washout);
   app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
                  "distance of the subject defining the zoom's equivalent forward distance,\n"
                  "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
@@ -139,7 +170,8 @@ int RunHaptics(int argc, char** argv) {
     opt.model = HapticModelFromName(model);
     opt.rate_hz = rate;
     opt.keyframes_file = keyframes;
-    opt.washout.high_pass = !no_washout;
+    if (app.count("--seed") > 0) opt.seed = seed;
+    opt.washout.mode = WashoutModeFromName(no_washout ? "off" : washout);
     opt.source = input;
     opt.Check();
     hjif_opt.gain_m = opt.seat.workspace_half_m;
@@ -184,11 +216,15 @@ int RunHaptics(int argc, char** argv) {
     if (hj) hj->Commit();
     if (fx) fx->Commit();
     outputs.CommitAll();
+    for (const ShotConfidence& c : AssessShotConfidence(path, SplitShots(path))) {
+      if (c.low) std::cerr << "hapcine haptics: " << input << ": warning: " << LowQualityShotLine(c) << "\n";
+    }
     std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
               << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
               << (hjif.empty() ? "" : " + " + hjif)
               << (effects_out.empty() ? "" : " + " + effects_out)
-              << "; clamped samples: " << track.metadata.at("clamped_samples") << "\n";
+              << "; clamped samples: " << track.metadata.at("clamped_samples")
+              << "; low-quality shots: " << track.metadata.at("low_quality_shots") << "\n";
     return kExitOk;
   });
 }

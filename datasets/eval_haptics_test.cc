@@ -35,7 +35,9 @@ TEST(EvalHapticsTest, AnExactEstimateInAnotherFrameAndScaleFeelsTheSame) {
     EXPECT_GT(r.difference.num_samples, 6000u);
     for (int a = 0; a < kNumActuators; ++a) {
       EXPECT_LT(r.difference.max_m[a], 1e-9) << preset << " " << a;
-      EXPECT_GT(r.gt_peak_m[a], 0.01) << preset << " " << a;
+      // Every actuator moves (the arcing's left hand 8 mm with the default
+      // washout, Equations 2-6: the high-pass had pushed it past 10 mm).
+      EXPECT_GT(r.gt_peak_m[a], 0.005) << preset << " " << a;
     }
   }
 }

@@ -12,6 +12,7 @@
 
 #include "datasets/synth_clip.h"
 #include "haptics/effect_classifier.h"
+#include "haptics/false_cues.h"
 #include "haptics/haptic_models.h"
 #include "haptics/test_paths_for_test.h"
 
@@ -24,12 +25,16 @@ CameraPath GroundTruth(const std::string& preset) {
   return SynthGroundTruth(preset, SynthOptions{});
 }
 
-HapticTrack Cinematic(const CameraPath& path, bool washout = true) {
+HapticTrack Cinematic(const CameraPath& path, WashoutMode washout = WashoutMode::kAdaptive) {
   HapticOptions o;
   o.source = "synth";
-  o.washout.high_pass = washout;
+  o.washout.mode = washout;
   return MakeHapticTrack(path, o);
 }
+
+// Every washout mode: the properties below hold whichever is chosen.
+constexpr WashoutMode kWashoutModes[] = {WashoutMode::kAdaptive, WashoutMode::kHighPass,
+                                         WashoutMode::kOff};
 
 double MaxAbs(const HapticTrack& t, int actuator, int axis) {
   double m = 0;
@@ -50,9 +55,9 @@ TEST(SynthHaptics, VertigoGivesNoMovement) {
   // Equation 6) cancel. The ground truth carries no subject distance: the
   // model finds the dolly zoom's own (7 m) from the motion.
   for (const char* preset : {"vertigo", "dolly_zoom_parallax"}) {
-    for (bool washout : {true, false}) {
+    for (WashoutMode washout : kWashoutModes) {
       const HapticTrack t = Cinematic(GroundTruth(preset), washout);
-      EXPECT_LT(MaxCoord(t), 1e-9) << preset << " washout " << washout;
+      EXPECT_LT(MaxCoord(t), 1e-9) << preset << " washout " << WashoutModeName(washout);
     }
   }
   const auto shots = SplitShots(GroundTruth("vertigo"));
@@ -62,15 +67,16 @@ TEST(SynthHaptics, VertigoGivesNoMovement) {
 }
 
 TEST(SynthHaptics, ZoomInGivesForwardMovement) {
-  const HapticTrack t = Cinematic(GroundTruth("zoom_in"), false);
+  const HapticTrack t = Cinematic(GroundTruth("zoom_in"), WashoutMode::kOff);
   const HapticSample& end = At(t, 6.5);
   for (int a = 0; a < kNumActuators; ++a) {
     EXPECT_LT(end.pos_m[a].z(), -0.04) << a;  // forward = -Z, nearly the whole range
     EXPECT_LT(MaxAbs(t, a, 0), 1e-9);
     EXPECT_LT(MaxAbs(t, a, 1), 1e-9);
   }
-  // With the washout the onset is the same forward movement, then it returns.
-  const HapticTrack w = Cinematic(GroundTruth("zoom_in"));
+  // With the high-pass washout the onset is the same forward movement, then
+  // it returns (while the zoom goes on: the false cue the default avoids).
+  const HapticTrack w = Cinematic(GroundTruth("zoom_in"), WashoutMode::kHighPass);
   for (int a = 0; a < kNumActuators; ++a) {
     EXPECT_LT(At(w, 3.5).pos_m[a].z(), -0.02) << a;
     EXPECT_NEAR(MaxAbs(w, a, 2), 0.045, 1e-6) << a;  // the scaling fills the usable range
@@ -78,11 +84,11 @@ TEST(SynthHaptics, ZoomInGivesForwardMovement) {
 }
 
 TEST(SynthHaptics, DutchAngleMovesLeftHandDownAndRightHandUp) {
-  for (bool washout : {true, false}) {
+  for (WashoutMode washout : kWashoutModes) {
     const HapticTrack t = Cinematic(GroundTruth("dutch_angle"), washout);
     const HapticSample& s = At(t, 4.0);
-    EXPECT_LT(s.pos_m[L].y(), -0.01) << washout;
-    EXPECT_GT(s.pos_m[R].y(), 0.01) << washout;
+    EXPECT_LT(s.pos_m[L].y(), -0.01) << WashoutModeName(washout);
+    EXPECT_GT(s.pos_m[R].y(), 0.01) << WashoutModeName(washout);
     // A rotation about the chest, in the X-Y plane (about Z): every actuator
     // keeps its distance to G, nothing moves forward or backward.
     const SeatGeometry seat;
@@ -95,7 +101,7 @@ TEST(SynthHaptics, DutchAngleMovesLeftHandDownAndRightHandUp) {
 }
 
 TEST(SynthHaptics, TravelingMovesAllThreeSidewaysTogether) {
-  const HapticTrack t = Cinematic(GroundTruth("traveling"), false);
+  const HapticTrack t = Cinematic(GroundTruth("traveling"), WashoutMode::kOff);
   // The camera moves x -2 -> +2 m: everyone goes right by the same amount.
   EXPECT_NEAR(At(t, 6.5).pos_m[H].x(), 0.045, 1e-6);
   for (const auto& s : t.samples) {
@@ -113,7 +119,7 @@ TEST(SynthHaptics, TravelingMovesAllThreeSidewaysTogether) {
 
 TEST(SynthHaptics, TiltingRotatesAboutTheChest) {
   const SeatGeometry seat;
-  for (bool washout : {true, false}) {
+  for (WashoutMode washout : kWashoutModes) {
     const HapticTrack t = Cinematic(GroundTruth("tilting"), washout);
     EXPECT_GT(MaxCoord(t), 0.04);
     for (const auto& s : t.samples) {
@@ -128,13 +134,13 @@ TEST(SynthHaptics, TiltingRotatesAboutTheChest) {
     // Tilting up (-18 -> +14 deg): the head goes backward, the hands (in
     // front of and below the chest) go up.
     const HapticSample& s = At(t, 4.0);
-    EXPECT_GT(s.pos_m[H].z(), 0.005) << washout;
-    EXPECT_GT(s.pos_m[L].y(), 0.005) << washout;
+    EXPECT_GT(s.pos_m[H].z(), 0.005) << WashoutModeName(washout);
+    EXPECT_GT(s.pos_m[L].y(), 0.005) << WashoutModeName(washout);
   }
 }
 
 TEST(SynthHaptics, CraneShotLiftsEveryone) {
-  const HapticTrack t = Cinematic(GroundTruth("crane_shot"), false);
+  const HapticTrack t = Cinematic(GroundTruth("crane_shot"), WashoutMode::kOff);
   for (int a = 0; a < kNumActuators; ++a) EXPECT_GT(At(t, 6.5).pos_m[a].y(), 0.01) << a;
 }
 
@@ -145,11 +151,34 @@ TEST(SynthHaptics, CraneShotLiftsEveryone) {
 TEST(SynthHaptics, ScalingUsesTheWholeUsableRange) {
   for (const std::string& preset : SynthTable1PresetNames()) {
     if (preset == "vertigo") continue;
-    for (bool washout : {true, false}) {
+    for (WashoutMode washout : kWashoutModes) {
       const double peak = MaxCoord(Cinematic(GroundTruth(preset), washout));
-      EXPECT_GT(peak, 0.044) << preset << " washout " << washout;
+      EXPECT_GT(peak, 0.044) << preset << " washout " << WashoutModeName(washout);
       EXPECT_LE(peak, 0.045 + 1e-12) << preset;
     }
+  }
+}
+
+// The default washout gives no false cue and, on the seven Table 1 clips,
+// is exactly the paper's Equations 2-6 with the per-shot scaling; the
+// high-pass washout moves 10-25 mm back while the camera still moves.
+TEST(SynthHaptics, DefaultIsEquations2To6WithNoFalseCue) {
+  for (const std::string& preset : SynthTable1PresetNames()) {
+    const CameraPath path = GroundTruth(preset);
+    const HapticTrack def = Cinematic(path), off = Cinematic(path, WashoutMode::kOff);
+    ASSERT_EQ(def.samples.size(), off.samples.size());
+    for (size_t i = 0; i < def.samples.size(); ++i) {
+      for (int a = 0; a < kNumActuators; ++a) {
+        ASSERT_EQ(def.samples[i].pos_m[a], off.samples[i].pos_m[a]) << preset << " " << i;
+      }
+    }
+    const SeatGeometry seat;
+    const auto cues = MeasureFalseCues(path, def, seat, CinematicOptions{});
+    ASSERT_EQ(cues.size(), 1u);
+    EXPECT_LT(cues[0].counter_m, 1e-3) << preset;
+    if (preset == "vertigo") continue;  // nothing moves
+    const HapticTrack hp = Cinematic(path, WashoutMode::kHighPass);
+    EXPECT_GT(MeasureFalseCues(path, hp, seat, CinematicOptions{})[0].counter_m, 0.009) << preset;
   }
 }
 
@@ -282,7 +311,7 @@ TEST(SynthHaptics, MultiShotFilmStaysInTheWorkspaceAndNeverJumpsAtACut) {
   // speed limit would then have to catch it): the crossfade is doing work.
   HapticOptions o;
   o.washout.cut_ramp_s = 0;
-  o.washout.high_pass = false;
+  o.washout.mode = WashoutMode::kOff;
   EXPECT_NE(MakeHapticTrack(SevenShotFilm(), o).metadata.at("rate_limited_samples"), "0");
 }
 

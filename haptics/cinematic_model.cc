@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "haptics/confidence.h"
 
 namespace hapcine {
 namespace {
@@ -41,7 +42,7 @@ double MaxCombinedOffset(const CameraSignals& s, const SeatGeometry& seat, const
 }
 
 CinematicScale Scaled(const CinematicScale& c, double gain) {
-  CinematicScale out;
+  CinematicScale out = c;
   out.kx = out.ky = out.kz = out.sz = gain * c.kx;
   out.mx = out.my = out.mz = gain * c.mx;
   return out;
@@ -141,6 +142,97 @@ void FadeOverLostFrames(const CameraPath& path, const ShotRange& r, double ramp_
     FadeToRestOverLostFrames(s->time_s, lost, ramp_s, v);
 }
 
+// `base` with translation/zoom and rotation gains raised by `gain`, each
+// within its cap (a shot without rotation is already at the rotation cap).
+CinematicScale Raised(const CinematicScale& base, double gain, const CinematicOptions& o) {
+  CinematicScale c = base;
+  const double k = base.kx > 0 ? std::min(gain * base.kx, o.max_translation_gain) : 0.0;
+  const double m = base.mx > 0 ? std::min(gain * base.mx, o.max_rotation_gain) : 0.0;
+  c.kx = c.ky = c.kz = c.sz = std::max(k, base.kx);
+  c.mx = c.my = c.mz = std::max(m, base.mx);
+  return c;
+}
+
+// Equations 2-6 over one shot's signals.
+std::vector<ActuatorFrame> ShotFrames(const CameraSignals& s, const CinematicScale& c,
+                                      const SeatGeometry& seat) {
+  std::vector<ActuatorFrame> out;
+  out.reserve(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    out.push_back(CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i],
+                                        s.roll_rad[i], s.zoom_forward_u[i], c, seat));
+  }
+  return out;
+}
+
+// The shot's frames with a return of time constant tau_s (0 = none).
+std::vector<ActuatorFrame> Returned(const CameraSignals& s, std::vector<ActuatorFrame> f,
+                                    double tau_s, const WashoutOptions& w) {
+  if (tau_s > 0) {
+    const double still = StillSpeed(s.time_s, f, w.still_fraction);
+    ApplyReturnToCentre(s.time_s, still, tau_s, w.return_accel_m_s2, &f);
+  }
+  return f;
+}
+
+// The slowest return (largest time constant in [kMinReturnTauS, shot
+// length]) that keeps the shot within the usable range at `gain` over
+// `base`; 0 when even the fastest does not.
+constexpr double kMinReturnTauS = 0.5;
+
+double SlowestFittingReturn(const CameraSignals& s, const CinematicScale& base, double gain,
+                            const SeatGeometry& seat, const CinematicOptions& o,
+                            const WashoutOptions& w) {
+  const std::vector<ActuatorFrame> plain = ShotFrames(s, Raised(base, gain, o), seat);
+  auto fits = [&](double tau) {
+    return PeakCoordinate(Returned(s, plain, tau, w)) <= seat.usable_half_m;
+  };
+  const double longest = std::max(kMinReturnTauS, s.time_s.back() - s.time_s.front());
+  if (fits(longest)) return longest;
+  if (!fits(kMinReturnTauS)) return 0;
+  double lo = kMinReturnTauS, hi = longest;
+  for (int it = 0; it < 24; ++it) {
+    const double mid = std::sqrt(lo * hi);  // time constants span decades
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// Adaptive washout for one shot whose per-shot scaling is `base`: the plain
+// Equations 2-6 when scaling alone keeps at least 1 / min_gain of the gain
+// the shot's motion within window_s would get; otherwise that gain (within
+// the caps), or the largest below it that a return can fit, with the
+// slowest fitting return.
+CinematicScale AdaptiveReturnForShot(const CameraSignals& s, const SeatGeometry& seat,
+                                     const CinematicOptions& o, const WashoutOptions& w,
+                                     const CinematicScale& base) {
+  if (s.size() < 3) return base;
+  const std::vector<ActuatorFrame> plain = ShotFrames(s, base, seat);
+  const double peak = PeakCoordinate(plain);
+  const double window_range = LargestWindowRange(s.time_s, plain, w.window_s);
+  if (!(window_range > 0) || peak < w.min_gain * window_range) return base;
+  double gain = peak / window_range;
+  const double k_room = base.kx > 0 ? o.max_translation_gain / base.kx : 0.0;
+  const double m_room = base.mx > 0 ? o.max_rotation_gain / base.mx : 0.0;
+  gain = std::min(gain, std::max(k_room, m_room));
+  if (gain < w.min_gain) return base;
+  double tau = SlowestFittingReturn(s, base, gain, seat, o, w);
+  if (tau == 0) {
+    // Even the fastest return cannot hold this gain: the largest that it can.
+    double lo = 1, hi = gain;
+    for (int it = 0; it < 20; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (SlowestFittingReturn(s, base, mid, seat, o, w) > 0 ? lo : hi) = mid;
+    }
+    gain = lo;
+    tau = SlowestFittingReturn(s, base, gain, seat, o, w);
+    if (tau == 0 || gain < w.min_gain) return base;
+  }
+  CinematicScale c = Raised(base, gain, o);
+  c.return_tau_s = tau;
+  return c;
+}
+
 }  // namespace
 
 const CinematicScale& CinematicScaling::ForShot(size_t i) const {
@@ -186,8 +278,9 @@ std::vector<CameraSignals> CinematicShotSignals(const CameraPath& read_path,
   std::vector<CameraSignals> out;
   for (const ShotRange& r : shots) {
     CameraSignals s = ExtractShotSignals(path, r, ShotReferenceDepth(path, r, o.reference_depth_u));
+    ApplyConfidenceGain(FrameConfidenceGains(path, r), &s);
     FadeOverLostFrames(path, r, w.cut_ramp_s, &s);
-    if (w.high_pass) {
+    if (w.HighPass()) {
       std::vector<double> ch(s.size());
       for (int k = 0; k < 3; ++k) {
         for (size_t i = 0; i < s.size(); ++i) ch[i] = s.position_u[i][k];
@@ -225,7 +318,16 @@ CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeome
     for (size_t i = 0; i < signals.size(); ++i) {
       scaling.per_shot[i] =
           Scaled(scaling.per_shot[i], CombinationGain(signals[i], seat, o, scaling.per_shot[i]));
+      if (w.mode == WashoutMode::kAdaptive) {
+        scaling.per_shot[i] = AdaptiveReturnForShot(signals[i], seat, o, w, scaling.per_shot[i]);
+      }
     }
+  }
+  // A shot of mostly low confidence is felt weakly: scaling must not blow
+  // its confidence-weighted motion back up to the full range.
+  for (size_t i = 0; i < shots.size(); ++i) {
+    const double quality = ShotQualityGain(FrameConfidenceGains(path, shots[i]));
+    if (quality < 1) scaling.per_shot[i] = Scaled(scaling.per_shot[i], quality);
   }
   return scaling;
 }
@@ -238,12 +340,10 @@ std::vector<ActuatorFrame> CinematicFrames(const CameraPath& path, const SeatGeo
   std::vector<ActuatorFrame> out;
   out.reserve(path.frames.size());
   for (size_t k = 0; k < shots.size(); ++k) {
-    const CameraSignals& s = signals[k];
     const CinematicScale& c = scaling.ForShot(k);
-    for (size_t i = 0; i < s.size(); ++i) {
-      out.push_back(CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i],
-                                          s.roll_rad[i], s.zoom_forward_u[i], c, seat));
-    }
+    const double tau = w.mode == WashoutMode::kAdaptive ? c.return_tau_s : 0.0;
+    const std::vector<ActuatorFrame> f = Returned(signals[k], ShotFrames(signals[k], c, seat), tau, w);
+    out.insert(out.end(), f.begin(), f.end());
   }
   return out;
 }

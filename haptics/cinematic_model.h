@@ -41,6 +41,9 @@ struct CinematicScale {
   double kx = 0, ky = 0, kz = 0;  // Eq. 4, metres of seat per path unit
   double mx = 0, my = 0, mz = 0;  // Eq. 5, multipliers of the camera angles
   double sz = 0;                  // Eq. 6, metres per path unit of gamma
+  // Adaptive washout: time constant of the shot's return to centre
+  // (ApplyReturnToCentre); 0 = none, the plain Equations 2-6.
+  double return_tau_s = 0;
 };
 
 // Scaling factors per shot (index = order of the shot in the path). A path
@@ -73,13 +76,15 @@ ActuatorFrame CinematicDisplacement(const Eigen::Vector3d& position_u, double ti
                                     double pan_rad, double roll_rad, double zoom_forward_u,
                                     const CinematicScale& scale, const SeatGeometry& seat);
 
-// Per-shot signals after the washout high-pass (when enabled).
+// Per-shot signals (after the washout high-pass in highpass mode).
 std::vector<CameraSignals> CinematicShotSignals(const CameraPath& path,
                                                 const std::vector<ShotRange>& shots,
                                                 const CinematicOptions& options,
                                                 const WashoutOptions& washout);
 
-// The pre-processing pass.
+// The pre-processing pass. In adaptive washout mode a shot whose motion the
+// per-shot scaling cannot fit without losing more than washout.min_gain
+// gets a larger gain and a return to centre (AdaptiveReturnForShot).
 CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeometry& seat,
                                          const CinematicOptions& options,
                                          const WashoutOptions& washout);

@@ -14,7 +14,7 @@ constexpr int H = 0, L = 1, R = 2;
 
 WashoutOptions NoWashout() {
   WashoutOptions w;
-  w.high_pass = false;
+  w.mode = WashoutMode::kOff;
   return w;
 }
 

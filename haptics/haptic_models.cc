@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "core/csv.h"
 #include "core/error.h"
 #include "haptics/camera_signals.h"
+#include "haptics/confidence.h"
 #include "haptics/keyframes.h"
 
 namespace hapcine {
@@ -97,7 +99,65 @@ std::string JoinScales(const CinematicScaling& s, bool rotation) {
   return out.str();
 }
 
+// Per shot, the adaptive washout's return time constant (0 = none).
+std::string JoinReturnTaus(const CinematicScaling& s) {
+  std::ostringstream out;
+  for (size_t i = 0; i < s.per_shot.size(); ++i) {
+    out << (i ? ";" : "") << FormatDouble(s.per_shot[i].return_tau_s);
+  }
+  return out.str();
+}
+
+// The cinematic model's samples (Equations 2-6, scaling, washout) and its
+// metadata: the factors, return time constants and reference depths per shot.
+void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& shots,
+                          const HapticOptions& o, HapticTrack* track) {
+  const CinematicScaling scaling =
+      o.cinematic_scaling ? *o.cinematic_scaling
+                          : ComputeCinematicScaling(path, o.seat, o.cinematic, o.washout);
+  const auto per_frame = CinematicFrames(path, o.seat, o.cinematic, o.washout, scaling);
+  ResampleFrames(path, shots, per_frame, &track->samples);
+  track->metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
+  track->metadata["cinematic_m"] = JoinScales(scaling, true);
+  if (o.washout.mode == WashoutMode::kAdaptive) {
+    track->metadata["return_tau_s"] = JoinReturnTaus(scaling);
+    track->metadata["return_accel_m_s2"] = FormatDouble(o.washout.return_accel_m_s2);
+  }
+  std::string depths;
+  for (const ShotRange& r : shots) {
+    depths += (depths.empty() ? "" : ";") +
+              FormatDouble(ShotReferenceDepth(path, r, o.cinematic.reference_depth_u));
+  }
+  track->metadata["reference_depth"] = depths;
+  std::string gains;
+  for (const ShotRange& r : shots) {
+    gains += (gains.empty() ? "" : ";") + FormatDouble(ShotQualityGain(FrameConfidenceGains(path, r)));
+  }
+  track->metadata["confidence_gain"] = gains;
+}
+
 }  // namespace
+
+uint64_t DefaultRandomSeed(const CameraPath& path) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&](double v) {
+    uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int b = 0; b < 8; ++b) {
+      h ^= (bits >> (8 * b)) & 0xff;
+      h *= 0x100000001b3ull;
+    }
+  };
+  for (const CameraFrame& f : path.frames) {
+    mix(f.time_s);
+    for (int k = 0; k < 3; ++k) mix(f.center[k]);
+    const Eigen::Quaterniond& q = f.world_from_cam;
+    for (double c : {q.w(), q.x(), q.y(), q.z()}) mix(c);
+    mix(f.fov_deg);
+    mix(f.shot ? *f.shot : -1.0);
+  }
+  return h;
+}
 
 const char* HapticModelName(HapticModel m) {
   switch (m) {
@@ -134,6 +194,9 @@ void HapticOptions::Check() const {
   RandomOptions r;
   r.cutoff_hz = random_cutoff_hz;
   r.Check();
+  if (!(random_cutoff_hz < OutputRateHz() / 4)) {
+    throw UsageError("random cutoff must be below a quarter of the output rate");
+  }
   if (!(max_gap_s > 0 && max_gap_s <= 600)) throw UsageError("max gap must be in (0, 600] s");
   if (!keyframes_file.empty() && model != HapticModel::kSemantic) {
     throw UsageError("keyframes only apply to the semantic model");
@@ -178,22 +241,9 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   switch (o.model) {
     case HapticModel::kNone:
       break;  // samples start centred
-    case HapticModel::kCinematic: {
-      const CinematicScaling scaling =
-          o.cinematic_scaling ? *o.cinematic_scaling
-                              : ComputeCinematicScaling(path, o.seat, o.cinematic, o.washout);
-      const auto per_frame = CinematicFrames(path, o.seat, o.cinematic, o.washout, scaling);
-      ResampleFrames(path, shots, per_frame, &track.samples);
-      track.metadata["cinematic_k_m_per_unit"] = JoinScales(scaling, false);
-      track.metadata["cinematic_m"] = JoinScales(scaling, true);
-      std::string depths;
-      for (const ShotRange& r : shots) {
-        depths += (depths.empty() ? "" : ";") +
-                  FormatDouble(ShotReferenceDepth(path, r, o.cinematic.reference_depth_u));
-      }
-      track.metadata["reference_depth"] = depths;
+    case HapticModel::kCinematic:
+      MakeCinematicSamples(path, shots, o, &track);
       break;
-    }
     case HapticModel::kSemantic: {
       const std::vector<EffectSegment> segs = o.keyframes_file.empty()
                                                   ? ClassifyEffects(path, o.classifier)
@@ -205,10 +255,11 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
     }
     case HapticModel::kRandom: {
       RandomOptions r;
-      r.seed = o.seed;
+      r.seed = o.seed ? *o.seed : DefaultRandomSeed(read_path);
       r.cutoff_hz = o.random_cutoff_hz;
       CopyPositions(RandomFrames(n, rate, o.seat, r), &track.samples);
-      track.metadata["seed"] = std::to_string(o.seed);
+      track.metadata["seed"] = std::to_string(r.seed);
+      track.metadata["seed_from"] = o.seed ? "option" : "content";
       track.metadata["cutoff_hz"] = FormatDouble(o.random_cutoff_hz);
       break;
     }
@@ -216,16 +267,20 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &track.samples);
   const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &track.samples);
   const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &track.samples);
-  // The high-pass acts on camera signals, i.e. on the cinematic model only.
-  const bool high_pass = o.washout.high_pass && o.model == HapticModel::kCinematic;
-  track.metadata["washout"] = high_pass ? "highpass" : "off";
-  if (high_pass) {
+  // The washout acts on camera motion, i.e. on the cinematic model only.
+  const WashoutMode washout =
+      o.model == HapticModel::kCinematic ? o.washout.mode : WashoutMode::kOff;
+  track.metadata["washout"] = WashoutModeName(washout);
+  if (washout == WashoutMode::kHighPass) {
     track.metadata["washout_tau_s"] = FormatDouble(o.washout.tau_s);
     track.metadata["washout_order"] = std::to_string(o.washout.order);
   }
   track.metadata["max_step_m"] = FormatDouble(o.washout.max_speed_m_s / rate);
   track.metadata["rate_limited_samples"] = std::to_string(limited);
   track.metadata["clamped_samples"] = std::to_string(clamped);
+  const std::vector<ShotConfidence> quality = AssessShotConfidence(read_path, SplitShots(read_path));
+  track.metadata["low_quality_shots"] = std::to_string(
+      std::count_if(quality.begin(), quality.end(), [](const ShotConfidence& c) { return c.low; }));
   LabelSamples(path, shots, effects, &track.samples);
   return track;
 }
@@ -256,6 +311,7 @@ HapticDifference HapticTrackDifference(const HapticTrack& a, const HapticTrack& 
 std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath& reference,
                                                                const CameraPath& other,
                                                                HapticOptions o) {
+  if (!o.seed) o.seed = DefaultRandomSeed(reference);  // one noise for both
   if (o.model == HapticModel::kCinematic && !o.cinematic_scaling) {
     o.Check();
     ValidatePathForHaptics(reference, o.source.empty() ? "reference camera path" : o.source,

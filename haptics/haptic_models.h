@@ -40,7 +40,9 @@ struct HapticOptions {
   HapticModel model = HapticModel::kCinematic;
   SeatGeometry seat;           // geometry, workspace, default rate
   double rate_hz = 0;          // output rate; 0 = seat.rate_hz (100 Hz)
-  uint64_t seed = 1;           // random model
+  // Random model: the noise's seed; unset = DefaultRandomSeed(path), so each
+  // film gets its own noise and the same film always the same.
+  std::optional<uint64_t> seed;
   WashoutOptions washout;      // high-pass, cut ramps, speed limit
   CinematicOptions cinematic;  // reference depth, gain caps, scaling scope
   // Fixed cinematic factors (e.g. computed from another path); when unset
@@ -58,6 +60,10 @@ struct HapticOptions {
 
 HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& options);
 
+// A 64-bit FNV-1a hash of the path's frames (time, centre, rotation, field of
+// view, shot): the random model's seed when none is given.
+uint64_t DefaultRandomSeed(const CameraPath& path);
+
 // Per actuator (indexed by Actuator) RMS and largest distance |a(t) - b(t)|
 // in metres, over the samples of `a` inside the time range of `b` (b is
 // interpolated). num_samples = 0 when the tracks do not overlap.
@@ -69,7 +75,8 @@ struct HapticDifference {
 HapticDifference HapticTrackDifference(const HapticTrack& a, const HapticTrack& b);
 
 // Tracks of `reference` and `other` made with the SAME cinematic scaling
-// (computed from `reference`, unless options already fix it), so that their
+// (computed from `reference`, unless options already fix it) and the same
+// random seed (the reference's when unset), so that their
 // difference measures the camera paths, not two different normalisations.
 std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath& reference,
                                                                const CameraPath& other,

@@ -161,15 +161,26 @@ TEST(HapticModels, FilmStaysInTheWorkspaceAndNeverJumps) {
             << t.metadata.at("rate_limited_samples") << "\n";
   // Without the washout the drift holds at the edge of the usable range but
   // still never leaves it.
-  o.washout.high_pass = false;
+  o.washout.mode = WashoutMode::kOff;
   const HapticTrack raw = MakeHapticTrack(film, o);
   EXPECT_LE(MaxCoord(raw), o.seat.usable_half_m + 1e-12);
   EXPECT_LE(MaxStep(raw), max_step_bound + 1e-15);
   EXPECT_EQ(raw.metadata.at("clamped_samples"), "0");
   EXPECT_NEAR(raw.samples[24900].pos_m[0].x(), o.seat.usable_half_m, 1e-3);
-  // With the (second-order) washout the 25 s drift has returned close to
-  // the centre by the end of the shot instead of being pinned at the edge.
-  EXPECT_LT(std::abs(t.samples[24900].pos_m[0].x()), 0.1 * o.seat.usable_half_m);
+  // The default (adaptive) washout never moves back while the drift goes on:
+  // it holds, and the cut returns it. (It was the second-order high-pass,
+  // which returned to the centre during the drift: a false cue.)
+  for (int i = 1000; i < 24900; i += 100) {
+    EXPECT_GE(t.samples[i].pos_m[0].x(), t.samples[i - 100].pos_m[0].x() - 1e-3) << i;
+  }
+  // It is felt sooner than with scaling alone (a 7 s window's gain)...
+  EXPECT_GT(t.samples[5000].pos_m[0].x(), 2 * raw.samples[5000].pos_m[0].x());
+  // ... and holds near the edge.
+  EXPECT_GT(t.samples[24900].pos_m[0].x(), 0.8 * o.seat.usable_half_m);
+  // The high-pass washout returns close to the centre during the drift.
+  o.washout.mode = WashoutMode::kHighPass;
+  const HapticTrack hp = MakeHapticTrack(film, o);
+  EXPECT_LT(std::abs(hp.samples[24900].pos_m[0].x()), 0.1 * o.seat.usable_half_m);
 }
 
 // 10 s of a pan (3 deg/s) with a sideways drift; frames 100-149 (4-6 s)
@@ -197,7 +208,7 @@ TEST(HapticModels, LostFramesFadeToRestAndResumeWithoutASpike) {
   const CameraPath path = PanWithLostFrames();
   HapticOptions o;
   o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
-  o.washout.high_pass = false;  // a held pose would hold the actuators without it
+  o.washout.mode = WashoutMode::kOff;  // a held pose would hold the actuators without it
   const HapticTrack t = MakeHapticTrack(path, o);
   const double rate = o.OutputRateHz();
   // At rest once the ramp from the last placed frame (3.96 s) is over, until the motion resumes at 6 s.
@@ -308,8 +319,9 @@ TEST(HapticModels, NoAcceptedPathLeavesTheWorkspace) {
       o.model = m;
       o.rate_hz = 200;
       o.cinematic.per_film_scaling = trial % 4 == 0;
-      for (bool washout : {true, false}) {
-        o.washout.high_pass = washout;
+      for (WashoutMode washout :
+           {WashoutMode::kAdaptive, WashoutMode::kHighPass, WashoutMode::kOff}) {
+        o.washout.mode = washout;
         const HapticTrack track = MakeHapticTrack(p, o);
         EXPECT_LE(MaxCoord(track), o.seat.usable_half_m + 1e-12) << trial << " " << track.model;
         EXPECT_EQ(track.metadata.at("clamped_samples"), "0") << trial << " " << track.model;
@@ -364,6 +376,35 @@ TEST(HapticModels, DifferenceOfTracks) {
   EXPECT_EQ(HapticTrackDifference(a, HapticTrack()).num_samples, 0u);
 }
 
+// Each film gets its own noise by default (a content hash), the same film
+// always the same; --seed fixes it.
+TEST(HapticModels, RandomSeedComesFromTheFilmUnlessGiven) {
+  const CameraPath a = MakeEffectPath(CameraEffect::kTraveling);
+  const CameraPath b = MakeEffectPath(CameraEffect::kZoomIn);
+  HapticOptions o;
+  o.model = HapticModel::kRandom;
+  o.rate_hz = 100;
+  const HapticTrack ta = MakeHapticTrack(a, o), ta2 = MakeHapticTrack(a, o);
+  const HapticTrack tb = MakeHapticTrack(b, o);
+  EXPECT_EQ(ta.metadata.at("seed"), std::to_string(DefaultRandomSeed(a)));
+  EXPECT_EQ(ta.metadata.at("seed_from"), "content");
+  EXPECT_NE(DefaultRandomSeed(a), DefaultRandomSeed(b));
+  EXPECT_EQ(ta.samples[300].pos_m[1], ta2.samples[300].pos_m[1]);
+  EXPECT_NE(ta.samples[300].pos_m[1], tb.samples[300].pos_m[1]);
+  CameraPath moved = a;  // one coordinate of one frame changes the noise
+  moved.frames[50].center.x() += 1e-9;
+  EXPECT_NE(DefaultRandomSeed(moved), DefaultRandomSeed(a));
+  o.seed = 7;
+  const HapticTrack fa = MakeHapticTrack(a, o), fb = MakeHapticTrack(b, o);
+  EXPECT_EQ(fa.metadata.at("seed"), "7");
+  EXPECT_EQ(fa.metadata.at("seed_from"), "option");
+  EXPECT_EQ(fa.samples[300].pos_m[1], fb.samples[300].pos_m[1]);
+  // Comparable tracks share one noise (the reference's).
+  o.seed.reset();
+  const auto [ca, cb] = MakeComparableHapticTracks(a, b, o);
+  EXPECT_EQ(ca.samples[300].pos_m[1], cb.samples[300].pos_m[1]);
+}
+
 TEST(HapticModels, ComparableTracksShareTheScaling) {
   // An "estimate" that travels 20 % too far: with its own scaling it would
   // also fill the workspace and look perfect; with the reference's scaling
@@ -372,7 +413,7 @@ TEST(HapticModels, ComparableTracksShareTheScaling) {
   const CameraPath est = MakeEffectPath(CameraEffect::kTraveling, 1.2);
   HapticOptions o;
   o.rate_hz = 1000;  // the sample indices and bounds below are at 1 kHz
-  o.washout.high_pass = false;
+  o.washout.mode = WashoutMode::kOff;
   const HapticDifference own =
       HapticTrackDifference(MakeHapticTrack(ref, o), MakeHapticTrack(est, o));
   EXPECT_LT(own.max_m[0], 1e-9);

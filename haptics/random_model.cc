@@ -29,9 +29,18 @@ void RandomOptions::Check() const {
   if (!(fade_s >= 0 && fade_s <= 60)) throw UsageError("random fade must be in [0, 60] s");
 }
 
+double ZeroPhaseSectionCutoffHz(double cutoff_hz, double rate_hz) {
+  // A bilinear 2nd-order Butterworth with cutoff f0 has
+  // |H(f)|^2 = 1 / (1 + (tan(pi f / fs) / tan(pi f0 / fs))^4). Run forward and
+  // backward the response is |H|^2, which is 1/sqrt(2) (-3 dB) at fc when
+  // (tan(pi fc / fs) / tan(pi f0 / fs))^4 = sqrt(2) - 1.
+  const double ratio = std::pow(std::sqrt(2.0) - 1, 0.25);
+  return rate_hz / kPi * std::atan(std::tan(kPi * cutoff_hz / rate_hz) / ratio);
+}
+
 std::vector<double> ButterworthLowPassZeroPhase(const std::vector<double>& x, double cutoff_hz,
                                                 double rate_hz) {
-  const double w0 = 2 * kPi * cutoff_hz / rate_hz;
+  const double w0 = 2 * kPi * ZeroPhaseSectionCutoffHz(cutoff_hz, rate_hz) / rate_hz;
   const double alpha = std::sin(w0) / (2 * (1 / std::sqrt(2.0)));
   const double c = std::cos(w0);
   const double a0 = 1 + alpha;

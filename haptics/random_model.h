@@ -4,8 +4,10 @@
 //
 // Nine independent channels (3 actuators x 3 axes) of seeded Gaussian white
 // noise at the output rate pass a 2nd-order Butterworth low-pass (bilinear
-// transform, cutoff cutoff_hz) run forward then backward (zero phase, so
-// the effective response is |H|^2: -6 dB at the cutoff, 4th-order roll-off).
+// transform) run forward then backward (zero phase). The combined response
+// |H|^2 is -3 dB at cutoff_hz, the paper's F_c (each pass is designed at
+// ZeroPhaseSectionCutoffHz, 1.25 x higher: one section at the cutoff would
+// put the combined -3 dB at 0.80 x the cutoff); 4th-order roll-off.
 // The result is scaled so that the largest coordinate of the whole track is
 // exactly usable_half_m (the same "use the workspace, never saturate"
 // rule as the cinematic model) and faded in/out over fade_s at both ends so
@@ -30,7 +32,11 @@ struct RandomOptions {
 std::vector<ActuatorFrame> RandomFrames(size_t num_samples, double rate_hz,
                                         const SeatGeometry& seat, const RandomOptions& options);
 
-// Zero-phase 2nd-order Butterworth low-pass, exposed for tests.
+// Cutoff of each pass such that the two together are -3 dB at cutoff_hz
+// (needs cutoff_hz < rate_hz / 2).
+double ZeroPhaseSectionCutoffHz(double cutoff_hz, double rate_hz);
+
+// Zero-phase 2nd-order Butterworth low-pass (-3 dB at cutoff_hz), exposed for tests.
 std::vector<double> ButterworthLowPassZeroPhase(const std::vector<double>& x, double cutoff_hz,
                                                 double rate_hz);
 

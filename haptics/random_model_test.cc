@@ -46,8 +46,16 @@ TEST(RandomModel, ButterworthZeroPhaseResponse) {
     return num / den;  // in-phase gain (zero phase: the full gain)
   };
   EXPECT_NEAR(gain_at(0.05), 1.0, 0.01);
-  EXPECT_NEAR(gain_at(0.5), 0.5, 0.01);     // |H(fc)|^2 = 1/2 for Butterworth
-  EXPECT_LT(std::abs(gain_at(5.0)), 2e-4);  // 4th-order roll-off: (0.1)^4
+  // -3 dB at the stated cutoff, the combined response of both passes (it
+  // was 1/2, -6 dB, when each pass was designed at the cutoff; -3 dB then
+  // fell at 0.40 Hz).
+  EXPECT_NEAR(gain_at(0.5), 1 / std::sqrt(2.0), 0.005);
+  EXPECT_GT(gain_at(0.45), 1 / std::sqrt(2.0) + 0.02);
+  EXPECT_LT(gain_at(0.55), 1 / std::sqrt(2.0) - 0.02);
+  // 4th-order roll-off: 1 / (1 + (f / f0)^4), f0 = 1.25 fc.
+  const double f0 = ZeroPhaseSectionCutoffHz(fc, rate);
+  EXPECT_NEAR(f0 / fc, 1 / std::pow(std::sqrt(2.0) - 1, 0.25), 1e-4);
+  EXPECT_NEAR(gain_at(5.0), 1 / (1 + std::pow(5.0 / f0, 4)), 2e-5);
 }
 
 TEST(RandomModel, MostPowerBelowTheCutoff) {

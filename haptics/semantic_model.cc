@@ -30,6 +30,25 @@ bool IsLinear(CameraEffect e) {
 }
 
 // Whole number of cycles closest to duration / cycle_s (at least one).
+// The crab walk's two hands at progress u in [0, 1] of a segment of
+// duration_s, each in [0, 1]: strokes out and back, each 2 half-steps long
+// ((1 - cos(2 pi v)) / 2, zero velocity at both ends), the hands taking
+// turns one half-step apart, so one hand returns while the other moves out.
+// A whole number of half-steps (>= 2) of about cycle_s / 2; the first
+// half-step moves the leading hand alone and the last returns the last hand
+// alone, so the pattern starts and ends at the centre.
+void CrabWalkSteps(double duration_s, double cycle_s, double u, double* lead, double* trail) {
+  const int half_steps = std::max(2, static_cast<int>(std::lround(2 * duration_s / cycle_s)));
+  const double tau = u * half_steps;  // in half-steps
+  *lead = *trail = 0;
+  for (int k = static_cast<int>(std::floor(tau)) - 1; k <= static_cast<int>(std::floor(tau)); ++k) {
+    if (k < 0 || k > half_steps - 2) continue;
+    const double v = (tau - k) / 2;
+    if (v < 0 || v > 1) continue;
+    (k % 2 == 0 ? *lead : *trail) += (1 - std::cos(2 * kPi * v)) / 2;
+  }
+}
+
 int Cycles(double duration_s, double cycle_s) {
   return std::max(1, static_cast<int>(std::lround(duration_s / cycle_s)));
 }
@@ -111,11 +130,12 @@ ActuatorFrame SemanticPattern(const EffectSegment& seg, double t, const SeatGeom
       break;
     case CameraEffect::kTraveling:
     case CameraEffect::kZoomIn: {
-      // Crab walk: the leading hand (right when moving right) steps out and
-      // comes back while the other one steps, sin^2 bumps half a cycle apart.
-      const double s = std::sin(phase);
-      const double lead = amp * (s > 0 ? s * s : 0);
-      const double trail = amp * (s < 0 ? s * s : 0);
+      // Crab walk (Table 2): the leading hand (right when moving right)
+      // steps out; then it goes back while the other hand steps out; and so on.
+      double lead = 0, trail = 0;
+      CrabWalkSteps(dur, o.cycle_s, u, &lead, &trail);
+      lead *= amp;
+      trail *= amp;
       const int axis = seg.effect == CameraEffect::kTraveling ? 0 : 2;
       const double dir = seg.effect == CameraEffect::kTraveling ? sgn : -sgn;  // forward = -Z
       const int lead_hand = sgn > 0 ? R : L;

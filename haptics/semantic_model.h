@@ -11,14 +11,17 @@
 //   dutch_angle       instability       left hand up while right goes down and
 //                                       vice versa, head sways sideways (boat)
 //   arcing            intensification   linear: all actuators towards G
-//   traveling         crab_walk         right hand steps right and comes back
-//                                       while the left steps right, and so on
+//   traveling         crab_walk         right hand steps right; then it comes
+//                                       back while the left steps right; then
+//                                       the left comes back while the right
+//                                       steps, and so on
 //   tilting           inferiority       linear: all actuators down
 //   zoom_in           walk_forward      the crab walk along -Z (forward)
 //   vertigo           vertigo           linear: all actuators away from G
-// Dynamic patterns (crane, dutch, crab walk, walk forward) use a whole number
-// of cycles of period ~cycle_s and start and end at the centre with zero
-// velocity. Linear patterns hold their end value after end_s and return to
+// Dynamic patterns (crane, dutch) use a whole number of cycles of period
+// ~cycle_s; the crab walk and walk forward a whole number of half-steps of
+// ~cycle_s / 2 (each hand's stroke out and back lasts cycle_s). All start
+// and end at the centre with zero velocity. Linear patterns hold their end value after end_s and return to
 // the centre over release_s (shortened if the next segment starts sooner).
 
 #include <optional>

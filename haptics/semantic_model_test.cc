@@ -93,12 +93,22 @@ TEST(SemanticModel, LinearPatternsTowardsAwayAndDown) {
 }
 
 TEST(SemanticModel, CrabWalkAlternatesAndFollowsTheDirection) {
-  const auto v = Model(CameraEffect::kTraveling);
-  // Right hand steps right while the left rests, then the other way round.
+  const auto v = Model(CameraEffect::kTraveling);  // 1 -> 6 s: 10 half-steps of 0.5 s
+  // The paper's timing (Table 2): the right hand moves right alone first...
   EXPECT_GT(v[At(1.25)][R].x(), 0.02);
   EXPECT_NEAR(v[At(1.25)][L].x(), 0, 1e-12);
+  // ... then it goes back while the left one moves right, and so on.
+  for (double t = 1.55; t < 5.45; t += 0.05) {
+    const double dr = v[At(t + 0.01)][R].x() - v[At(t - 0.01)][R].x();
+    const double dl = v[At(t + 0.01)][L].x() - v[At(t - 0.01)][L].x();
+    const bool turning = std::abs(std::remainder(t - 1.0, 0.5)) < 0.03;  // a hand at rest or at its peak
+    if (!turning) EXPECT_LT(dr * dl, 0) << t;  // one returns while the other steps
+  }
   EXPECT_GT(v[At(1.75)][L].x(), 0.02);
-  EXPECT_NEAR(v[At(1.75)][R].x(), 0, 1e-12);
+  EXPECT_GT(v[At(1.75)][R].x(), 0.02);  // both out, passing each other
+  EXPECT_NEAR(v[At(5.75)][L].x(), 0, 1e-12);  // the last half-step: the right returns alone
+  EXPECT_GT(v[At(5.75)][R].x(), 0.02);
+  for (int a = 0; a < kNumActuators; ++a) EXPECT_NEAR(v[At(6.0)][a].norm(), 0, 1e-12);
   const auto left = Model(CameraEffect::kTraveling, -1);
   EXPECT_LT(left[At(1.25)][L].x(), -0.02);  // mirrored: left hand leads, to the left
   const auto fwd = Model(CameraEffect::kZoomIn);

@@ -2,10 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/error.h"
 
 namespace hapcine {
+
+const char* WashoutModeName(WashoutMode m) {
+  switch (m) {
+    case WashoutMode::kOff:
+      return "off";
+    case WashoutMode::kHighPass:
+      return "highpass";
+    case WashoutMode::kAdaptive:
+      return "adaptive";
+  }
+  return "?";
+}
+
+WashoutMode WashoutModeFromName(const std::string& name) {
+  for (WashoutMode m : {WashoutMode::kOff, WashoutMode::kHighPass, WashoutMode::kAdaptive}) {
+    if (name == WashoutModeName(m)) return m;
+  }
+  throw UsageError("unknown washout '" + name + "' (expected adaptive, highpass or off)");
+}
 
 void WashoutOptions::Check() const {
   if (!(tau_s > 0.05 && tau_s <= 600)) throw UsageError("washout tau_s must be in (0.05, 600]");
@@ -13,6 +33,79 @@ void WashoutOptions::Check() const {
   if (!(cut_ramp_s >= 0 && cut_ramp_s <= 10)) throw UsageError("cut_ramp_s must be in [0, 10]");
   if (!(max_speed_m_s > 0 && max_speed_m_s <= 10)) {
     throw UsageError("max_speed_m_s must be in (0, 10]");
+  }
+  if (!(window_s > 0 && window_s <= 3600)) throw UsageError("window_s must be in (0, 3600]");
+  if (!(min_gain >= 1 && min_gain <= 100)) throw UsageError("min_gain must be in [1, 100]");
+  if (!(return_accel_m_s2 > 0 && return_accel_m_s2 <= 100)) {
+    throw UsageError("return_accel_m_s2 must be in (0, 100]");
+  }
+  if (!(still_fraction >= 0 && still_fraction < 1)) {
+    throw UsageError("still_fraction must be in [0, 1)");
+  }
+}
+
+// A coordinate slower than this is still whatever the shot does (0.1 mm/s).
+constexpr double kStillFloorMS = 1e-4;
+
+double StillSpeed(const std::vector<double>& t, const std::vector<ActuatorFrame>& f,
+                  double still_fraction) {
+  double peak = 0;
+  for (size_t i = 1; i < f.size(); ++i) {
+    const double dt = t[i] - t[i - 1];
+    for (int a = 0; a < kNumActuators; ++a) {
+      peak = std::max(peak, (f[i][a] - f[i - 1][a]).cwiseAbs().maxCoeff() / dt);
+    }
+  }
+  return std::max(kStillFloorMS, still_fraction * peak);
+}
+
+double PeakCoordinate(const std::vector<ActuatorFrame>& f) {
+  double peak = 0;
+  for (const ActuatorFrame& v : f) {
+    for (const auto& p : v) peak = std::max(peak, p.cwiseAbs().maxCoeff());
+  }
+  return peak;
+}
+
+double LargestWindowRange(const std::vector<double>& t, const std::vector<ActuatorFrame>& f,
+                          double window_s) {
+  double largest = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    ActuatorFrame lo = f[i], hi = f[i];
+    for (size_t j = i + 1; j < f.size() && t[j] - t[i] <= window_s; ++j) {
+      for (int a = 0; a < kNumActuators; ++a) {
+        lo[a] = lo[a].cwiseMin(f[j][a]);
+        hi[a] = hi[a].cwiseMax(f[j][a]);
+      }
+    }
+    for (int a = 0; a < kNumActuators; ++a) largest = std::max(largest, (hi[a] - lo[a]).maxCoeff());
+  }
+  return largest;
+}
+
+void ApplyReturnToCentre(const std::vector<double>& t, double still_speed, double tau_s,
+                         double accel_m_s2, std::vector<ActuatorFrame>* frames) {
+  auto& f = *frames;
+  if (f.empty()) return;
+  ActuatorFrame prev_in = f[0];
+  ActuatorFrame ret;  // return speed per coordinate, m/s, towards -sign(p)
+  for (auto& r : ret) r.setZero();
+  for (size_t i = 1; i < f.size(); ++i) {
+    const double dt = t[i] - t[i - 1];
+    for (int a = 0; a < kNumActuators; ++a) {
+      for (int k = 0; k < 3; ++k) {
+        const double in_speed = (f[i][a][k] - prev_in[a][k]) / dt;
+        const double out_prev = f[i - 1][a][k];
+        double& r = ret[a][k];
+        const double step = accel_m_s2 * dt;
+        r += std::clamp(out_prev / tau_s - r, -step, step);
+        // Never against a moving coordinate: at most cancel its motion.
+        if (in_speed > still_speed) r = std::min(r, in_speed);
+        if (in_speed < -still_speed) r = std::max(r, in_speed);
+        prev_in[a][k] = f[i][a][k];
+        f[i][a][k] = out_prev + (in_speed - r) * dt;
+      }
+    }
   }
 }
 

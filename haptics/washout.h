@@ -1,16 +1,26 @@
 #pragma once
-// Keeping a whole film inside the actuators' workspaces, as motion
-// simulators do ("classical washout"):
-//  1. High-pass: camera signals pass two cascaded first-order high-passes
-//     (order 2, the default; order 1 = one section) with time constant
-//     tau_s before the model scales them, so sustained offsets (a camera
-//     that moved and then stopped, a long traveling) decay back to the
-//     centre. Order 2: a held offset decays as (1 - t/tau) exp(-t/tau)
-//     (a 13.5 % undershoot at 2 tau), a constant camera velocity v gives
-//     v t exp(-t/tau): it peaks at t = tau and returns to 0. Order 1: a held
-//     offset decays as exp(-t/tau) but a constant velocity leaves a plateau
-//     v*tau. The onset of every movement, which is what the body perceives,
-//     passes unchanged.
+// Keeping a whole film inside the actuators' workspaces without false cues.
+//  1. Washout, one of three modes:
+//     - adaptive (the default): a shot that the per-shot scaling fits
+//       without giving up more than half of its gain (its motion over the
+//       whole shot is less than twice its largest motion within any
+//       window_s) gets no washout at all: Equations 2-6 with the paper's
+//       per-shot scaling. A longer drift gets the gain its window_s motion
+//       deserves and a return to centre in actuator space
+//       (ApplyReturnToCentre): a return speed that follows the distance to
+//       the centre (time constant chosen per shot, the slowest that fits),
+//       changes with an acceleration below the vestibular threshold
+//       (return_accel_m_s2), and never opposes a coordinate that is moving:
+//       it returns in still moments and at cuts only.
+//     - highpass (the classical washout of motion simulators; it gives
+//       false cues: a camera that keeps moving one way is felt going back):
+//       the camera signals pass two cascaded first-order high-passes
+//       (order 2; order 1 = one section) with time constant tau_s before
+//       the model scales them. Order 2: a held offset decays as
+//       (1 - t/tau) exp(-t/tau), a constant camera velocity v gives
+//       v t exp(-t/tau): it peaks at t = tau and returns to 0 while the
+//       camera still moves. Order 1 leaves a plateau v*tau.
+//     - off: Equations 2-6 with the per-shot scaling, whatever the shot.
 //  2. Cut transitions: at a shot cut the output crossfades from the value
 //     held at the end of the previous shot to the new shot's signal over
 //     cut_ramp_s with a C2 "smootherstep" weight: a convex combination, so it
@@ -24,6 +34,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <string>
 #include <vector>
 
 #include "core/haptic_track.h"
@@ -32,12 +43,28 @@ namespace hapcine {
 
 using ActuatorFrame = std::array<Eigen::Vector3d, kNumActuators>;
 
+enum class WashoutMode { kOff, kHighPass, kAdaptive };
+const char* WashoutModeName(WashoutMode m);  // "off", "highpass", "adaptive"
+WashoutMode WashoutModeFromName(const std::string& name);  // throws UsageError
+
 struct WashoutOptions {
-  bool high_pass = true;       // step 1 (--no-washout turns it off)
+  WashoutMode mode = WashoutMode::kAdaptive;  // step 1 (--no-washout = kOff)
+  // highpass mode:
   double tau_s = 4.0;          // high-pass time constant, seconds
   int order = 2;               // 1 or 2 cascaded first-order sections
+  // adaptive mode:
+  double window_s = 7.0;       // span scaling alone fits (the paper's clip length)
+  double min_gain = 2.0;       // washout only where it at least doubles a shot's gain
+  // Largest acceleration of the return: below the 0.01 m/s^2 that
+  // Richerson et al. 2006 (J NeuroEng Rehabil 3:2) found for detecting
+  // 2-16 mm whole-body displacements, and the 0.057 m/s^2 of Benson et al.
+  // 1986 (Aviat Space Environ Med 57:1088) for 3 s horizontal movements.
+  double return_accel_m_s2 = 0.01;
+  // A coordinate slower than this fraction of the shot's fastest one is still.
+  double still_fraction = 0.02;
   double cut_ramp_s = 0.5;     // crossfade at a shot cut, seconds
   double max_speed_m_s = 0.5;  // per-coordinate speed limit
+  bool HighPass() const { return mode == WashoutMode::kHighPass; }
   void Check() const;          // throws UsageError
 };
 
@@ -47,6 +74,25 @@ struct WashoutOptions {
 // reference: y[0] = 0 (the signals are relative to the shot start anyway).
 void HighPassInPlace(const std::vector<double>& time_s, std::vector<double>* x, double tau_s,
                      int order);
+
+// Adaptive mode. The speed below which a coordinate of these frames counts
+// as still: still_fraction of the fastest coordinate, at least 0.1 mm/s.
+double StillSpeed(const std::vector<double>& time_s, const std::vector<ActuatorFrame>& frames,
+                  double still_fraction);
+
+// Largest |coordinate| over the frames, and the largest range (max - min)
+// of one coordinate within any window of window_s seconds.
+double PeakCoordinate(const std::vector<ActuatorFrame>& frames);
+double LargestWindowRange(const std::vector<double>& time_s,
+                          const std::vector<ActuatorFrame>& frames, double window_s);
+
+// Return to centre, per coordinate, in place: p_n = p_{n-1} + (f_n - f_{n-1})
+// - r_n dt, the return speed r heading for p / tau_s, changing by at most
+// accel_m_s2 * dt per frame, and never larger than the coordinate's own
+// speed against it while the coordinate moves (faster than still_speed): so
+// the output never moves against the input, and returns where it is still.
+void ApplyReturnToCentre(const std::vector<double>& time_s, double still_speed, double tau_s,
+                         double accel_m_s2, std::vector<ActuatorFrame>* frames);
 
 // C2 smooth step 6u^5 - 15u^4 + 10u^3 on [0, 1], clamped outside.
 double SmootherStep(double u);
