@@ -410,7 +410,7 @@ PlatformTrack MakePlatformTrack(const CameraPath& path, const PlatformConfig& cf
   CinematicOptions copt;
   copt.reference_depth_u = o.reference_depth_u;
   WashoutOptions wopt;
-  wopt.high_pass = false;  // the returns below replace the linear high-pass
+  wopt.mode = WashoutMode::kOff;  // the returns below replace the washout
   wopt.cut_ramp_s = cfg.cueing.cut_ramp_s;
   const CueGrid grid = SampleSignals(path, shots, CinematicShotSignals(path, shots, copt, wopt), rate);
   std::vector<PlatformShotScale> scales(shots.size());
