@@ -24,6 +24,13 @@ int MetaInt(const std::map<std::string, std::string>& m, const char* key) {
   return it == m.end() ? 0 : std::atoi(it->second.c_str());
 }
 
+// The one int OptionalInt cannot hold is "out of range", like any other.
+int ShotValue(CsvReader& csv, const std::vector<std::string>& f, int column) {
+  const int shot = csv.Int(f, column, "shot");
+  if (shot == OptionalInt::kEmpty) csv.Fail("shot " + f[column] + " out of range");
+  return shot;
+}
+
 }  // namespace
 
 int CameraPath::width() const { return MetaInt(metadata, "width"); }
@@ -79,7 +86,7 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
                                            csv.Double(f, 7, "qy"), csv.Double(f, 8, "qz"));
     fr.fov_deg = csv.Double(f, 9, "fov_deg");
     if (c_focal >= 0 && !f[c_focal].empty()) fr.focal_px = csv.Double(f, c_focal, "focal_px");
-    if (c_shot >= 0 && !f[c_shot].empty()) fr.shot = csv.Int(f, c_shot, "shot");
+    if (c_shot >= 0 && !f[c_shot].empty()) fr.shot = ShotValue(csv, f, c_shot);
     if (c_model >= 0 && !f[c_model].empty() && !models.Make(f[c_model], &fr.model)) {
       csv.Fail("too many distinct values in column 'model'");
     }
@@ -90,7 +97,6 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
       if (fr.time_s <= path.frames.back().time_s) csv.Fail("time_s is not increasing");
       if (fr.frame <= path.frames.back().frame) csv.Fail("frame is not increasing");
     }
-    fr.world_from_cam = CanonicalQuaternion(fr.world_from_cam);
     path.frames.push_back(std::move(fr));
   }
   if (path.frames.empty()) csv.Fail("no data rows");
@@ -123,13 +129,13 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
   if (any_conf) out << ",confidence";
   out << "\n";
   for (const auto& fr : path.frames) {
-    const Eigen::Quaterniond q = CanonicalQuaternion(fr.world_from_cam);
+    const Eigen::Quaterniond q = fr.world_from_cam;  // unit, qw >= 0 as stored
     const PanTiltRoll a = PanTiltRollFromQuaternion(q);
     out << fr.frame << ',' << FormatFixed(fr.time_s, 6) << ',' << FormatDouble(fr.center.x())
         << ',' << FormatDouble(fr.center.y()) << ',' << FormatDouble(fr.center.z()) << ','
         << FormatDouble(q.w()) << ',' << FormatDouble(q.x()) << ',' << FormatDouble(q.y())
-        << ',' << FormatDouble(q.z()) << ',' << FormatDouble(fr.fov_deg);
-    if (any_focal) out << ',' << (fr.focal_px ? FormatDouble(*fr.focal_px) : "");
+        << ',' << FormatDouble(q.z()) << ',' << FormatFloat(fr.fov_deg.raw());
+    if (any_focal) out << ',' << (fr.focal_px ? FormatFloat((*fr.focal_px).raw()) : "");
     out << ',' << FormatFixed(a.pan_deg, 6) << ',' << FormatFixed(a.tilt_deg, 6) << ','
         << FormatFixed(a.roll_deg, 6);
     if (any_shot) out << ',' << (fr.shot ? std::to_string(*fr.shot) : "");
