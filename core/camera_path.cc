@@ -24,13 +24,6 @@ int MetaInt(const std::map<std::string, std::string>& m, const char* key) {
   return it == m.end() ? 0 : std::atoi(it->second.c_str());
 }
 
-// The one int OptionalInt cannot hold is "out of range", like any other.
-int ShotValue(CsvReader& csv, const std::vector<std::string>& f, int column) {
-  const int shot = csv.Int(f, column, "shot");
-  if (shot == OptionalInt::kEmpty) csv.Fail("shot " + f[column] + " out of range");
-  return shot;
-}
-
 }  // namespace
 
 int CameraPath::width() const { return MetaInt(metadata, "width"); }
@@ -86,7 +79,7 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
                                            csv.Double(f, 7, "qy"), csv.Double(f, 8, "qz"));
     fr.fov_deg = csv.Double(f, 9, "fov_deg");
     if (c_focal >= 0 && !f[c_focal].empty()) fr.focal_px = csv.Double(f, c_focal, "focal_px");
-    if (c_shot >= 0 && !f[c_shot].empty()) fr.shot = ShotValue(csv, f, c_shot);
+    if (c_shot >= 0 && !f[c_shot].empty()) fr.shot = csv.Int(f, c_shot, "shot");
     if (c_model >= 0 && !f[c_model].empty() && !models.Make(f[c_model], &fr.model)) {
       csv.Fail("too many distinct values in column 'model'");
     }

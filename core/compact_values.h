@@ -91,8 +91,8 @@ class OptionalFloat {
 };
 
 // std::optional<int> in 4 bytes: INT32_MIN means "no value", so that one
-// integer cannot be held (assigning it throws std::out_of_range; the readers
-// report it as out of range).
+// integer cannot be held (assigning it throws std::out_of_range; the CSV
+// readers already refuse it as "not an integer").
 class OptionalInt {
  public:
   static constexpr int32_t kEmpty = std::numeric_limits<int32_t>::min();

@@ -31,7 +31,7 @@ TEST(InsertSkippedFrames, BetweenNeighboursOfOneShot) {
   for (int i = 0; i < 4; ++i) EXPECT_EQ(path.frames[i].frame, i);
   const CameraFrame& f = path.frames[1];  // a third of the way
   EXPECT_NEAR(f.time_s, 1 / 24.0, 1e-15);
-  EXPECT_NEAR(Eigen::AngleAxisd(f.world_from_cam).angle(), 0.1, 1e-12);
+  EXPECT_NEAR(Eigen::AngleAxisd(f.world_from_cam.quaternion()).angle(), 0.1, 1e-12);
   EXPECT_NEAR(f.center.x(), 1.0, 1e-12);
   EXPECT_NEAR(*f.focal_px, 1100, 1e-9);  // geometric: 1000 * 1.1
   EXPECT_NEAR(f.fov_deg, FovDegFromFocalPx(1100, 1000), 1e-9);
@@ -97,7 +97,7 @@ TEST(InsertSkippedFrames, FieldOfViewOnlyPathsAndEqualTimes) {
   ASSERT_EQ(path.frames.size(), 3u);
   EXPECT_FALSE(path.frames[1].focal_px);
   EXPECT_NEAR(path.frames[1].fov_deg, path.frames[0].fov_deg, 1e-9);
-  EXPECT_NEAR(Eigen::AngleAxisd(path.frames[1].world_from_cam).angle(), 0.1, 1e-12);  // halfway
+  EXPECT_NEAR(Eigen::AngleAxisd(path.frames[1].world_from_cam.quaternion()).angle(), 0.1, 1e-12);  // halfway
 }
 
 }  // namespace
