@@ -112,7 +112,7 @@ TEST(SynthPresets, MagnitudesAndFraming) {
   auto z = frames("zoom_in");
   EXPECT_NEAR(z.front().fov_deg, 60, 1e-12);
   EXPECT_NEAR(z.back().fov_deg, 30, 1e-12);
-  EXPECT_NEAR(*z.back().focal_px, 1280 / (2 * std::tan(DegToRad(15))), 1e-9);
+  EXPECT_FLOAT_EQ(*z.back().focal_px, 1280 / (2 * std::tan(DegToRad(15))));  // held as a float
   auto d = frames("dutch_angle");
   EXPECT_NEAR(P(d.back()).roll, 20, 1e-9);
   auto tl = frames("tilting");
