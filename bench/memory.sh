@@ -10,22 +10,24 @@
 # The inputs come from bench/long_camera_path.py. Runs alone (a few minutes);
 # bench/run.sh does not run it.
 #
-#   bash bench/memory.sh [--quick] [--out DIR] [--build DIR] [--hapcine EXE]
+#   bash bench/memory.sh [--quick] [--camera-path] [--out DIR] [--build DIR] [--hapcine EXE]
 #     --quick        a 10-minute film and 1 M-row paths (checks the script)
+#     --camera-path  only the two camera-path reader rows (after a change to CameraFrame)
 #     --out DIR      inputs, outputs and memory.md (default /tmp/hapcine-memory[-quick])
 #     --build DIR    build folder (default build); hapcine and hapcine_read_bench
 #                    are built there if needed
 #     --hapcine EXE  measure this hapcine instead (e.g. an older build, for a comparison)
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-MODE=full OUT="" BUILD="$ROOT/build" HC=""
+MODE=full ONLY_CAMERA=0 OUT="" BUILD="$ROOT/build" HC=""
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) MODE=quick ;;
     --out) OUT=$2; shift ;;
     --build) BUILD=$2; shift ;;
     --hapcine) HC=$2; shift ;;
-    -h|--help) sed -n 2,19p "$0"; exit 0 ;;
+    --camera-path) ONLY_CAMERA=1 ;;
+    -h|--help) sed -n 2,20p "$0"; exit 0 ;;
     *) echo "memory.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -42,7 +44,7 @@ GEN="python3 $ROOT/bench/long_camera_path.py"
 film="$OUT/film-${FILM_S}s.camera.csv"
 full="$OUT/full-${BIG_ROWS}.camera.csv"     # as hapcine writes it: every column
 minimal="$OUT/minimal-${BIG_ROWS}.camera.csv"
-[ -f "$film" ] || $GEN "$FILM_S" 24 "$film"
+[ -f "$film" ] || [ $ONLY_CAMERA = 1 ] || $GEN "$FILM_S" 24 "$film"
 # A fifth of the rows in full: about the size of the minimal file.
 [ -f "$full" ] || $GEN "$(awk "BEGIN{print $BIG_ROWS / 5 / 24}")" 24 "$full"
 [ -f "$minimal" ] || $GEN "$(awk "BEGIN{print $BIG_ROWS / 24}")" 24 "$minimal" --minimal
@@ -66,16 +68,18 @@ measure() {
              k * 1024 / 1e6, k * 1024 / b, rc }' >>"$table"
   echo "[$(date +%H:%M:%S)] $label: rc $rc, ${wall} s, $((rss_kb * 1024 / 1000000)) MB peak RSS"
 }
-measure "haptics --hjif (cinematic)" "$film" -- \
-  "$HC" haptics "$film" -o "$OUT/film.haptic.csv" --hjif "$OUT/film.hjif"
-measure "haptics (cinematic, no --hjif)" "$film" -- "$HC" haptics "$film" -o "$OUT/film.haptic.csv"
-measure "haptic-track reader" "$OUT/film.haptic.csv" -- "$READ" haptic "$OUT/film.haptic.csv"
+if [ $ONLY_CAMERA = 0 ]; then
+  measure "haptics --hjif (cinematic)" "$film" -- \
+    "$HC" haptics "$film" -o "$OUT/film.haptic.csv" --hjif "$OUT/film.hjif"
+  measure "haptics (cinematic, no --hjif)" "$film" -- "$HC" haptics "$film" -o "$OUT/film.haptic.csv"
+  measure "haptic-track reader" "$OUT/film.haptic.csv" -- "$READ" haptic "$OUT/film.haptic.csv"
+fi
 measure "camera-path reader" "$full" -- "$READ" camera "$full"
 measure "camera-path reader, minimal rows" "$minimal" -- "$READ" camera "$minimal"
-measure "convert --to-tum" "$full" -- "$HC" convert "$full" --to-tum "$OUT/full.tum.txt"
+[ $ONLY_CAMERA = 1 ] || measure "convert --to-tum" "$full" -- "$HC" convert "$full" --to-tum "$OUT/full.tum.txt"
 {
   echo
-  echo "command: \`bash bench/memory.sh$([ $MODE = quick ] && echo " --quick")\`, $(date -u '+%Y-%m-%d %H:%M UTC'),"
+  echo "command: \`bash bench/memory.sh$([ $MODE = quick ] && echo " --quick")$([ $ONLY_CAMERA = 1 ] && echo " --camera-path")\`, $(date -u '+%Y-%m-%d %H:%M UTC'),"
   echo "hapcine $("$HC" --version 2>/dev/null | head -n 1) commit $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null)," \
        "$(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 } >>"$table"

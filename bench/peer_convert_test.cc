@@ -68,7 +68,7 @@ TEST(InterpolateFrames, MidpointOfRotationAndFocal) {
   b.world_from_cam = QuaternionFromPanTiltRoll({20, 0, 0});
   const CameraFrame m = InterpolateFrames(a, b, 0.5);
   EXPECT_NEAR(*m.focal_px, 1000, 1e-9);
-  EXPECT_NEAR(m.fov_deg, FovDegFromFocalPx(1000, 640), 1e-9);
+  EXPECT_FLOAT_EQ(m.fov_deg, FovDegFromFocalPx(1000, 640));  // held as a float
   EXPECT_NEAR(PanTiltRollFromQuaternion(m.world_from_cam).pan_deg, 10, 1e-9);
   EXPECT_NEAR(m.time_s, 0.5, 1e-12);
 }

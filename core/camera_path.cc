@@ -69,6 +69,7 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
   CameraPath path;
   path.metadata = csv.metadata();
   TryReserve(&path.frames, rows);
+  if (c_source >= 0) TryReserve(&path.source_frames, rows);
   RecentName models;
   std::vector<std::string> f;
   while (csv.NextRow(&f)) {
@@ -85,14 +86,15 @@ CameraPath ReadCameraPath(std::istream& in, const std::string& source_name) {
       csv.Fail("too many distinct values in column 'model'");
     }
     if (c_conf >= 0 && !f[c_conf].empty()) fr.confidence = csv.Double(f, c_conf, "confidence");
-    if (c_source >= 0 && !f[c_source].empty()) fr.source_frame = csv.Int(f, c_source, "source_frame");
+    if (c_source >= 0)
+      path.source_frames.push_back(f[c_source].empty() ? OptionalInt()
+                                                       : OptionalInt(csv.Int(f, c_source, "source_frame")));
     const std::string bad = ValidateCameraFrame(fr);
     if (!bad.empty()) csv.Fail(bad);
     if (!path.frames.empty()) {
       if (fr.time_s <= path.frames.back().time_s) csv.Fail("time_s is not increasing");
       if (fr.frame <= path.frames.back().frame) csv.Fail("frame is not increasing");
     }
-    fr.world_from_cam = CanonicalQuaternion(fr.world_from_cam);
     path.frames.push_back(std::move(fr));
   }
   if (path.frames.empty()) csv.Fail("no data rows");
@@ -105,7 +107,12 @@ CameraPath ReadCameraPathFile(const std::string& file) {
 }
 
 void WriteCameraPath(const CameraPath& path, std::ostream& out) {
+  if (!path.source_frames.empty() && path.source_frames.size() != path.frames.size()) {
+    throw Error("camera path", std::to_string(path.source_frames.size()) + " source frame numbers for " +
+                                   std::to_string(path.frames.size()) + " frames");
+  }
   bool any_focal = false, any_shot = false, any_model = false, any_conf = false, any_source = false;
+  for (const OptionalInt& n : path.source_frames) any_source |= n.has_value();
   for (const auto& fr : path.frames) {
     const std::string bad = ValidateCameraFrame(fr);
     if (!bad.empty()) {
@@ -115,7 +122,6 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
     any_shot |= fr.shot.has_value();
     any_model |= fr.model.has_value();
     any_conf |= fr.confidence.has_value();
-    any_source |= fr.source_frame.has_value();
   }
   for (const auto& [key, value] : path.metadata) WriteHeaderLine(out, key, value);
   out << "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg";
@@ -126,20 +132,21 @@ void WriteCameraPath(const CameraPath& path, std::ostream& out) {
   if (any_conf) out << ",confidence";
   if (any_source) out << ",source_frame";
   out << "\n";
-  for (const auto& fr : path.frames) {
-    const Eigen::Quaterniond q = CanonicalQuaternion(fr.world_from_cam);
+  for (size_t i = 0; i < path.frames.size(); ++i) {
+    const CameraFrame& fr = path.frames[i];
+    const Eigen::Quaterniond q = fr.world_from_cam;  // unit, qw >= 0 as stored
     const PanTiltRoll a = PanTiltRollFromQuaternion(q);
     out << fr.frame << ',' << FormatFixed(fr.time_s, 6) << ',' << FormatDouble(fr.center.x())
         << ',' << FormatDouble(fr.center.y()) << ',' << FormatDouble(fr.center.z()) << ','
         << FormatDouble(q.w()) << ',' << FormatDouble(q.x()) << ',' << FormatDouble(q.y())
-        << ',' << FormatDouble(q.z()) << ',' << FormatDouble(fr.fov_deg);
-    if (any_focal) out << ',' << (fr.focal_px ? FormatDouble(*fr.focal_px) : "");
+        << ',' << FormatDouble(q.z()) << ',' << FormatFloat(fr.fov_deg.raw());
+    if (any_focal) out << ',' << (fr.focal_px ? FormatFloat((*fr.focal_px).raw()) : "");
     out << ',' << FormatFixed(a.pan_deg, 6) << ',' << FormatFixed(a.tilt_deg, 6) << ','
         << FormatFixed(a.roll_deg, 6);
     if (any_shot) out << ',' << (fr.shot ? std::to_string(*fr.shot) : "");
     if (any_model) out << ',' << fr.model.value_or("");
     if (any_conf) out << ',' << (fr.confidence ? FormatFixed(*fr.confidence, 4) : "");
-    if (any_source) out << ',' << (fr.source_frame ? std::to_string(*fr.source_frame) : "");
+    if (any_source) out << ',' << (path.source_frames[i] ? std::to_string(*path.source_frames[i]) : "");
     out << '\n';
   }
 }

@@ -12,25 +12,35 @@
 #include <string>
 #include <vector>
 
+#include "core/compact_values.h"
 #include "core/optional_name.h"
 
 namespace hapcine {
 
-// Small fields first: the frame packs into 128 bytes (a 10-million-row path
-// is held in memory by the readers of it).
+// A frame is held in 80 bytes (128 with plain doubles, std::optional and an
+// aligned Eigen quaternion): readers hold a whole path, up to 10 million rows,
+// and must peak under twice the file's size; the shortest valid row is about
+// 42 bytes (docs/benchmarks.md, "Memory of the readers"). Doubles where the
+// digits matter (time, centre); the rotation as its three smallest quaternion
+// coefficients (exact to 1e-16); the intrinsics and confidence at single
+// precision (files print them as the shortest text of that float, which reads
+// back to the same value); compact optionals (core/compact_values.h).
 struct CameraFrame {
-  int frame = 0;        // 0-based decoded frame index
-  std::optional<int> shot;  // optional column
-  OptionalName model;   // optional column: static, zoom, rotation, rotation+zoom, general
   double time_s = 0;    // presentation time, seconds
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // camera centre c in world
-  Eigen::Quaterniond world_from_cam = Eigen::Quaterniond::Identity();
-  double fov_deg = 0;   // horizontal field of view of the decoded frame
-  // Optional columns (written when set; also shot and model above).
-  std::optional<double> focal_px;
-  std::optional<double> confidence;  // [0, 1]
-  std::optional<int> source_frame;   // optional column: the image's number in its file name
+  CompactQuaternion world_from_cam;  // identity; reads as an Eigen::Quaterniond
+  StoredFloat fov_deg;  // horizontal field of view of the decoded frame (0 until set)
+  // Optional columns (written when set).
+  OptionalFloat focal_px;
+  OptionalFloat confidence;  // [0, 1]
+  int frame = 0;        // 0-based decoded frame index
+  OptionalInt shot;     // holds any int but INT32_MIN
+  OptionalName model;   // static, zoom, rotation, rotation+zoom, general, lost
 };
+// Why 80: the reader's peak is the frames plus a few MB, and the benchmark's
+// minimal rows (`frame,time,0,0,z,1,0,0,0,60`) are 42 bytes, so 80 keeps it
+// under twice the file (bench/memory.sh).
+static_assert(sizeof(CameraFrame) <= 80, "a camera frame must stay within 80 bytes");
 
 // The `model` of a frame the estimator could not place (docs/formats.md): its
 // pose is a placeholder (the last placed pose), its confidence 0; readers must
@@ -42,6 +52,10 @@ struct CameraPath {
   // "# key=value" lines; width, height, fps are the conventional keys.
   std::map<std::string, std::string> metadata;
   std::vector<CameraFrame> frames;
+  // The optional `source_frame` column (an image sequence's number of each
+  // frame's image): empty when absent, else one per frame (unset: an empty
+  // cell). Kept beside the frames, not in them: a frame's 80 bytes are spent.
+  std::vector<OptionalInt> source_frames;
 
   // Convenience accessors for metadata (0 when missing or malformed).
   int width() const;

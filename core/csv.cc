@@ -88,6 +88,15 @@ std::string FormatDouble(double v) {
   return buf;
 }
 
+std::string FormatFloat(float v) {
+  char buf[64];
+  for (int precision = 6; precision <= 9; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (static_cast<float>(std::strtod(buf, nullptr)) == v) break;
+  }
+  return buf;
+}
+
 std::string FormatFixed(double v, int decimals) {
   // Sized by snprintf itself: a value the readers accept (1e100) has over a
   // hundred digits in fixed notation, and a cut number would read back wrong.

@@ -55,6 +55,9 @@ std::string QuoteCsvField(const std::string& field);
 std::string JoinCsvLine(const std::vector<std::string>& fields);
 // Shortest text that reads back to the same double ("%.17g" trimmed).
 std::string FormatDouble(double v);
+// Shortest text that reads back (strtod, then rounded to float, as the
+// readers do) to the same float: for values held at single precision.
+std::string FormatFloat(float v);
 // Fixed decimals; used for columns with a natural resolution (times, metres).
 std::string FormatFixed(double v, int decimals);
 

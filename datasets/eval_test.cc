@@ -85,19 +85,19 @@ TEST(EvalTest, UniformFocalScaleGivesFovErrorButNoZoomRatioError) {
   CameraPath est = gt;
   double expect_max = 0, expect_sum = 0, expect_pct_max = 0;
   for (auto& f : est.frames) {
-    const double fov = FovFromFocalScale(f.fov_deg, 1.1);
-    const double err = std::abs(fov - f.fov_deg);
+    const double gt_fov = f.fov_deg;
+    f.fov_deg = FovFromFocalScale(gt_fov, 1.1);  // held as a float: the error is of that float
+    const double err = std::abs(f.fov_deg - gt_fov);
     expect_max = std::max(expect_max, err);
-    expect_pct_max = std::max(expect_pct_max, 100 * err / f.fov_deg);
+    expect_pct_max = std::max(expect_pct_max, 100 * err / gt_fov);
     expect_sum += err;
-    f.fov_deg = fov;
   }
   const EvalReport r = EvaluateCameraPaths(gt, est, {});
   EXPECT_GT(r.overall.fov_deg.mean, 3.0);  // ~5 degrees at 60 degrees FOV
   EXPECT_NEAR(r.overall.fov_deg.mean, expect_sum / 40, 1e-9);
   EXPECT_NEAR(r.overall.fov_deg.max, expect_max, 1e-9);
   EXPECT_NEAR(r.overall.fov_percent.max, expect_pct_max, 1e-9);
-  EXPECT_NEAR(r.overall.zoom_ratio_percent.max, 0, 1e-9);
+  EXPECT_NEAR(r.overall.zoom_ratio_percent.max, 0, 1e-4);  // float FOVs: ratios within ~1e-7
 }
 
 TEST(EvalTest, ProgressiveFocalScaleGivesZoomRatioError) {
@@ -108,9 +108,10 @@ TEST(EvalTest, ProgressiveFocalScaleGivesZoomRatioError) {
   }
   const EvalReport r = EvaluateCameraPaths(gt, est, {});
   // Frame i's zoom ratio is off by i %: max 20 %, mean 10 %.
-  EXPECT_NEAR(r.overall.zoom_ratio_percent.max, 20.0, 1e-6);
-  EXPECT_NEAR(r.overall.zoom_ratio_percent.mean, 10.0, 1e-6);
-  EXPECT_NEAR(r.per_frame[7].zoom_ratio_percent, 7.0, 1e-6);
+  // Within 1e-4 %: the FOVs are held as floats (~1e-7 of their value).
+  EXPECT_NEAR(r.overall.zoom_ratio_percent.max, 20.0, 1e-4);
+  EXPECT_NEAR(r.overall.zoom_ratio_percent.mean, 10.0, 1e-4);
+  EXPECT_NEAR(r.per_frame[7].zoom_ratio_percent, 7.0, 1e-4);
 }
 
 TEST(EvalTest, FocalColumnIsUsedWhenPresent) {

@@ -247,9 +247,11 @@ CameraPath EstimateCameraPath(FrameSource& source, const EstimatorOptions& optio
   if (path.frames.empty()) throw Error(info.path, "no frames could be decoded");
   AddMetadata(source, options, &path);
   // Image sequences keep each image's number (docs/formats.md, `source_frame`).
-  for (CameraFrame& f : path.frames)
-    if (f.frame >= 0 && f.frame < static_cast<int>(info.source_frames.size()))
-      f.source_frame = info.source_frames[f.frame];
+  if (!info.source_frames.empty())
+    for (const CameraFrame& f : path.frames)
+      path.source_frames.push_back(f.frame >= 0 && f.frame < static_cast<int>(info.source_frames.size())
+                                       ? OptionalInt(info.source_frames[f.frame])
+                                       : OptionalInt());
   // Kept in the path's header, so the file itself says what the decoder lost.
   std::string warnings;
   for (const std::string& w : source.Warnings()) warnings += (warnings.empty() ? "" : "; ") + w;

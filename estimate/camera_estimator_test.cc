@@ -118,7 +118,7 @@ TEST(EstimateCameraPath, StillsAreNotSmoothed) {
   EXPECT_EQ(unsmoothed.metadata.at("smooth_sigma_frames"), "0");
   ASSERT_EQ(unsmoothed.frames.size(), 12u);
   EXPECT_EQ(unsmoothed.frames.back().shot, 0);
-  EXPECT_GT(Eigen::AngleAxisd(unsmoothed.frames.back().world_from_cam).angle(), 0.0);
+  EXPECT_GT(Eigen::AngleAxisd(unsmoothed.frames.back().world_from_cam.quaternion()).angle(), 0.0);
 }
 
 // PanSource as a decoder that skipped every other frame (--skip-nonref):

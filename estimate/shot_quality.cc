@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/csv.h"
 #include "core/statistics.h"
 #include "estimate/geometry/reference_width.h"
 
@@ -29,6 +30,13 @@ struct WindowTally {
   long observations = 0;
   bool focal_observable = false;
 };
+
+// The frame's confidence as its file states it (a float held value, read as
+// the double of its shortest text: 0.3, not 0.30000001192092896).
+double ConfidenceAsWritten(const CameraFrame& f) {
+  if (!f.confidence) return 1.0;
+  return std::strtod(FormatFloat((*f.confidence).raw()).c_str(), nullptr);
+}
 
 }  // namespace
 
@@ -59,7 +67,7 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
     q.last_frame = f.frame;
     ++q.frames;
     q.lost += IsLost(f);
-    confidence.push_back(IsLost(f) ? 0.0 : f.confidence.value_or(1.0));
+    confidence.push_back(IsLost(f) ? 0.0 : ConfidenceAsWritten(f));
   }
   if (!out.empty()) out.back().median_confidence = Median(confidence);
   for (ShotQuality& q : out) {

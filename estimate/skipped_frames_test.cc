@@ -31,11 +31,11 @@ TEST(InsertSkippedFrames, BetweenNeighboursOfOneShot) {
   for (int i = 0; i < 4; ++i) EXPECT_EQ(path.frames[i].frame, i);
   const CameraFrame& f = path.frames[1];  // a third of the way
   EXPECT_NEAR(f.time_s, 1 / 24.0, 1e-15);
-  EXPECT_NEAR(Eigen::AngleAxisd(f.world_from_cam).angle(), 0.1, 1e-12);
+  EXPECT_NEAR(Eigen::AngleAxisd(f.world_from_cam.quaternion()).angle(), 0.1, 1e-12);
   EXPECT_NEAR(f.center.x(), 1.0, 1e-12);
   EXPECT_NEAR(*f.focal_px, 1100, 1e-9);  // geometric: 1000 * 1.1
-  EXPECT_NEAR(f.fov_deg, FovDegFromFocalPx(1100, 1000), 1e-9);
-  EXPECT_NEAR(*f.confidence, kSkippedFrameConfidence * 0.9, 1e-12);
+  EXPECT_FLOAT_EQ(f.fov_deg, FovDegFromFocalPx(1100, 1000));  // held as a float
+  EXPECT_FLOAT_EQ(*f.confidence, kSkippedFrameConfidence * 0.9);
   EXPECT_EQ(f.model, "general+zoom");  // the later neighbour's interval
   EXPECT_TRUE(f.world_from_cam.coeffs().allFinite());
 }
@@ -55,7 +55,7 @@ TEST(InsertSkippedFrames, LostAtTheEndsAndAcrossACut) {
     EXPECT_LT(path.frames[i].world_from_cam.angularDistance(from.world_from_cam), 1e-15) << i;
     const bool skipped = i != 1 && i != 3;
     EXPECT_EQ(IsLost(path.frames[i]), skipped) << i;
-    EXPECT_EQ(*path.frames[i].confidence, skipped ? 0.0 : 0.9) << i;
+    EXPECT_FLOAT_EQ(*path.frames[i].confidence, skipped ? 0.0 : 0.9) << i;
   }
 }
 
@@ -97,7 +97,7 @@ TEST(InsertSkippedFrames, FieldOfViewOnlyPathsAndEqualTimes) {
   ASSERT_EQ(path.frames.size(), 3u);
   EXPECT_FALSE(path.frames[1].focal_px);
   EXPECT_NEAR(path.frames[1].fov_deg, path.frames[0].fov_deg, 1e-9);
-  EXPECT_NEAR(Eigen::AngleAxisd(path.frames[1].world_from_cam).angle(), 0.1, 1e-12);  // halfway
+  EXPECT_NEAR(Eigen::AngleAxisd(path.frames[1].world_from_cam.quaternion()).angle(), 0.1, 1e-12);  // halfway
 }
 
 }  // namespace

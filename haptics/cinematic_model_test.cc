@@ -52,7 +52,7 @@ TEST(CinematicModel, CombinationIsEquation3) {
 TEST(CinematicModel, VertigoGivesNoMovement) {
   const CameraPath path = MakeEffectPath(CameraEffect::kVertigo);
   for (const WashoutOptions& w : {NoWashout(), WashoutOptions()}) {
-    EXPECT_LT(MaxCoord(Model(path, w)), 1e-9);
+    EXPECT_LT(MaxCoord(Model(path, w)), 1e-7);  // 100 nm: the FOVs are floats (~1e-7 of their value)
   }
 }
 

@@ -35,10 +35,11 @@ TEST(ImageSequenceTest, PlateFrom1001KeepsItsNumbersAndRate) {
   const hapcine::CameraPath path = hapcine::ReadCameraPathFile(out.string());
   EXPECT_DOUBLE_EQ(path.fps(), 25);
   ASSERT_EQ(path.frames.size(), 8u);
+  ASSERT_EQ(path.source_frames.size(), 8u);
   for (size_t i = 0; i < path.frames.size(); ++i) {
     EXPECT_EQ(path.frames[i].frame, static_cast<int>(i));
     EXPECT_NEAR(path.frames[i].time_s, i / 25.0, 1e-6);
-    EXPECT_EQ(path.frames[i].source_frame, static_cast<int>(1001 + i));
+    EXPECT_EQ(path.source_frames[i], static_cast<int>(1001 + i));
   }
 
   // make: the same plate is a film; outputs beside the images' folder (not
@@ -48,7 +49,7 @@ TEST(ImageSequenceTest, PlateFrom1001KeepsItsNumbersAndRate) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::is_regular_file(dir / "plate.camera.csv"));
   EXPECT_TRUE(fs::is_regular_file(dir / "plate.haptic.csv"));
-  EXPECT_EQ(hapcine::ReadCameraPathFile((dir / "plate.camera.csv").string()).frames[7].source_frame, 1008);
+  EXPECT_EQ(hapcine::ReadCameraPathFile((dir / "plate.camera.csv").string()).source_frames.at(7), 1008);
   r = RunHapcine("make " + pattern + " --fps 25 -q --model semantic", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("estimate            reused"), std::string::npos) << r.err;
