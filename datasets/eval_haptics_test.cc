@@ -32,7 +32,7 @@ TEST(EvalHapticsTest, AnExactEstimateInAnotherFrameAndScaleFeelsTheSame) {
     const CameraPath gt = SynthGroundTruth(preset, SynthOptions{});
     const HapticEvalReport r = Compare(gt, AsEstimate(gt, 0.17));
     EXPECT_EQ(r.model, "cinematic");
-    EXPECT_GT(r.difference.num_samples, 6000u);
+    EXPECT_GT(r.difference.num_samples, 600u);  // 7 s at the default 100 Hz
     for (int a = 0; a < kNumActuators; ++a) {
       EXPECT_LT(r.difference.max_m[a], 1e-9) << preset << " " << a;
       // Every actuator moves (the arcing's left hand 8 mm with the default

@@ -24,7 +24,7 @@ TEST(PlotPagesTest, TwoHoursInTenMinutePagesIsTwelvePages) {
   EXPECT_EQ(pages.front().first, 0);
   EXPECT_EQ(pages.back().second, 7199.99);
   for (size_t i = 1; i < pages.size(); ++i) EXPECT_EQ(pages[i].first, pages[i - 1].second);
-  EXPECT_EQ(PagesByDuration(0, 7200.5, 600).size(), 13u);
+  EXPECT_EQ(PagesByDuration(0, 7210, 600).size(), 13u);
   EXPECT_EQ(PagesByDuration(5, 20, 0).size(), 1u);
   // Degenerate: a single instant still gives a drawable page.
   const std::vector<TimeRange> one = PagesByDuration(3, 3, 600);

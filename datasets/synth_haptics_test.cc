@@ -80,7 +80,8 @@ TEST(SynthHaptics, ZoomInGivesForwardMovement) {
   const HapticTrack w = Cinematic(GroundTruth("zoom_in"), WashoutMode::kHighPass);
   for (int a = 0; a < kNumActuators; ++a) {
     EXPECT_LT(At(w, 3.5).pos_m[a].z(), -0.02) << a;
-    EXPECT_NEAR(MaxAbs(w, a, 2), 0.045, 1e-6) << a;  // the scaling fills the usable range
+    // The scaling fills the usable range (a 100 Hz row lands within microns of the peak).
+    EXPECT_NEAR(MaxAbs(w, a, 2), 0.045, 1e-5) << a;
   }
 }
 

@@ -17,6 +17,7 @@ namespace {
 
 HapticTrack Track() {
   HapticOptions o;
+  o.rate_hz = 1000;  // the tests index rows by millisecond
   o.source = "clip.camera.csv";
   return MakeHapticTrack(testing::MakeEffectPath(CameraEffect::kDutchAngle), o);
 }

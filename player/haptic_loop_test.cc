@@ -64,6 +64,37 @@ struct Driver {
   }
 };
 
+// A 100 Hz monotone cubic track: the loop's targets follow the 1 kHz track of
+// the same motion within 0.1 mm, and a jump to the clamp edge is never
+// overshot (the interpolation stays between rows, then the safety filters).
+TEST(HapticLoop, AHundredHertzCubicTrackPlaysLikeTheKilohertzOne) {
+  ClearStopRequest();
+  auto motion = [](double t, Eigen::Vector3d* p) {
+    p[0] = Eigen::Vector3d(0.03 * std::sin(2 * M_PI * 0.7 * t), 0, 0);
+    p[1] = Eigen::Vector3d(0, t < 3 ? -0.01 : 0.048, 0);  // a jump to the clamp edge at 3 s
+    p[2] = Eigen::Vector3d(0, 0, 0.01 * std::cos(2 * M_PI * 0.3 * t));
+  };
+  const HapticTrack fine = MakeTrack(6, 1000, motion);
+  HapticTrack stored = MakeTrack(6, 100, motion);
+  stored.interpolation = TrackInterpolation::kMonotoneCubic;
+  HapSeat seat_fine = SimSeat(), seat_stored = SimSeat();
+  Driver drv_fine, drv_stored;
+  drv_fine.film_end_s = drv_stored.film_end_s = 6;
+  HapticLoop loop_fine(fine, seat_fine, drv_fine.clock, LoopOptions());
+  HapticLoop loop_stored(stored, seat_stored, drv_stored.clock, LoopOptions());
+  double worst_smooth = 0, highest_left_y = -1;
+  while (drv_fine.Step(loop_fine) && drv_stored.Step(loop_stored)) {
+    const double t = drv_fine.media;
+    if (t < 1.5 || t > 5.9) continue;  // start ramp, end ramp
+    worst_smooth = std::max(worst_smooth, (loop_fine.last_target_m(0) - loop_stored.last_target_m(0)).norm());
+    worst_smooth = std::max(worst_smooth, (loop_fine.last_target_m(2) - loop_stored.last_target_m(2)).norm());
+    highest_left_y = std::max(highest_left_y, loop_stored.last_target_m(1).y());
+  }
+  EXPECT_LT(worst_smooth, 0.1e-3);
+  EXPECT_LE(highest_left_y, 0.048);
+  EXPECT_GT(highest_left_y, 0.047);  // it did get there
+}
+
 TEST(HapticLoop, HeadlessPlayOnTheSimFollowsTheTrack) {
   ClearStopRequest();
   const HapticTrack track = MakeTrack(8, 100, [](double t, Eigen::Vector3d* p) {
