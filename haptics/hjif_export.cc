@@ -47,11 +47,13 @@ size_t Utf8CharLength(const std::string& s, size_t i) {
 }  // namespace
 
 uint32_t HjifBodyPartMask(Actuator a) {
-  // One bit per HapSeat body part; see docs/haptics.md ("MPEG-I Haptics").
+  // The reference software's body model (Tools/include/OHMData.h, `Body`):
+  // HEAD = front | back | right | left (bits 0-3); a hand = its palm, dorsum
+  // and fingers (right: bits 16, 18, 20; left: 17, 19, 21).
   switch (a) {
-    case Actuator::kHead: return 1u << 0;
-    case Actuator::kLeft: return 1u << 1;
-    case Actuator::kRight: return 1u << 2;
+    case Actuator::kHead: return 0x0000000Fu;
+    case Actuator::kLeft: return 0x002A0000u;
+    case Actuator::kRight: return 0x00150000u;
   }
   return 0;
 }

@@ -50,9 +50,11 @@ int ActuatorOf(const json& p, const json& ch) {
     throw Error("", Where(p, ch) + ": body_part_target " + parts.dump() +
                         " is not the head, the left hand or the right hand");
   }
+  // Any non-empty part of one actuator's body part (a palm is the hand).
   const long long mask = Int(ch, "body_part_mask", 0);
   for (int a = 0; a < kNumActuators; ++a) {
-    if (mask == HjifBodyPartMask(static_cast<Actuator>(a))) return a;
+    const long long part = HjifBodyPartMask(static_cast<Actuator>(a));
+    if (mask != 0 && (mask & ~part) == 0) return a;
   }
   throw Error("", Where(p, ch) + ": body_part_mask " + std::to_string(mask) +
                       " is not the head, the left hand or the right hand");

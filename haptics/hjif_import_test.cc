@@ -102,6 +102,19 @@ TEST(HjifImport, ReadsAnotherToolsPositionFile) {
   EXPECT_EQ(t.samples.back().pos_m[0].norm(), 0);
 }
 
+// The reference software's body model: a palm alone is that hand.
+TEST(HjifImport, BodyPartMaskOfAHandsPartIsThatHand) {
+  json doc = OtherToolsFile();
+  doc["perceptions"][0]["channels"][0].erase("body_part_target");
+  doc["perceptions"][0]["channels"][0]["body_part_mask"] = 0x00020000;  // LEFT_HAND_PALM
+  const HapticTrack left = HjifToHapticTrack(doc, "x.hjif", 1000);
+  EXPECT_NEAR(left.samples.back().pos_m[1].z(), -0.01, 1e-12);
+  doc["perceptions"][0]["channels"][0]["body_part_mask"] = 0x00010000;  // RIGHT_HAND_PALM
+  const HapticTrack right = HjifToHapticTrack(doc, "x.hjif", 1000);
+  EXPECT_NEAR(right.samples.back().pos_m[2].z(), -0.01, 1e-12);
+  EXPECT_EQ(right.samples.back().pos_m[1].norm(), 0);
+}
+
 TEST(HjifImport, RefusesWhatItCannotPlayWithOneLineNamingIt) {
   json doc = OtherToolsFile();
   EXPECT_EQ(Refusal(doc), "");
@@ -132,6 +145,8 @@ TEST(HjifImport, RefusesWhatItCannotPlayWithOneLineNamingIt) {
   d["perceptions"][0]["channels"][0].erase("body_part_target");
   d["perceptions"][0]["channels"][0]["body_part_mask"] = 0;
   refused_for(d, "body_part_mask 0 is not the head");
+  d["perceptions"][0]["channels"][0]["body_part_mask"] = 0x2000F;  // the head and a palm
+  refused_for(d, "body_part_mask 131087 is not the head");
   d = doc;
   d["perceptions"][0]["channels"].push_back(ch);
   refused_for(d, "a second channel for the left z axis");
