@@ -14,13 +14,33 @@
 #include "core/output_files.h"
 #include "study/analysis.h"
 #include "study/plan.h"
-#include "study/questionnaire.h"
 #include "study/player_process.h"
+#include "study/questionnaire.h"
 #include "study/report.h"
 #include "study/results.h"
 #include "study/session.h"
 
 namespace hapcine::cli {
+namespace {
+
+// --questionnaire: "paper" (the built-in questions), a JSON file, or "" (none).
+std::vector<study::Question> LoadQuestionnaire(const std::string& option) {
+  if (option == "paper") return study::PaperQuestionnaire();
+  if (option.empty()) return {};
+  return study::ReadQuestionnaireFile(option);
+}
+
+// "12 of 78 answered", or with the trials done, the questionnaire's progress too.
+std::string Progress(const study::RunSummary& s) {
+  const int trials = s.answered_before + s.answered_now;
+  std::string text = std::to_string(trials) + " of " + std::to_string(s.total) + " answered";
+  if (trials == s.total && s.questions > 0)
+    text += ", questionnaire " + std::to_string(s.questions_answered) + " of " +
+            std::to_string(s.questions);
+  return text;
+}
+
+}  // namespace
 
 int RunStudy(int argc, char** argv) {
   CLI::App app{
@@ -115,12 +135,8 @@ int RunStudy(int argc, char** argv) {
       for (std::string c; std::getline(ss, c, ',');) plan_opt.conditions.push_back(c);
       std::vector<NamedPath> clips;
       for (const std::string& c : plan_opt.clips) clips.push_back({c, "CLIP"});
-      if (questionnaire == "paper") {
-        plan_opt.questionnaire = study::PaperQuestionnaire();
-      } else if (!questionnaire.empty()) {
-        clips.push_back({questionnaire, "--questionnaire"});
-        plan_opt.questionnaire = study::ReadQuestionnaireFile(questionnaire);
-      }
+      if (questionnaire != "paper") clips.push_back({questionnaire, "--questionnaire"});
+      plan_opt.questionnaire = LoadQuestionnaire(questionnaire);
       OutputSet outputs(clips, {{plan_out, "-o"}});
       const study::StudyPlan p = study::MakePlan(plan_opt, &std::cerr);
       study::WritePlanFile(p, plan_out);
@@ -137,14 +153,8 @@ int RunStudy(int argc, char** argv) {
                        {{run_opt.results_path, "-o"}});
       const study::RunSummary s = study::RunSession(run_opt, std::cin, std::cout);
       if (!s.complete) {
-        const int trials = s.answered_before + s.answered_now;
         std::cerr << "hapcine study run: " << s.journal_path << ": session incomplete ("
-                  << trials << " of " << s.total << " answered"
-                  << (trials == s.total && s.questions > 0
-                          ? ", questionnaire " + std::to_string(s.questions_answered) + " of " +
-                                std::to_string(s.questions)
-                          : std::string())
-                  << "); run again to resume\n";
+                  << Progress(s) << "); run again to resume\n";
         return kExitFailure;
       }
       return kExitOk;

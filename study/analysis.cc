@@ -121,8 +121,8 @@ QuestionSummary SummariseQuestion(const std::vector<ParticipantResults>& results
   return s;
 }
 
-std::vector<QuestionSummary> SummariseQuestionnaire(
-    const std::vector<ParticipantResults>& results, const std::vector<std::string>& conditions) {
+std::vector<QuestionSummary> SummariseQuestionnaire(const std::vector<ParticipantResults>& results,
+                                                    const std::vector<std::string>& conditions) {
   const ParticipantResults& first = results.front();
   for (const auto& r : results) {
     bool same = r.questionnaire.size() == first.questionnaire.size();

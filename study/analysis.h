@@ -51,10 +51,10 @@ struct LikertSummary {
 // One post-test question over every participant.
 struct QuestionSummary {
   Question question;
-  int n = 0;  // answers; for text, the non-empty ones
+  int n = 0;                          // answers; for text, the non-empty ones
   std::vector<LikertSummary> likert;  // likert: "all" first, then each training condition
   std::vector<std::pair<std::string, int>> counts;  // choice: per option, in option order
-  std::vector<std::string> texts;                    // text: the non-empty answers
+  std::vector<std::string> texts;                   // text: the non-empty answers
 };
 
 struct StudyAnalysis {
@@ -63,7 +63,7 @@ struct StudyAnalysis {
   std::vector<std::string> clips;
   std::vector<std::string> participants;
   ScoreTable overall;
-  std::vector<ScoreTable> per_clip;  // in clips order
+  std::vector<ScoreTable> per_clip;            // in clips order
   std::vector<QuestionSummary> questionnaire;  // in plan order; empty if the plan has none
 };
 

@@ -13,21 +13,62 @@ using nlohmann::json;
 std::vector<Question> PaperQuestionnaire() {
   const std::string disagree = "strongly disagree", agree = "strongly agree";
   std::vector<Question> qs;
-  qs.push_back({"enjoyed", "The haptic feedback made the videos more enjoyable.", "likert", 1, 5,
-                disagree, agree, {}});
-  qs.push_back({"matched_camera", "The movements of the seat matched the motion of the camera.",
-                "likert", 1, 5, disagree, agree, {}});
-  qs.push_back({"easy_to_interpret", "The movements of the seat were easy to interpret.", "likert",
-                1, 5, disagree, agree, {}});
-  qs.push_back({"comfortable", "The movements of the seat were comfortable.", "likert", 1, 5,
-                disagree, agree, {}});
+  qs.push_back({"enjoyed",
+                "The haptic feedback made the videos more enjoyable.",
+                "likert",
+                1,
+                5,
+                disagree,
+                agree,
+                {}});
+  qs.push_back({"matched_camera",
+                "The movements of the seat matched the motion of the camera.",
+                "likert",
+                1,
+                5,
+                disagree,
+                agree,
+                {}});
+  qs.push_back({"easy_to_interpret",
+                "The movements of the seat were easy to interpret.",
+                "likert",
+                1,
+                5,
+                disagree,
+                agree,
+                {}});
+  qs.push_back({"comfortable",
+                "The movements of the seat were comfortable.",
+                "likert",
+                1,
+                5,
+                disagree,
+                agree,
+                {}});
   qs.push_back({"recognised_metaphor",
                 "Did some movements remind you of a familiar motion (walking, a crab walk, flying "
                 "away...)?",
-                "choice", 1, 5, "", "", {"yes", "no", "not sure"}});
-  qs.push_back({"metaphor_description", "If so, which motion, and in which video?", "text", 1, 5,
-                "", "", {}});
-  qs.push_back({"best_suited", "Where would such effects suit you best?", "choice", 1, 5, "", "",
+                "choice",
+                1,
+                5,
+                "",
+                "",
+                {"yes", "no", "not sure"}});
+  qs.push_back({"metaphor_description",
+                "If so, which motion, and in which video?",
+                "text",
+                1,
+                5,
+                "",
+                "",
+                {}});
+  qs.push_back({"best_suited",
+                "Where would such effects suit you best?",
+                "choice",
+                1,
+                5,
+                "",
+                "",
                 {"films", "first-person videos", "video games", "nowhere"}});
   qs.push_back({"comments", "Any other comments on your experience?", "text", 1, 5, "", "", {}});
   return qs;

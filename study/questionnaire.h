@@ -20,10 +20,10 @@ namespace hapcine::study {
 struct Question {
   std::string id;
   std::string text;
-  std::string type;  // "likert", "choice" or "text"
-  int min = 1, max = 5;                // likert
-  std::string min_label, max_label;    // likert, optional
-  std::vector<std::string> options;    // choice
+  std::string type;                  // "likert", "choice" or "text"
+  int min = 1, max = 5;              // likert
+  std::string min_label, max_label;  // likert, optional
+  std::vector<std::string> options;  // choice
 };
 
 // The questions `study plan --questionnaire paper` puts in a plan. The paper

@@ -84,8 +84,7 @@ TEST(QuestionnaireTest, BadQuestionsAreOneLineErrorsNamingPlanAndQuestion) {
   }
   json not_array = good;
   not_array["questionnaire"] = "enjoyed";
-  EXPECT_EQ(LoadError(not_array, path),
-            path + ": questionnaire must be an array of questions");
+  EXPECT_EQ(LoadError(not_array, path), path + ": questionnaire must be an array of questions");
 }
 
 TEST(QuestionnaireTest, QuestionnaireFileForThePlanCommand) {

@@ -56,7 +56,8 @@ void WriteResultsFile(const ParticipantResults& r, const std::string& path);  //
 // Reads and validates: format and version, every field's type, choices 1/2,
 // finite non-negative response times, known clips and conditions, and that
 // the trials are exactly the plan's design (each ordered pair of distinct
-// groups of each clip once), and every questionnaire answer fits its question. Error(path, reason) otherwise.
+// groups of each clip once), and every questionnaire answer fits its question. Error(path, reason)
+// otherwise.
 ParticipantResults ReadResultsFile(const std::string& path);
 ParticipantResults ResultsFromJson(const nlohmann::json& j, const std::string& source);
 

@@ -147,7 +147,7 @@ class AnswerSource {
 // What the journal already holds, each record checked against the plan.
 struct JournalState {
   bool training_done = false;
-  std::map<int, json> trials;                  // index -> record
+  std::map<int, json> trials;                    // index -> record
   std::map<std::string, json> question_answers;  // question id -> record
 };
 
@@ -182,8 +182,7 @@ void ReadAnswerRecord(const json& r, const StudyPlan& plan, const std::string& p
   if (!AnswerValid(*q, Field(r, "answer", path, where)))
     throw Error(path, where + ": answer " + r["answer"].dump() + " does not fit the question");
   StringField(r, "answered_utc", path, where);
-  if (!state->question_answers.emplace(id, r).second)
-    throw Error(path, where + " answered twice");
+  if (!state->question_answers.emplace(id, r).second) throw Error(path, where + " answered twice");
 }
 
 JournalState ReadJournalState(const Journal& journal, const StudyPlan& plan,
@@ -216,9 +215,8 @@ bool AskQuestionnaire(const StudyPlan& plan, AnswerSource& answers, Journal& jou
     const Question& q = plan.questionnaire[i];
     if (answered->count(q.id)) continue;
     for (;;) {
-      const std::optional<std::string> typed =
-          answers.NextLine("Question " + std::to_string(i + 1) + "/" + std::to_string(n) + ": " +
-                           QuestionPrompt(q));
+      const std::optional<std::string> typed = answers.NextLine(
+          "Question " + std::to_string(i + 1) + "/" + std::to_string(n) + ": " + QuestionPrompt(q));
       if (!typed) return false;
       std::string why;
       const std::optional<json> value = ParseAnswer(q, *typed, &why);

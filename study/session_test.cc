@@ -350,13 +350,18 @@ TEST(SessionTest, InterruptedQuestionnaireResumesWithoutRedoingTrials) {
   EXPECT_EQ(r.questionnaire[2].answer, nlohmann::json("smooth"));
 
   // An answer in the journal that does not fit its question is refused.
-  { std::ofstream(s1.journal_path, std::ios::app) << R"({"type":"answer","id":"comfort","answer":7,"answered_utc":"x"})" << "\n"; }
+  {
+    std::ofstream(s1.journal_path, std::ios::app)
+        << R"({"type":"answer","id":"comfort","answer":7,"answered_utc":"x"})"
+        << "\n";
+  }
   try {
     RunSession(o, no_input, log2);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()),
-              s1.journal_path + ": questionnaire question 'comfort': answer 7 does not fit the question");
+    EXPECT_EQ(
+        std::string(e.what()),
+        s1.journal_path + ": questionnaire question 'comfort': answer 7 does not fit the question");
   }
 }
 
