@@ -292,6 +292,17 @@ TEST(AnalysisTest, QuestionnaireSummaries) {
   EXPECT_EQ(j["questionnaire"][1]["counts"]["yes"], 3);
   EXPECT_EQ(j["questionnaire"][2]["n"], 2);
 
+  // Files of one plan must hold the same questions.
+  std::vector<ParticipantResults> missing = results;
+  missing[2].questionnaire.clear();
+  try {
+    AnalyzeStudy(missing);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              missing[2].source + ": questionnaire differs from " + missing[0].source);
+  }
+
   // One answer that does not fit its question is refused when the file is read.
   nlohmann::json bad = ResultsToJson(results[0]);
   bad["questionnaire"][0]["answer"] = 6;
