@@ -15,11 +15,32 @@
 #include "study/analysis.h"
 #include "study/plan.h"
 #include "study/player_process.h"
+#include "study/questionnaire.h"
 #include "study/report.h"
 #include "study/results.h"
 #include "study/session.h"
 
 namespace hapcine::cli {
+namespace {
+
+// --questionnaire: "paper" (the built-in questions), a JSON file, or "" (none).
+std::vector<study::Question> LoadQuestionnaire(const std::string& option) {
+  if (option == "paper") return study::PaperQuestionnaire();
+  if (option.empty()) return {};
+  return study::ReadQuestionnaireFile(option);
+}
+
+// "12 of 78 answered", or with the trials done, the questionnaire's progress too.
+std::string Progress(const study::RunSummary& s) {
+  const int trials = s.answered_before + s.answered_now;
+  std::string text = std::to_string(trials) + " of " + std::to_string(s.total) + " answered";
+  if (trials == s.total && s.questions > 0)
+    text += ", questionnaire " + std::to_string(s.questions_answered) + " of " +
+            std::to_string(s.questions);
+  return text;
+}
+
+}  // namespace
 
 int RunStudy(int argc, char** argv) {
   CLI::App app{
@@ -57,6 +78,11 @@ int RunStudy(int argc, char** argv) {
                    "Tracks whose samples all agree within this many metres are the same stimulus")
       ->capture_default_str()
       ->check(FiniteRange(0, 1));
+  std::string questionnaire;
+  plan->add_option("--questionnaire", questionnaire,
+                   "Post-test questionnaire asked after the last trial: `paper` (the questions "
+                   "built from the paper's section 6) or a JSON file of questions (see "
+                   "docs/study.md). Default: none");
 
   // ---- run
   study::RunOptions run_opt;
@@ -64,7 +90,8 @@ int RunStudy(int argc, char** argv) {
       "run",
       "Run one participant's session: training (each clip once with one random condition), then "
       "each pair (stimulus 1 then 2) and the answer: one key press (1 or 2, r replays, q stops) "
-      "on a terminal, one line per answer from a pipe, or --responses FILE. Every answer is "
+      "on a terminal, one line per answer from a pipe, or --responses FILE; then the plan's "
+      "questionnaire, if any, one typed line per answer. Every answer is "
       "journalled at once "
       "(fsync): stop at any time (q, Ctrl-C) and run the same command again to resume. Exit 0 when "
       "complete (results file written), 1 if stopped early or on failure.");
@@ -79,8 +106,8 @@ int RunStudy(int argc, char** argv) {
                               "{condition} are replaced, no shell. Default: \"") +
                       study::kDefaultPlayerTemplate + "\" ({exe} = this program)");
   run->add_option("--responses", run_opt.responses_path,
-                  "Scripted answers, one 1 or 2 per line from the first unanswered trial "
-                  "(default: ask on stdin)");
+                  "Scripted answers, one 1 or 2 per line from the first unanswered trial, then "
+                  "one line per questionnaire answer (default: ask on stdin)");
   run->add_option("-o,--results", run_opt.results_path,
                   "Results file (default <plan dir>/<id>.results.json; journal beside it as "
                   "<id>.journal.jsonl)");
@@ -108,6 +135,8 @@ int RunStudy(int argc, char** argv) {
       for (std::string c; std::getline(ss, c, ',');) plan_opt.conditions.push_back(c);
       std::vector<NamedPath> clips;
       for (const std::string& c : plan_opt.clips) clips.push_back({c, "CLIP"});
+      if (questionnaire != "paper") clips.push_back({questionnaire, "--questionnaire"});
+      plan_opt.questionnaire = LoadQuestionnaire(questionnaire);
       OutputSet outputs(clips, {{plan_out, "-o"}});
       const study::StudyPlan p = study::MakePlan(plan_opt, &std::cerr);
       study::WritePlanFile(p, plan_out);
@@ -125,8 +154,7 @@ int RunStudy(int argc, char** argv) {
       const study::RunSummary s = study::RunSession(run_opt, std::cin, std::cout);
       if (!s.complete) {
         std::cerr << "hapcine study run: " << s.journal_path << ": session incomplete ("
-                  << s.answered_before + s.answered_now << " of " << s.total
-                  << " answered); run again to resume\n";
+                  << Progress(s) << "); run again to resume\n";
         return kExitFailure;
       }
       return kExitOk;

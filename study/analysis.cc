@@ -86,7 +86,72 @@ ScoreTable Score(const std::string& label, const std::vector<ParticipantResults>
   return t;
 }
 
+double Quantile(const std::vector<double>& sorted, double p) {
+  const double h = (sorted.size() - 1) * p;
+  const size_t lo = static_cast<size_t>(std::floor(h));
+  if (lo + 1 >= sorted.size()) return sorted.back();
+  return sorted[lo] + (h - lo) * (sorted[lo + 1] - sorted[lo]);
+}
+
+QuestionSummary SummariseQuestion(const std::vector<ParticipantResults>& results, size_t qi,
+                                  const std::vector<std::string>& conditions) {
+  QuestionSummary s;
+  s.question = results.front().questionnaire[qi].question;
+  std::vector<double> all;
+  std::map<std::string, std::vector<double>> by_training;
+  for (const auto& o : s.question.options) s.counts.push_back({o, 0});
+  for (const auto& r : results) {
+    const nlohmann::json& answer = r.questionnaire[qi].answer;
+    if (s.question.type == "likert") {
+      all.push_back(answer.get<int>());
+      by_training[r.training_condition].push_back(answer.get<int>());
+    } else if (s.question.type == "choice") {
+      for (auto& [option, count] : s.counts) count += option == answer.get<std::string>();
+    } else if (!answer.get<std::string>().empty()) {
+      s.texts.push_back(answer.get<std::string>());
+    }
+  }
+  s.n = s.question.type == "text" ? static_cast<int>(s.texts.size())
+                                  : static_cast<int>(results.size());
+  if (s.question.type == "likert") {
+    s.likert.push_back(SummariseLikert("all", all));
+    for (const auto& c : conditions)
+      if (by_training.count(c)) s.likert.push_back(SummariseLikert(c, by_training[c]));
+  }
+  return s;
+}
+
+std::vector<QuestionSummary> SummariseQuestionnaire(const std::vector<ParticipantResults>& results,
+                                                    const std::vector<std::string>& conditions) {
+  const ParticipantResults& first = results.front();
+  for (const auto& r : results) {
+    bool same = r.questionnaire.size() == first.questionnaire.size();
+    for (size_t i = 0; same && i < r.questionnaire.size(); ++i)
+      same = r.questionnaire[i].question.id == first.questionnaire[i].question.id;
+    if (!same) throw Error(r.source, "questionnaire differs from " + first.source);
+  }
+  std::vector<QuestionSummary> out;
+  for (size_t i = 0; i < first.questionnaire.size(); ++i)
+    out.push_back(SummariseQuestion(results, i, conditions));
+  return out;
+}
+
 }  // namespace
+
+LikertSummary SummariseLikert(const std::string& group, std::vector<double> values) {
+  LikertSummary s;
+  s.group = group;
+  s.n = static_cast<int>(values.size());
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  double sum = 0;
+  for (double v : values) sum += v;
+  s.mean = sum / values.size();
+  s.median = Quantile(values, 0.5);
+  s.q1 = Quantile(values, 0.25);
+  s.q3 = Quantile(values, 0.75);
+  return s;
+}
 
 StudyAnalysis AnalyzeStudy(const std::vector<ParticipantResults>& results) {
   if (results.empty()) throw UsageError("no results files given");
@@ -114,6 +179,7 @@ StudyAnalysis AnalyzeStudy(const std::vector<ParticipantResults>& results) {
   }
   a.overall = Score("all", results, a.conditions, nullptr);
   for (const auto& c : a.clips) a.per_clip.push_back(Score(c, results, a.conditions, &c));
+  a.questionnaire = SummariseQuestionnaire(results, a.conditions);
   return a;
 }
 

@@ -39,17 +39,40 @@ struct ScoreTable {
   std::vector<PairwiseTest> pairwise;  // every unordered pair, in condition order
 };
 
+// A likert question's answers over a set of participants: all of them, or
+// those of one training condition (the condition a participant first met).
+struct LikertSummary {
+  std::string group;  // "all" or the training condition
+  int n = 0;
+  double median = 0, mean = 0;
+  double q1 = 0, q3 = 0;  // quartiles, linear interpolation (R type 7); IQR = q3 - q1
+};
+
+// One post-test question over every participant.
+struct QuestionSummary {
+  Question question;
+  int n = 0;                          // answers; for text, the non-empty ones
+  std::vector<LikertSummary> likert;  // likert: "all" first, then each training condition
+  std::vector<std::pair<std::string, int>> counts;  // choice: per option, in option order
+  std::vector<std::string> texts;                   // text: the non-empty answers
+};
+
 struct StudyAnalysis {
   std::string plan_id;
   std::vector<std::string> conditions;
   std::vector<std::string> clips;
   std::vector<std::string> participants;
   ScoreTable overall;
-  std::vector<ScoreTable> per_clip;  // in clips order
+  std::vector<ScoreTable> per_clip;            // in clips order
+  std::vector<QuestionSummary> questionnaire;  // in plan order; empty if the plan has none
 };
 
+// Median, mean and quartiles of `values` (non-empty).
+LikertSummary SummariseLikert(const std::string& group, std::vector<double> values);
+
 // Checks that all results come from one plan (Error naming the first file
-// that differs) and have distinct participants, then scores and tests.
+// that differs) and have distinct participants, then scores and tests, and
+// summarises the questionnaire.
 StudyAnalysis AnalyzeStudy(const std::vector<ParticipantResults>& results);
 
 }  // namespace hapcine::study

@@ -239,5 +239,83 @@ TEST(AnalysisTest, RejectsMixedPlansCorruptAndForeignFiles) {
   EXPECT_THROW(ReadResultsFile(dir + "/absent.json"), Error);
 }
 
+TEST(AnalysisTest, QuestionnaireSummaries) {
+  const std::string dir = MakeTempDir("analysis_questions");
+  PlanOptions o;
+  o.clips = {testing::MakeClip(dir, "crane")};
+  o.participants = 5;
+  o.questionnaire = {
+      {"comfort", "Comfortable?", "likert", 1, 5, "", "", {}},
+      {"metaphor", "Recognised a motion?", "choice", 1, 5, "", "", {"yes", "no", "not sure"}},
+      {"comments", "Comments?", "text", 1, 5, "", "", {}}};
+  const StudyPlan plan = MakePlan(o, nullptr);
+  std::vector<ParticipantResults> results = Synthesize(plan);
+  const std::vector<int> comfort = {5, 1, 4, 2, 4};
+  const std::vector<std::string> metaphor = {"yes", "no", "yes", "yes", "not sure"};
+  const std::vector<std::string> comments = {"crab walk", "", "", "flying away", ""};
+  for (size_t p = 0; p < results.size(); ++p) {
+    results[p].questionnaire = {{o.questionnaire[0], comfort[p], "t"},
+                                {o.questionnaire[1], metaphor[p], "t"},
+                                {o.questionnaire[2], comments[p], "t"}};
+    // Through the file format, as analyze reads it.
+    results[p] = ResultsFromJson(ResultsToJson(results[p]), results[p].source);
+  }
+  const StudyAnalysis a = AnalyzeStudy(results);
+  ASSERT_EQ(a.questionnaire.size(), 3u);
+  const QuestionSummary& c = a.questionnaire[0];
+  EXPECT_EQ(c.n, 5);
+  ASSERT_GE(c.likert.size(), 2u);
+  EXPECT_EQ(c.likert[0].group, "all");
+  EXPECT_DOUBLE_EQ(c.likert[0].median, 4);  // sorted 1 2 4 4 5
+  EXPECT_DOUBLE_EQ(c.likert[0].mean, 3.2);
+  EXPECT_DOUBLE_EQ(c.likert[0].q1, 2);
+  EXPECT_DOUBLE_EQ(c.likert[0].q3, 4);
+  int by_training = 0;
+  for (size_t g = 1; g < c.likert.size(); ++g) by_training += c.likert[g].n;
+  EXPECT_EQ(by_training, 5);
+  EXPECT_EQ(a.questionnaire[1].n, 5);
+  EXPECT_EQ(a.questionnaire[1].counts,
+            (std::vector<std::pair<std::string, int>>{{"yes", 3}, {"no", 1}, {"not sure", 1}}));
+  EXPECT_EQ(a.questionnaire[2].n, 2);
+  EXPECT_EQ(a.questionnaire[2].texts, (std::vector<std::string>{"crab walk", "flying away"}));
+
+  const std::string text = FormatReport(a);
+  EXPECT_NE(text.find("comfort (likert 1-5): Comfortable?"), std::string::npos) << text;
+  EXPECT_NE(text.find("n=5   median 4.0   mean 3.20   IQR 2.00-4.00 (2.00)"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("n=5:  yes 3  no 1  not sure 1"), std::string::npos) << text;
+  EXPECT_NE(text.find("n=2 non-empty answers"), std::string::npos) << text;
+  const nlohmann::json j = ReportToJson(a);
+  ASSERT_EQ(j["questionnaire"].size(), 3u);
+  EXPECT_EQ(j["questionnaire"][0]["likert"][0]["iqr"], 2.0);
+  EXPECT_EQ(j["questionnaire"][0]["likert"][0]["median"], 4.0);
+  EXPECT_EQ(j["questionnaire"][1]["counts"]["yes"], 3);
+  EXPECT_EQ(j["questionnaire"][2]["n"], 2);
+
+  // Files of one plan must hold the same questions.
+  std::vector<ParticipantResults> missing = results;
+  missing[2].questionnaire.clear();
+  try {
+    AnalyzeStudy(missing);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              missing[2].source + ": questionnaire differs from " + missing[0].source);
+  }
+
+  // One answer that does not fit its question is refused when the file is read.
+  nlohmann::json bad = ResultsToJson(results[0]);
+  bad["questionnaire"][0]["answer"] = 6;
+  EXPECT_THROW(ResultsFromJson(bad, "P01.results.json"), Error);
+}
+
+TEST(AnalysisTest, LikertSummaryOfOneAnswer) {
+  const LikertSummary s = SummariseLikert("all", {3});
+  EXPECT_EQ(s.n, 1);
+  EXPECT_DOUBLE_EQ(s.median, 3);
+  EXPECT_DOUBLE_EQ(s.q1, 3);
+  EXPECT_DOUBLE_EQ(s.q3, 3);
+}
+
 }  // namespace
 }  // namespace hapcine::study

@@ -192,6 +192,7 @@ StudyPlan MakePlan(const PlanOptions& options, std::ostream* log) {
     for (size_t k = 0; k < p.trials.size(); ++k) p.trials[k].index = static_cast<int>(k);
     plan.participants.push_back(std::move(p));
   }
+  plan.questionnaire = options.questionnaire;
   plan.plan_id = ComputePlanId(plan);
   return plan;
 }
@@ -233,6 +234,7 @@ json PlanContentToJson(const StudyPlan& plan) {
           {{"index", t.index}, {"clip", t.clip}, {"first", t.first}, {"second", t.second}});
     j["participants"].push_back(jp);
   }
+  if (!plan.questionnaire.empty()) j["questionnaire"] = QuestionnaireToJson(plan.questionnaire);
   return j;
 }
 
@@ -378,6 +380,8 @@ StudyPlan PlanFromJson(const json& j, const std::string& src) {
     }
     plan.participants.push_back(std::move(p));
   }
+  if (j.contains("questionnaire"))
+    plan.questionnaire = QuestionnaireFromJson(j["questionnaire"], src);
   ValidatePlan(plan, src);
   const std::string id = ComputePlanId(plan);
   if (id != plan.plan_id)

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/haptic_track.h"
+#include "study/questionnaire.h"
 
 namespace hapcine::study {
 
@@ -72,6 +73,9 @@ struct StudyPlan {
   std::vector<std::string> conditions;
   std::vector<StudyClip> clips;
   std::vector<ParticipantPlan> participants;
+  // Asked after the last trial; empty = none (the key is then absent from the
+  // file, so plans without a questionnaire keep their plan id).
+  std::vector<Question> questionnaire;
 
   const StudyClip& Clip(const std::string& name) const;  // throws Error if absent
   // Finds "P07", or "7" as the participant number. Throws UsageError.
@@ -84,6 +88,7 @@ struct PlanOptions {
   uint64_t seed = 1;               // recorded in the plan; same seed -> same plan
   std::vector<std::string> conditions = {"cinematic", "semantic", "none", "random"};
   double identical_tolerance_m = 1e-6;  // tracks closer than this everywhere are the same stimulus
+  std::vector<Question> questionnaire;  // post-test questions; empty = none
   void Check() const;                   // throws UsageError
 };
 

@@ -144,6 +144,61 @@ std::string BarChart(const std::string& title, const std::vector<std::string>& g
   return s.str();
 }
 
+// The post-test questionnaire: per question its answers' count and, by
+// type, median/mean/IQR (likert), counts per option (choice) or the answers
+// themselves (text).
+void FormatQuestionnaire(const StudyAnalysis& a, std::ostream& o) {
+  if (a.questionnaire.empty()) return;
+  o << "\nQuestionnaire (n = answers; likert: median, mean, IQR = Q1-Q3; by training "
+       "condition)\n";
+  for (const QuestionSummary& s : a.questionnaire) {
+    const Question& q = s.question;
+    o << "  " << q.id << " (" << q.type;
+    if (q.type == "likert") o << " " << q.min << "-" << q.max;
+    o << "): " << q.text << "\n";
+    for (const LikertSummary& l : s.likert)
+      o << "    " << Pad(l.group, 12) << "n=" << Pad(std::to_string(l.n), 4) << "median "
+        << Pad(Fmt("%.1f", l.median), 6) << "mean " << Pad(Fmt("%.2f", l.mean), 7) << "IQR "
+        << Fmt("%.2f", l.q1) << "-" << Fmt("%.2f", l.q3) << " (" << Fmt("%.2f", l.q3 - l.q1)
+        << ")\n";
+    if (q.type == "choice") {
+      o << "    n=" << s.n << ":";
+      for (const auto& [option, count] : s.counts) o << "  " << option << " " << count;
+      o << "\n";
+    }
+    if (q.type == "text") {
+      o << "    n=" << s.n << " non-empty answers\n";
+      for (const auto& t : s.texts) o << "      - " << t << "\n";
+    }
+  }
+}
+
+json QuestionnaireReportJson(const StudyAnalysis& a) {
+  json out = json::array();
+  for (const QuestionSummary& s : a.questionnaire) {
+    json j = QuestionToJson(s.question);
+    j["n"] = s.n;
+    if (s.question.type == "likert") {
+      j["likert"] = json::array();
+      for (const LikertSummary& l : s.likert)
+        j["likert"].push_back({{"group", l.group},
+                               {"n", l.n},
+                               {"median", l.median},
+                               {"mean", l.mean},
+                               {"q1", l.q1},
+                               {"q3", l.q3},
+                               {"iqr", l.q3 - l.q1}});
+    } else if (s.question.type == "choice") {
+      j["counts"] = json::object();
+      for (const auto& [option, count] : s.counts) j["counts"][option] = count;
+    } else {
+      j["answers"] = s.texts;
+    }
+    out.push_back(j);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string FormatReport(const StudyAnalysis& a) {
@@ -176,6 +231,7 @@ std::string FormatReport(const StudyAnalysis& a) {
     FormatTests(t, a.conditions, o);
   }
   o << "\n* p < 0.05, ** p < 0.01, *** p < 0.001\n";
+  FormatQuestionnaire(a, o);
   return o.str();
 }
 
@@ -213,6 +269,7 @@ json ReportToJson(const StudyAnalysis& a) {
   j["overall"] = table(a.overall);
   j["per_sequence"] = json::array();
   for (const auto& t : a.per_clip) j["per_sequence"].push_back(table(t));
+  j["questionnaire"] = QuestionnaireReportJson(a);
   return j;
 }
 

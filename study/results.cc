@@ -15,6 +15,23 @@ namespace {
 const char* const kFormat = "hapcine-study-results";
 constexpr int kVersion = 1;
 
+// The optional `questionnaire` array: questions as in the plan, each with
+// its answer.
+std::vector<QuestionAnswer> QuestionnaireAnswers(const json& j, const std::string& src) {
+  std::vector<QuestionAnswer> out;
+  if (!j.contains("questionnaire")) return out;
+  const std::vector<Question> qs = QuestionnaireFromJson(j["questionnaire"], src);
+  for (size_t i = 0; i < qs.size(); ++i) {
+    const std::string where = "questionnaire question '" + qs[i].id + "'";
+    QuestionAnswer qa{qs[i], Field(j["questionnaire"][i], "answer", src, where),
+                      StringField(j["questionnaire"][i], "answered_utc", src, where)};
+    if (!AnswerValid(qa.question, qa.answer))
+      throw Error(src, where + ": answer " + qa.answer.dump() + " does not fit the question");
+    out.push_back(std::move(qa));
+  }
+  return out;
+}
+
 std::string Key(const std::string& clip, const std::vector<std::string>& a,
                 const std::vector<std::string>& b) {
   return clip + "|" + json(a).dump() + "|" + json(b).dump();
@@ -43,6 +60,15 @@ json ResultsToJson(const ParticipantResults& r) {
                            {"choice", t.choice},
                            {"response_time_s", t.response_time_s},
                            {"answered_utc", t.answered_utc}});
+  if (!r.questionnaire.empty()) {
+    j["questionnaire"] = json::array();
+    for (const auto& qa : r.questionnaire) {
+      json jq = QuestionToJson(qa.question);
+      jq["answer"] = qa.answer;
+      jq["answered_utc"] = qa.answered_utc;
+      j["questionnaire"].push_back(jq);
+    }
+  }
   return j;
 }
 
@@ -129,6 +155,7 @@ ParticipantResults ResultsFromJson(const json& j, const std::string& src) {
   for (int i = 0; i < static_cast<int>(r.trials.size()); ++i)
     if (!indices.count(i))
       throw Error(src, "trial indices are not 0.." + std::to_string(r.trials.size() - 1));
+  r.questionnaire = QuestionnaireAnswers(j, src);
   return r;
 }
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "study/questionnaire.h"
+
 namespace hapcine::study {
 
 struct ClipGroups {
@@ -26,6 +28,14 @@ struct TrialResult {
   const std::vector<std::string>& chosen() const { return choice == 1 ? first : second; }
 };
 
+// One post-test question with the participant's answer (an integer for
+// likert, the option's text for choice, a string for text).
+struct QuestionAnswer {
+  Question question;
+  nlohmann::json answer;
+  std::string answered_utc;
+};
+
 struct ParticipantResults {
   std::string source;  // file it was read from (for messages)
   std::string plan_id;
@@ -36,6 +46,9 @@ struct ParticipantResults {
   std::string training_condition;
   std::vector<TrialResult> trials;  // by index, every trial exactly once
   std::string started_utc, completed_utc;
+  // The plan's questionnaire in plan order, each answered; empty when the
+  // plan has none (the `questionnaire` key is then absent from the file).
+  std::vector<QuestionAnswer> questionnaire;
 };
 
 nlohmann::json ResultsToJson(const ParticipantResults& r);
@@ -43,7 +56,8 @@ void WriteResultsFile(const ParticipantResults& r, const std::string& path);  //
 // Reads and validates: format and version, every field's type, choices 1/2,
 // finite non-negative response times, known clips and conditions, and that
 // the trials are exactly the plan's design (each ordered pair of distinct
-// groups of each clip once). Error(path, reason) otherwise.
+// groups of each clip once), and every questionnaire answer fits its question. Error(path, reason)
+// otherwise.
 ParticipantResults ReadResultsFile(const std::string& path);
 ParticipantResults ResultsFromJson(const nlohmann::json& j, const std::string& source);
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -63,11 +64,7 @@ class AnswerSource {
         const auto b = line.find_first_not_of(" \t\r");
         if (b == std::string::npos) continue;
         const auto e = line.find_last_not_of(" \t\r");
-        const std::string tok = line.substr(b, e - b + 1);
-        if (tok != "1" && tok != "2")
-          throw Error(responses_path + ":" + std::to_string(n),
-                      "answer must be 1 or 2, got '" + tok + "'");
-        answers_.push_back(tok[0] - '0');
+        answers_.push_back({line.substr(b, e - b + 1), n});
       }
     }
   }
@@ -78,7 +75,13 @@ class AnswerSource {
   std::optional<int> Next() {
     if (scripted_) {
       if (next_ >= answers_.size()) return std::nullopt;
-      return answers_[next_++];
+      // Checked here, not on loading: the lines after the trials' answers
+      // answer the questionnaire.
+      const ScriptedAnswer& a = answers_[next_++];
+      if (a.text != "1" && a.text != "2")
+        throw Error(path_ + ":" + std::to_string(a.line),
+                    "answer must be 1 or 2, got '" + a.text + "'");
+      return a.text[0] - '0';
     }
     if (key_press_) {
       for (;;) {
@@ -103,6 +106,29 @@ class AnswerSource {
       out_ << "Please type 1 or 2.\n";
     }
   }
+  // One typed line answering a questionnaire question, after showing
+  // `prompt` (a line, even at a terminal: answers can be words). nullopt =
+  // stop (end of input or responses, or "q" alone).
+  std::optional<std::string> NextLine(const std::string& prompt) {
+    out_ << prompt << std::flush;
+    std::string line;
+    if (scripted_) {
+      if (next_ >= answers_.size()) {
+        out_ << "\n";
+        return std::nullopt;
+      }
+      line = answers_[next_++].text;
+      out_ << line << "\n";
+    } else if (!std::getline(in_, line)) {
+      out_ << "\n";
+      return std::nullopt;
+    }
+    const auto b = line.find_first_not_of(" \t\r");
+    const std::string tok =
+        b == std::string::npos ? "" : line.substr(b, line.find_last_not_of(" \t\r") - b + 1);
+    if (tok == "q" || tok == "Q") return std::nullopt;
+    return line;
+  }
 
  private:
   std::istream& in_;
@@ -110,9 +136,106 @@ class AnswerSource {
   bool scripted_;
   bool key_press_;
   std::string path_;
-  std::vector<int> answers_;
+  struct ScriptedAnswer {
+    std::string text;  // trimmed, comment removed
+    int line = 0;      // in the responses file
+  };
+  std::vector<ScriptedAnswer> answers_;
   size_t next_ = 0;
 };
+
+// What the journal already holds, each record checked against the plan.
+struct JournalState {
+  bool training_done = false;
+  std::map<int, json> trials;                    // index -> record
+  std::map<std::string, json> question_answers;  // question id -> record
+};
+
+void ReadTrialRecord(const json& r, const ParticipantPlan& who, const std::string& path,
+                     JournalState* state) {
+  const std::string where = "journal record";
+  const int total = static_cast<int>(who.trials.size());
+  const int idx = IntField(r, "index", path, where);
+  if (idx < 0 || idx >= total)
+    throw Error(path, "trial index " + std::to_string(idx) + " is not in the plan");
+  const Trial& t = who.trials[idx];
+  if (StringField(r, "clip", path, where) != t.clip ||
+      StringArray(Field(r, "first", path, where), path, where) != t.first ||
+      StringArray(Field(r, "second", path, where), path, where) != t.second)
+    throw Error(path, "trial " + std::to_string(idx) + " does not match the plan");
+  const int choice = IntField(r, "choice", path, where);
+  if (choice != 1 && choice != 2)
+    throw Error(path, "trial " + std::to_string(idx) + ": choice must be 1 or 2");
+  NumberField(r, "response_time_s", path, where);
+  StringField(r, "answered_utc", path, where);
+  if (!state->trials.emplace(idx, r).second)
+    throw Error(path, "trial " + std::to_string(idx) + " recorded twice");
+}
+
+void ReadAnswerRecord(const json& r, const StudyPlan& plan, const std::string& path,
+                      JournalState* state) {
+  const std::string id = StringField(r, "id", path, "journal answer");
+  const std::string where = "questionnaire question '" + id + "'";
+  const auto q = std::find_if(plan.questionnaire.begin(), plan.questionnaire.end(),
+                              [&](const Question& x) { return x.id == id; });
+  if (q == plan.questionnaire.end()) throw Error(path, where + " is not in the plan");
+  if (!AnswerValid(*q, Field(r, "answer", path, where)))
+    throw Error(path, where + ": answer " + r["answer"].dump() + " does not fit the question");
+  StringField(r, "answered_utc", path, where);
+  if (!state->question_answers.emplace(id, r).second) throw Error(path, where + " answered twice");
+}
+
+JournalState ReadJournalState(const Journal& journal, const StudyPlan& plan,
+                              const ParticipantPlan& who) {
+  JournalState state;
+  for (const auto& r : journal.records()) {
+    const std::string type = StringField(r, "type", journal.path(), "journal record");
+    if (type == "training_done") {
+      state.training_done = true;
+    } else if (type == "trial") {
+      ReadTrialRecord(r, who, journal.path(), &state);
+    } else if (type == "answer") {
+      ReadAnswerRecord(r, plan, journal.path(), &state);
+    } else if (type != "started") {
+      throw Error(journal.path(), "unknown journal record type '" + type + "'");
+    }
+  }
+  return state;
+}
+
+// Asks every question not yet answered, in plan order, again until the answer
+// fits; each answer is journalled at once. False if the participant stopped.
+bool AskQuestionnaire(const StudyPlan& plan, AnswerSource& answers, Journal& journal,
+                      std::map<std::string, json>* answered, std::ostream& out) {
+  const size_t n = plan.questionnaire.size();
+  if (answered->size() == n) return true;
+  out << "Questionnaire: " << n - answered->size() << " questions about your experience "
+      << "(q stops for now).\n";
+  for (size_t i = 0; i < n; ++i) {
+    const Question& q = plan.questionnaire[i];
+    if (answered->count(q.id)) continue;
+    for (;;) {
+      const std::optional<std::string> typed = answers.NextLine(
+          "Question " + std::to_string(i + 1) + "/" + std::to_string(n) + ": " + QuestionPrompt(q));
+      if (!typed) return false;
+      std::string why;
+      const std::optional<json> value = ParseAnswer(q, *typed, &why);
+      if (!value) {
+        out << why << "\n";
+        continue;
+      }
+      const json rec = {{"type", "answer"},
+                        {"id", q.id},
+                        {"answer", *value},
+                        {"answered_utc", UtcNow()},
+                        {"scripted", answers.scripted()}};
+      journal.Append(rec);
+      answered->emplace(q.id, rec);
+      break;
+    }
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -154,38 +277,19 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
   }
   Journal journal(summary.journal_path, plan.plan_id, who.id);
 
-  // What the journal already holds.
-  bool training_done = false;
-  std::map<int, json> answered;
-  for (const auto& r : journal.records()) {
-    const std::string where = "journal record";
-    const std::string type = StringField(r, "type", journal.path(), where);
-    if (type == "training_done") {
-      training_done = true;
-    } else if (type == "trial") {
-      const int idx = IntField(r, "index", journal.path(), where);
-      if (idx < 0 || idx >= summary.total)
-        throw Error(journal.path(), "trial index " + std::to_string(idx) + " is not in the plan");
-      const Trial& t = who.trials[idx];
-      if (StringField(r, "clip", journal.path(), where) != t.clip ||
-          StringArray(Field(r, "first", journal.path(), where), journal.path(), where) != t.first ||
-          StringArray(Field(r, "second", journal.path(), where), journal.path(), where) != t.second)
-        throw Error(journal.path(), "trial " + std::to_string(idx) + " does not match the plan");
-      const int choice = IntField(r, "choice", journal.path(), where);
-      if (choice != 1 && choice != 2)
-        throw Error(journal.path(), "trial " + std::to_string(idx) + ": choice must be 1 or 2");
-      NumberField(r, "response_time_s", journal.path(), where);
-      StringField(r, "answered_utc", journal.path(), where);
-      if (!answered.emplace(idx, r).second)
-        throw Error(journal.path(), "trial " + std::to_string(idx) + " recorded twice");
-    } else if (type != "started") {
-      throw Error(journal.path(), "unknown journal record type '" + type + "'");
-    }
-  }
+  JournalState state = ReadJournalState(journal, plan, who);
+  const bool training_done = state.training_done;
+  std::map<int, json>& answered = state.trials;
+  summary.questions = static_cast<int>(plan.questionnaire.size());
   summary.answered_before = static_cast<int>(answered.size());
   if (summary.answered_before > 0 || training_done)
     out << "Resuming " << who.id << ": " << summary.answered_before << " of " << summary.total
-        << " trials already answered (" << journal.path() << ")\n";
+        << " trials already answered"
+        << (state.question_answers.empty()
+                ? ""
+                : ", " + std::to_string(state.question_answers.size()) + " of " +
+                      std::to_string(summary.questions) + " questions")
+        << " (" << journal.path() << ")\n";
   journal.Append({{"type", "started"}, {"utc", UtcNow()}, {"device", options.device}});
 
   const auto words =
@@ -248,6 +352,16 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
     ++summary.answered_now;
   }
 
+  const bool questionnaire_done =
+      AskQuestionnaire(plan, answers, journal, &state.question_answers, out);
+  summary.questions_answered = static_cast<int>(state.question_answers.size());
+  if (!questionnaire_done) {
+    out << "Stopped at the questionnaire after " << summary.questions_answered << " of "
+        << summary.questions << " questions; answers are saved in " << journal.path()
+        << ". Run the same command again to resume.\n";
+    return summary;
+  }
+
   // Complete: assemble the results from the journal (the single source of truth).
   ParticipantResults res;
   res.plan_id = plan.plan_id;
@@ -271,6 +385,10 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
     tr.response_time_s = r["response_time_s"].get<double>();
     tr.answered_utc = r["answered_utc"].get<std::string>();
     res.trials.push_back(std::move(tr));
+  }
+  for (const Question& q : plan.questionnaire) {
+    const json& r = state.question_answers.at(q.id);
+    res.questionnaire.push_back({q, r["answer"], r["answered_utc"].get<std::string>()});
   }
   ResultsFromJson(ResultsToJson(res), summary.results_path);  // self-check before writing
   WriteResultsFile(res, summary.results_path);

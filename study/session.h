@@ -2,10 +2,11 @@
 // Running one participant's session (paper, section 5.2): the training block
 // (each clip once with the participant's training condition), then the
 // pairwise trials in the plan's order — clip with stimulus 1, clip with
-// stimulus 2, "which did you prefer, 1 or 2?". Each answer goes to the
-// journal at once (fsync), so the session can be stopped at any time (a
-// break, Ctrl-C, a crash) and resumed by running the same command again.
-// When every trial is answered the results file is written atomically.
+// stimulus 2, "which did you prefer, 1 or 2?" — then the plan's post-test
+// questionnaire, if any (one typed line per answer, asked again until valid). Each answer goes to
+// the journal at once (fsync), so the session can be stopped at any time (a break, Ctrl-C, a crash)
+// and resumed by running the same command again. When every trial and
+// question is answered the results file is written atomically.
 
 #include <istream>
 #include <ostream>
@@ -19,8 +20,9 @@ struct RunOptions {
   std::string device = "sim";  // passed to the player: sim, none or falcon
   // Player command template (see player_process.h); empty = kDefaultPlayerTemplate.
   std::string player_cmd;
-  // File of scripted answers, one per line ("1" or "2"; '#' comments and blank
-  // lines ignored), consumed from the first unanswered trial on. Empty = ask
+  // File of scripted answers, one per line ("1" or "2" for a trial, then one
+  // line per questionnaire answer; '#' comments and blank lines ignored),
+  // consumed from the first unanswered trial or question on. Empty = ask
   // on the input stream (stdin).
   std::string responses_path;
   // Results file; empty = "<plan dir>/<participant id>.results.json". The
@@ -31,10 +33,12 @@ struct RunOptions {
 };
 
 struct RunSummary {
-  int total = 0;            // trials in the plan for this participant
-  int answered_before = 0;  // found in the journal at start
-  int answered_now = 0;     // answered in this run
-  bool complete = false;    // all answered and the results file written
+  int total = 0;               // trials in the plan for this participant
+  int answered_before = 0;     // found in the journal at start
+  int answered_now = 0;        // answered in this run
+  int questions = 0;           // in the plan's questionnaire
+  int questions_answered = 0;  // so far, this run and before (set once the trials are done)
+  bool complete = false;       // all answered and the results file written
   std::string results_path;
   std::string journal_path;
 };

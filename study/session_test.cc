@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "study/json_util.h"
 #include "study/plan.h"
 #include "study/results.h"
 #include "study/test_fixtures.h"
@@ -242,6 +243,142 @@ TEST(SessionTest, TrackThatIsNotARegularFileIsRefused) {
     EXPECT_EQ(std::string(e.what()), "/dev/zero: not a regular file");
   }
   EXPECT_EQ(out.str().find("Training"), std::string::npos) << out.str();
+}
+
+// A plan whose sessions end with three questions, one of each type.
+Fixture MakeStudyWithQuestionnaire(const std::string& tag) {
+  Fixture f;
+  f.dir = MakeTempDir(tag);
+  PlanOptions o;
+  o.clips = {MakeClip(f.dir, "crane")};  // 12 trials
+  o.participants = 1;
+  o.questionnaire = {
+      {"comfort", "Comfortable?", "likert", 1, 5, "not at all", "very", {}},
+      {"metaphor", "Did you recognise a motion?", "choice", 1, 5, "", "", {"yes", "no"}},
+      {"comments", "Comments?", "text", 1, 5, "", "", {}}};
+  f.plan = MakePlan(o, nullptr);
+  f.plan_path = f.dir + "/plan.json";
+  WritePlanFile(f.plan, f.plan_path);
+  return f;
+}
+
+std::string WriteLines(const std::string& path, const std::vector<std::string>& lines) {
+  std::ofstream out(path);
+  for (const auto& l : lines) out << l << "\n";
+  return path;
+}
+
+TEST(SessionTest, QuestionnaireAfterTheLastTrialAsksAgainOnInvalidAnswers) {
+  Fixture f = MakeStudyWithQuestionnaire("questions");
+  RunOptions o;
+  o.plan_path = f.plan_path;
+  o.participant = "P01";
+  o.player_cmd = "/bin/true";
+  std::vector<std::string> lines(12, "2");
+  for (const char* a : {"9", "4", "maybe", "1", "like a crab walk # with a comment"})
+    lines.push_back(a);
+  o.responses_path = WriteLines(f.dir + "/r.txt", lines);
+  std::istringstream no_input;
+  std::ostringstream log;
+  const RunSummary s = RunSession(o, no_input, log);
+  ASSERT_TRUE(s.complete) << log.str();
+  EXPECT_EQ(s.questions, 3);
+  EXPECT_EQ(s.questions_answered, 3);
+  EXPECT_NE(log.str().find("Question 1/3: Comfortable?"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("Please type a whole number from 1 to 5."), std::string::npos);
+  EXPECT_NE(log.str().find("Please type a number from 1 to 2."), std::string::npos);
+  const ParticipantResults r = ReadResultsFile(s.results_path);
+  ASSERT_EQ(r.questionnaire.size(), 3u);
+  EXPECT_EQ(r.questionnaire[0].question.id, "comfort");
+  EXPECT_EQ(r.questionnaire[0].answer, nlohmann::json(4));
+  EXPECT_EQ(r.questionnaire[1].answer, nlohmann::json("yes"));
+  EXPECT_EQ(r.questionnaire[2].answer, nlohmann::json("like a crab walk"));
+  EXPECT_EQ(r.questionnaire[0].question.max_label, "very");
+  // Typed on stdin: the same questions, one line each; "q" stops for now.
+  Fixture g = MakeStudyWithQuestionnaire("questions_typed");
+  o.plan_path = g.plan_path;
+  o.responses_path.clear();
+  std::string typed_lines;
+  for (int i = 0; i < 12; ++i) typed_lines += "1\n";
+  std::istringstream typed(typed_lines + "5\nq\n");
+  std::ostringstream out;
+  const RunSummary t = RunSession(o, typed, out);
+  EXPECT_FALSE(t.complete) << out.str();
+  EXPECT_EQ(t.questions_answered, 1);
+  EXPECT_NE(out.str().find("Stopped at the questionnaire after 1 of 3 questions"),
+            std::string::npos)
+      << out.str();
+}
+
+TEST(SessionTest, InterruptedQuestionnaireResumesWithoutRedoingTrials) {
+  Fixture f = MakeStudyWithQuestionnaire("questions_resume");
+  RunOptions o;
+  o.plan_path = f.plan_path;
+  o.participant = "P01";
+  const std::string played = f.dir + "/played.txt";
+  o.player_cmd = "/bin/sh -c 'echo \"$0\" >> " + played + "' {condition}";
+  std::vector<std::string> lines(12, "1");
+  lines.push_back("3");
+  o.responses_path = WriteLines(f.dir + "/r1.txt", lines);
+  std::istringstream no_input;
+  std::ostringstream log;
+  const RunSummary s1 = RunSession(o, no_input, log);
+  EXPECT_FALSE(s1.complete);
+  EXPECT_EQ(s1.answered_now, 12);
+  EXPECT_EQ(s1.questions_answered, 1);
+  EXPECT_FALSE(std::filesystem::exists(s1.results_path));
+  const size_t plays = CountLines(played);
+  EXPECT_EQ(plays, 1u + 12 * 2);
+  // A crash while journalling the next answer leaves a torn line.
+  { std::ofstream(s1.journal_path, std::ios::app) << R"({"type":"answer","id":"met)"; }
+
+  o.responses_path = WriteLines(f.dir + "/r2.txt", {"no", "smooth"});
+  std::ostringstream log2;
+  const RunSummary s2 = RunSession(o, no_input, log2);
+  ASSERT_TRUE(s2.complete) << log2.str();
+  EXPECT_EQ(s2.answered_before, 12);
+  EXPECT_EQ(s2.answered_now, 0);
+  EXPECT_EQ(CountLines(played), plays);  // nothing played again
+  EXPECT_NE(log2.str().find("12 of 12 trials already answered, 1 of 3 questions"),
+            std::string::npos)
+      << log2.str();
+  EXPECT_EQ(log2.str().find("Question 1/3"), std::string::npos);  // not asked again
+  const ParticipantResults r = ReadResultsFile(s2.results_path);
+  ASSERT_EQ(r.questionnaire.size(), 3u);
+  EXPECT_EQ(r.questionnaire[0].answer, nlohmann::json(3));
+  EXPECT_EQ(r.questionnaire[1].answer, nlohmann::json("no"));
+  EXPECT_EQ(r.questionnaire[2].answer, nlohmann::json("smooth"));
+
+  // An answer in the journal that does not fit its question is refused.
+  {
+    std::ofstream(s1.journal_path, std::ios::app)
+        << R"({"type":"answer","id":"comfort","answer":7,"answered_utc":"x"})"
+        << "\n";
+  }
+  try {
+    RunSession(o, no_input, log2);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        s1.journal_path + ": questionnaire question 'comfort': answer 7 does not fit the question");
+  }
+}
+
+TEST(SessionTest, ResultsWithoutQuestionnaireHaveNoQuestionnaireKey) {
+  Fixture f = MakeStudy("no_questions");
+  RunOptions o;
+  o.plan_path = f.plan_path;
+  o.participant = "P03";
+  o.player_cmd = "/bin/true";
+  o.responses_path = WriteResponses(f.dir + "/r.txt", std::vector<int>(18, 1));
+  std::istringstream no_input;
+  std::ostringstream log;
+  const RunSummary s = RunSession(o, no_input, log);
+  ASSERT_TRUE(s.complete) << log.str();
+  EXPECT_EQ(log.str().find("Questionnaire"), std::string::npos);
+  EXPECT_FALSE(ReadJsonFile(s.results_path).contains("questionnaire"));
+  EXPECT_TRUE(ReadResultsFile(s.results_path).questionnaire.empty());
 }
 
 }  // namespace
