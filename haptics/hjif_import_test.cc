@@ -19,6 +19,7 @@ using nlohmann::json;
 
 HapticTrack Track() {
   HapticOptions o;
+  o.rate_hz = 1000;  // the reader samples a .hjif at 1 kHz: one row per keyframe below
   o.source = "clip.camera.csv";
   return MakeHapticTrack(testing::MakeEffectPath(CameraEffect::kDutchAngle), o);
 }
