@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <functional>
@@ -24,12 +25,21 @@ constexpr int kUnitVector = 127;
 constexpr int kPerceptionUnitExponent = -3;
 constexpr double kUnitsPerMetre = 1000;
 
+// The creation day at midnight UTC (the schema wants a date-time): the same
+// track made twice in a day is the same file (batch compares a Slurm run's
+// outputs with a local run's); SOURCE_DATE_EPOCH, the reproducible-builds
+// convention, fixes the day.
 std::string NowUtc() {
-  const std::time_t now = std::time(nullptr);
+  std::time_t now = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+    char* end = nullptr;
+    const long long v = std::strtoll(epoch, &end, 10);
+    if (end != epoch && *end == '\0' && v >= 0) now = static_cast<std::time_t>(v);
+  }
   std::tm tm{};
   gmtime_r(&now, &tm);
   char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT00:00:00Z", &tm);
   return buf;
 }
 

@@ -26,7 +26,7 @@ struct HjifOptions {
   int timescale = 1000;           // ticks per second (positions are in ticks)
   double gain_m = 0.05;           // metres of amplitude 1.0 (workspace half range)
   std::string description;        // "" = the stem of the track's source; cut to 255 bytes
-  std::string date;               // ISO 8601 date-time; "" = now (UTC)
+  std::string date;               // ISO 8601 date-time; "" = today, 00:00:00Z (or SOURCE_DATE_EPOCH's day)
   void Check() const;             // throws UsageError
 };
 

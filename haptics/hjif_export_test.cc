@@ -1,6 +1,7 @@
 #include "haptics/hjif_export.h"
 
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include <cmath>
 #include <cstdio>
@@ -205,7 +206,15 @@ TEST(HjifExport, HasEveryMemberTheReferenceLoaderRequires) {
   const std::string date = j["date"];
   EXPECT_EQ(date.size(), 20u) << date;
   EXPECT_EQ(date[10], 'T');
-  EXPECT_EQ(date.back(), 'Z');
+  EXPECT_EQ(date.substr(10), "T00:00:00Z");  // the day only: the same track made twice is the same file
+}
+
+// SOURCE_DATE_EPOCH (reproducible builds) fixes the day written.
+TEST(HjifExport, SourceDateEpochFixesTheDate) {
+  ::setenv("SOURCE_DATE_EPOCH", "86400", 1);  // 1970-01-02
+  const nlohmann::json j = HapticTrackToHjif(Track(), HjifOptions());
+  ::unsetenv("SOURCE_DATE_EPOCH");
+  EXPECT_EQ(j.at("date"), "1970-01-02T00:00:00Z");
 }
 
 // The streaming writer prints the very text of the document's dump(1).
