@@ -77,17 +77,16 @@ std::string PlotOutputPath(const std::string& prefix, const std::string& ext, bo
   return prefix + "." + ext;
 }
 
-// Legend names: the model, or the file's stem (no folder, no .haptic.csv)
-// when two tracks share a model.
-std::vector<std::string> TrackLegendNames(const std::vector<HapticTrack>& tracks,
-                                          const std::vector<std::string>& files) {
+// Legend names: each track's name (a haptic track's model, a platform's
+// name), or the file's stem (no folder, no .haptic.csv) when two tracks
+// share a name.
+std::vector<std::string> LegendNames(const std::vector<std::string>& names,
+                                     const std::vector<std::string>& files) {
   std::vector<std::string> legend;
-  for (size_t i = 0; i < tracks.size(); ++i) {
+  for (size_t i = 0; i < names.size(); ++i) {
     bool shared = false;
-    for (size_t j = 0; j < tracks.size(); ++j) {
-      shared |= j != i && tracks[j].model == tracks[i].model;
-    }
-    legend.push_back(shared ? FileStem(files[i]) : tracks[i].model);
+    for (size_t j = 0; j < names.size(); ++j) shared |= j != i && names[j] == names[i];
+    legend.push_back(shared ? FileStem(files[i]) : names[i]);
   }
   return legend;
 }
@@ -172,7 +171,9 @@ PlotPages HapticPages(const std::vector<std::string>& files, const std::string& 
     confidence = ConfidencePanel(path, "estimate confidence");
     if (cuts.empty()) cuts = ShotCutTimes(path);
   }
-  const std::vector<std::string> legend = TrackLegendNames(*tracks, files);
+  std::vector<std::string> models;
+  for (const HapticTrack& t : *tracks) models.push_back(t.model);
+  const std::vector<std::string> legend = LegendNames(models, files);
   const std::string fig_title = title.empty() ? names : title;
   PlotPages pages;
   pages.ranges = ChoosePages(choice, tracks->front().samples.front().time_s,
@@ -203,13 +204,12 @@ PlotPages PlatformPages(const std::vector<std::string>& files, const std::string
     names += (names.empty() ? "" : "  vs  ") + f;
   }
   std::vector<const PlatformTrack*> ptrs;
-  std::vector<std::string> legend;
-  for (size_t i = 0; i < tracks.size(); ++i) {
-    ptrs.push_back(&tracks[i]);
-    bool shared = false;
-    for (size_t j = 0; j < tracks.size(); ++j) shared |= j != i && tracks[j].platform == tracks[i].platform;
-    legend.push_back(shared ? FileStem(files[i]) : tracks[i].platform);
+  std::vector<std::string> platform_names;
+  for (const PlatformTrack& t : tracks) {
+    ptrs.push_back(&t);
+    platform_names.push_back(t.platform);
   }
+  const std::vector<std::string> legend = LegendNames(platform_names, files);
   auto whole = std::make_shared<Figure>(PlatformTracksFigure(ptrs, title.empty() ? names : title, legend));
   PlotPages pages;
   pages.ranges = ChoosePages(choice, tracks.front().samples.front().time_s,
