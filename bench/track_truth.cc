@@ -90,11 +90,13 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const CameraPath gt = ReadCameraPathFile(dir + "/" + preset + ".camera.csv");
-  const synth::PresetInfo& info = synth::FindSynthPreset(preset);
-  const auto scene = SynthScene(1, info.scene, 1);
+  // PRESET "real": CLIP_DIR is a real sequence (video.mp4, gt.camera.csv;
+  // ../shared/realgt): no scene to cast rays into, only the rigid fits.
+  const bool real = preset == "real";
+  const CameraPath gt = ReadCameraPathFile(real ? dir + "/gt.camera.csv" : dir + "/" + preset + ".camera.csv");
+  const auto scene = real ? nullptr : SynthScene(1, synth::FindSynthPreset(preset).scene, 1);
 
-  auto source = OpenFrameSource(dir + "/" + preset + ".mp4", FrameSourceOptions{});
+  auto source = OpenFrameSource(real ? dir + "/video.mp4" : dir + "/" + preset + ".mp4", FrameSourceOptions{});
   const int W = source->info().width, H = source->info().height;
   TrackerOptions to;
   if (klt_window > 0) to.klt_window = klt_window;
@@ -136,7 +138,7 @@ int main(int argc, char** argv) {
     const Eigen::Vector3d d0 = v0.world_from_cam * synth::CameraRayDirection(
                                    obs[0].px.x() + 0.5, obs[0].px.y() + 0.5, W, H, v0.focal_px());
     synth::Hit hit;
-    if (scene->Trace(v0.center, d0, &hit)) ray_point[id] = hit.p;
+    if (scene && scene->Trace(v0.center, d0, &hit)) ray_point[id] = hit.p;
     // Linear: nearest point to all rays; then Gauss-Newton on pixels.
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -191,7 +193,7 @@ int main(int argc, char** argv) {
         const Eigen::Vector3d d = v.world_from_cam * synth::CameraRayDirection(
             o.px.x() + 0.5 + dx * r, o.px.y() + 0.5 + dy * r, W, H, v.focal_px());
         synth::Hit hit;
-        if (!scene->Trace(v.center, d, &hit)) continue;
+        if (!scene || !scene->Trace(v.center, d, &hit)) continue;
         lo = std::min(lo, hit.t);
         hi = std::max(hi, hit.t);
       }
@@ -285,6 +287,9 @@ int main(int argc, char** argv) {
                      p.px.x(), p.px.y());
       TrackPoint q = p;
       if (mode == "klt") {
+      } else if (mode == "split") {  // every track cut into pieces of --cut frames (new ids)
+        const long piece = (ft.index - obs[0].frame) / std::max(1, static_cast<int>(cut));
+        q.track_id = p.track_id * 1000 + piece;
       } else if (mode == "cut") {  // KLT observations off the rigid fit by more than --cut px dropped
         if (e > cut) continue;
       } else if (mode == "dropbad") {  // whole tracks whose fit is off by more than --cut px dropped
