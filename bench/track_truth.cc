@@ -3,7 +3,7 @@
 //
 //   hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad] [--cut PX]
 //                       [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]
-//                       [--est-out FILE] [--errors-out FILE] [--layers 1]
+//                       [--est-out FILE] [--errors-out FILE] [--layers 1] [--stills 1]
 //
 // Tracks the clip with the real FeatureTracker, then casts the ray of every
 // track's first observation into the synthetic scene (ground-truth camera) to
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   const std::string preset = argv[1], dir = argv[2];
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
-  int klt_window = 0, points = 0, per_frame = 0, layers = 0;
+  int klt_window = 0, points = 0, per_frame = 0, layers = 0, stills = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--mode") mode = argv[i + 1];
@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
     else if (a == "--est-out") est_out = argv[i + 1];
     else if (a == "--errors-out") errors_out = argv[i + 1];
     else if (a == "--layers") layers = std::stoi(argv[i + 1]);
+    else if (a == "--stills") stills = std::stoi(argv[i + 1]);
     else {
       std::cerr << "unknown option " << a << "\n";
       return 2;
@@ -100,10 +101,18 @@ int main(int argc, char** argv) {
   const int W = source->info().width, H = source->info().height;
   TrackerOptions to;
   if (klt_window > 0) to.klt_window = klt_window;
+  to.stills = stills != 0;
   FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
   Frame frame;
   while (source->Next(&frame)) frames.push_back(tracker.Process(frame));
+  // A real sequence's principal point (cx_px, cy_px in the header) where it
+  // is off-centre: the tracks are shifted so that it sits at the centre the
+  // projection below assumes (the estimator itself is fed the tracks as seen).
+  Eigen::Vector2d pp_shift(0, 0);
+  if (real && gt.metadata.count("cx_px") && gt.metadata.count("cy_px"))
+    pp_shift = Eigen::Vector2d(0.5 * (W - 1) - std::stod(gt.metadata.at("cx_px")),
+                               0.5 * (H - 1) - std::stod(gt.metadata.at("cy_px")));
 
   const int n_gt = static_cast<int>(gt.frames.size());
   std::vector<synth::CameraView> views;
@@ -124,7 +133,7 @@ int main(int argc, char** argv) {
   std::map<long, std::vector<Obs>> obs_of;
   for (const auto& ft : frames)
     if (ft.index < n_gt)
-      for (const auto& p : ft.points) obs_of[p.track_id].push_back({ft.index, p.px});
+      for (const auto& p : ft.points) obs_of[p.track_id].push_back({ft.index, p.px + pp_shift});
 
   // (a) The point a track *should* follow: the scene hit of its first
   // observation's ray (ambiguous on silhouettes: the ray may pass the edge).
@@ -278,6 +287,8 @@ int main(int argc, char** argv) {
       Eigen::Vector2d fit_px, ray_px(1e9, 1e9);
       if (!project(ft.index, fit_point.at(p.track_id), &fit_px)) continue;
       const bool has_ray = ray_point.count(p.track_id) && project(ft.index, ray_point.at(p.track_id), &ray_px);
+      fit_px -= pp_shift;  // back to the tracks' own pixels
+      if (has_ray) ray_px -= pp_shift;
       const double e = (p.px - fit_px).norm();
       fit_err.push_back(e);
       if (ef)
