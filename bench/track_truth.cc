@@ -19,7 +19,12 @@
 //   cut      KLT, without observations off their rigid fit by > --cut px
 //   dropbad  KLT, without tracks whose rigid fit is off by > --cut px
 //   droplayers KLT, without tracks the depth-layer cue flags with GT depths
+//   split    KLT, every track cut into pieces of --cut frames (new ids)
 // (--noise adds Gaussian pixel noise to fit/ray positions).
+// PRESET "real": CLIP_DIR is a real sequence of ../shared/realgt (video.mp4,
+// gt.camera.csv, an off-centre principal point from its header): no scene,
+// so only the rigid fits (no ray, no depth edges). --stills 1 tracks as
+// image stills (descriptor linking from the first frame).
 // --layers 1 prints how well the depth-layer cue (estimate/depth_layers.h)
 // separates them, with the ground-truth depth of each track's rigid fit.
 #include <Eigen/Geometry>
@@ -59,6 +64,15 @@ synth::CameraView ViewOf(const CameraFrame& f, int w, int h) {
   v.width = w;
   v.height = h;
   return v;
+}
+
+// A real sequence's principal point (cx_px, cy_px in the header) where it is
+// off-centre: the shift that puts it at the centre the projection assumes
+// (the tracks are shifted for the rigid fits only; the estimator is fed the
+// tracks as seen).
+Eigen::Vector2d PrincipalPointShift(const CameraPath& gt, int w, int h) {
+  if (!gt.metadata.count("cx_px") || !gt.metadata.count("cy_px")) return {0, 0};
+  return {0.5 * (w - 1) - std::stod(gt.metadata.at("cx_px")), 0.5 * (h - 1) - std::stod(gt.metadata.at("cy_px"))};
 }
 
 }  // namespace
@@ -106,13 +120,7 @@ int main(int argc, char** argv) {
   std::vector<FrameTracks> frames;
   Frame frame;
   while (source->Next(&frame)) frames.push_back(tracker.Process(frame));
-  // A real sequence's principal point (cx_px, cy_px in the header) where it
-  // is off-centre: the tracks are shifted so that it sits at the centre the
-  // projection below assumes (the estimator itself is fed the tracks as seen).
-  Eigen::Vector2d pp_shift(0, 0);
-  if (real && gt.metadata.count("cx_px") && gt.metadata.count("cy_px"))
-    pp_shift = Eigen::Vector2d(0.5 * (W - 1) - std::stod(gt.metadata.at("cx_px")),
-                               0.5 * (H - 1) - std::stod(gt.metadata.at("cy_px")));
+  const Eigen::Vector2d pp_shift = real ? PrincipalPointShift(gt, W, H) : Eigen::Vector2d(0, 0);
 
   const int n_gt = static_cast<int>(gt.frames.size());
   std::vector<synth::CameraView> views;
