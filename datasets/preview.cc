@@ -202,8 +202,11 @@ Rendered RenderFrames(const PreviewOptions& o, const PreviewInputs& in, FrameSou
   const VideoInfo& info = source.info();
   const double fps = info.fps > 0 ? info.fps : 25.0;
   const BurnInLabels labels(in.camera, in.track, in.effects);
-  long total = info.frame_count;
-  if (std::isfinite(range.to_s)) total = std::min<long>(total, std::lround(range.to_s * fps));
+  long total = info.frame_count;  // 0: unknown (no ETA)
+  if (std::isfinite(range.to_s)) {
+    const long to_frames = std::lround(range.to_s * fps);
+    total = total > 0 ? std::min(total, to_frames) : to_frames;
+  }
   VideoWriter writer;
   VideoWriterOptions vo;
   vo.crf = o.crf;

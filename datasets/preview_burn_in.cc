@@ -136,7 +136,7 @@ void DrawBurnIn(cv::Mat& bgr, const std::vector<std::string>& lines) {
   const int thickness = std::max(1, static_cast<int>(std::lround(scale * 1.6)));
   int baseline = 0;
   const int text_h = cv::getTextSize("0:", font, scale, thickness, &baseline).height;
-  const int step = text_h + std::max(4, text_h / 2);
+  const int step = text_h + std::max(5, text_h * 2 / 3);
   const int margin = std::max(4, bgr.rows / 60);
   int y = margin + text_h;
   for (const std::string& line : lines) {

@@ -175,6 +175,20 @@ std::vector<double> SemanticSampleTimes(std::vector<double> time_s,
   return time_s;
 }
 
+std::vector<double> CutTimes(const CameraPath& path, const std::vector<ShotRange>& shots) {
+  std::vector<double> cut_times;
+  for (size_t k = 1; k < shots.size(); ++k) cut_times.push_back(path.frames[shots[k].first].time_s);
+  return cut_times;
+}
+
+// The semantic model's effects: the keyframes file's, else the classifier's
+// (none for the other models).
+std::vector<EffectSegment> SemanticSegments(const CameraPath& path, const HapticOptions& o) {
+  if (o.model != HapticModel::kSemantic) return {};
+  return o.keyframes_file.empty() ? ClassifyEffects(path, o.classifier)
+                                  : ReadKeyframesFile(o.keyframes_file);
+}
+
 std::string JoinScales(const CinematicScaling& s, bool rotation) {
   std::ostringstream out;
   for (size_t i = 0; i < s.per_shot.size(); ++i) {
@@ -310,14 +324,10 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   const size_t regular_rows = time_s.size();
 
   const std::vector<ShotRange> shots = SplitShots(path);
-  std::vector<double> cut_times;
-  for (size_t k = 1; k < shots.size(); ++k) cut_times.push_back(path.frames[shots[k].first].time_s);
-  std::vector<EffectSegment> segs;
-  if (o.model == HapticModel::kSemantic) {
-    segs = o.keyframes_file.empty() ? ClassifyEffects(path, o.classifier)
-                                    : ReadKeyframesFile(o.keyframes_file);
+  const std::vector<double> cut_times = CutTimes(path, shots);
+  const std::vector<EffectSegment> segs = SemanticSegments(path, o);
+  if (o.model == HapticModel::kSemantic)
     time_s = SemanticSampleTimes(std::move(time_s), segs, cut_times, o);
-  }
   const size_t n = time_s.size();
 
   HapticTrack track;
