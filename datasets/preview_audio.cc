@@ -156,8 +156,11 @@ class AudioCopy : public PacketSource {
         av_packet_unref(p);
         continue;
       }
-      if (p->pts != AV_NOPTS_VALUE) p->pts = std::max<int64_t>(0, p->pts - offset_);
-      if (p->dts != AV_NOPTS_VALUE) p->dts = std::max<int64_t>(0, p->dts - offset_);
+      // Audio is never reordered: a packet without one time has it in the other.
+      if (p->pts == AV_NOPTS_VALUE) p->pts = p->dts;
+      if (p->dts == AV_NOPTS_VALUE) p->dts = p->pts;
+      p->pts = std::max<int64_t>(0, p->pts - offset_);
+      p->dts = std::max<int64_t>(0, p->dts - offset_);
       av_packet_rescale_ts(p, film_.in()->time_base, out_->time_base);
       p->stream_index = out_->index;
       p->pos = -1;
