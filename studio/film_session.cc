@@ -15,8 +15,7 @@ namespace hapcine::studio {
 namespace fs = std::filesystem;
 
 struct FilmSession::Rendered {
-  int64_t revision = 0;
-  std::string edits_json;  // the edits file's text as served
+  HapticEdits edits;
   std::shared_ptr<const HapticTrack> track;
   CurveGroup curves;  // the track's, millimetres
   std::vector<EffectSegment> effects;
@@ -25,11 +24,6 @@ struct FilmSession::Rendered {
 namespace {
 
 constexpr double kMaxTrackRangeS = 60.0;
-
-std::string DefaultEditsJson(int64_t revision) {
-  return nlohmann::json{{"format", "hapcine-edits"}, {"version", 1}, {"revision", revision}}.dump(2) +
-         "\n";
-}
 
 // Start and end of each shot: a shot ends where the next begins; the last
 // one frame period after its last frame.
@@ -59,12 +53,21 @@ nlohmann::json QualityJson(const ShotQuality* q) {
           {"doubtful", q->doubtful}};
 }
 
-nlohmann::json WashoutJson(const WashoutOptions& w) {
-  return {{"mode", WashoutModeName(w.mode)},
-          {"return_accel_m_s2", w.return_accel_m_s2},
-          {"window_s", w.window_s},
-          {"tau_s", w.tau_s},
-          {"order", w.order}};
+// The command line's washout with a shot's edits on top.
+nlohmann::json WashoutJson(const WashoutOptions& w, const ShotEdit* edit) {
+  nlohmann::json j = {{"mode", WashoutModeName(w.mode)},
+                      {"return_accel_m_s2", w.return_accel_m_s2},
+                      {"window_s", w.window_s},
+                      {"tau_s", w.tau_s},
+                      {"order", w.order}};
+  if (!edit || !edit->washout) return j;
+  const WashoutEdit& e = *edit->washout;
+  if (e.mode) j["mode"] = *e.mode;
+  if (e.return_accel_m_s2) j["return_accel_m_s2"] = *e.return_accel_m_s2;
+  if (e.window_s) j["window_s"] = *e.window_s;
+  if (e.tau_s) j["tau_s"] = *e.tau_s;
+  if (e.order) j["order"] = *e.order;
+  return j;
 }
 
 nlohmann::json EffectsJson(const std::vector<EffectSegment>& effects) {
@@ -150,19 +153,19 @@ FilmSession::FilmSession(std::string id, std::string film, std::string camera_cs
   duration_s_ = shots_.empty() ? 0.0 : shots_.back().end_s;
   media_ = ProbeMedia(film_);
   camera_curves_ = CameraCurves(path_);
-  rendered_ = Render(DefaultEditsJson(0), 0);
+  edits_path_ = EditsPathForFilm(film_);
+  std::error_code ec;
+  rendered_ = Render(fs::exists(edits_path_, ec) ? ReadHapticEditsFile(edits_path_) : HapticEdits{});
 }
 
-std::shared_ptr<const FilmSession::Rendered> FilmSession::Render(const std::string& edits_text,
-                                                                  int64_t revision) const {
+std::shared_ptr<const FilmSession::Rendered> FilmSession::Render(const HapticEdits& edits) const {
   auto r = std::make_shared<Rendered>();
-  r->revision = revision;
-  r->edits_json = edits_text;
+  r->edits = edits;
   HapticOptions options = options_;
+  options.edits = edits;
   r->track = std::make_shared<const HapticTrack>(MakeHapticTrack(path_, options));
   r->curves = TrackCurves(*r->track);
-  r->effects = options.keyframes_file.empty() ? ClassifyEffects(path_, options.classifier)
-                                              : ReadKeyframesFile(options.keyframes_file);
+  r->effects = EffectiveEffectSegments(path_, options);
   return r;
 }
 
@@ -196,7 +199,7 @@ nlohmann::json FilmSession::Summary() const {
 nlohmann::json FilmSession::Details() const {
   const auto r = Snapshot();
   nlohmann::json j = Summary();
-  j["revision"] = r->revision;
+  j["revision"] = r->edits.revision;
   const std::string base = "/api/films/" + id_;
   j["video_url"] = base + (media_.browser_playable ? "/video" : "/proxy.mp4");
   nlohmann::json shots = nlohmann::json::array();
@@ -205,13 +208,14 @@ nlohmann::json FilmSession::Details() const {
     for (const ShotQuality& candidate : quality_) {
       if (candidate.shot == s.shot) q = &candidate;
     }
+    const ShotEdit* edit = r->edits.FindShot(s.shot);
     shots.push_back({{"shot", s.shot},
                      {"start_s", s.start_s},
                      {"end_s", s.end_s},
-                     {"model", HapticModelName(options_.model)},
-                     {"gain", 1.0},
-                     {"mute", false},
-                     {"washout", WashoutJson(options_.washout)},
+                     {"model", HapticModelName(edit && edit->model ? *edit->model : options_.model)},
+                     {"gain", edit && edit->gain ? *edit->gain : 1.0},
+                     {"mute", edit && edit->mute ? *edit->mute : false},
+                     {"washout", WashoutJson(options_.washout, edit)},
                      {"quality", QualityJson(q)},
                      {"thumbnail_url", base + "/thumbnails/" + std::to_string(s.shot) + ".jpg"}});
   }
@@ -247,14 +251,42 @@ nlohmann::json FilmSession::TrackJson(double from_s, double to_s) const {
   return {{"rate_hz", r->track->rate_hz}, {"t", t}, {"head", head}, {"left", left}, {"right", right}};
 }
 
-std::string FilmSession::EditsJson() const { return Snapshot()->edits_json; }
+std::string FilmSession::EditsJson() const { return HapticEditsToJson(Snapshot()->edits); }
 
-int64_t FilmSession::revision() const { return Snapshot()->revision; }
+int64_t FilmSession::revision() const { return Snapshot()->edits.revision; }
 
 std::shared_ptr<const HapticTrack> FilmSession::track() const { return Snapshot()->track; }
 
 nlohmann::json FilmSession::SaveEdits(const std::string& body) {
-  throw HttpError{501, "this build cannot save edits yet"};
+  HapticEdits edits;
+  try {
+    edits = ParseHapticEdits(body, "edits");
+  } catch (const Error& e) {
+    throw HttpError{400, e.what()};
+  }
+  // One save at a time: the revision check, the render and the write are
+  // one step, so of two saves based on the same revision exactly one wins.
+  std::lock_guard<std::mutex> saving(save_mu_);
+  const int64_t current = revision();
+  if (edits.revision != current)
+    throw HttpError{409,
+                    "stale edits: based on revision " + std::to_string(edits.revision) +
+                        ", the film is at revision " + std::to_string(current) +
+                        " (saved from another tab?): reload",
+                    {{"revision", current}}};
+  edits.revision = current + 1;
+  std::shared_ptr<const Rendered> rendered;
+  try {
+    rendered = Render(edits);
+  } catch (const Error& e) {
+    throw HttpError{400, e.what()};
+  }
+  WriteHapticEditsFile(edits, edits_path_);
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    rendered_ = rendered;
+  }
+  return {{"revision", edits.revision}};
 }
 
 }  // namespace hapcine::studio

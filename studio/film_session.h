@@ -38,8 +38,9 @@ struct ShotSpan {
 class FilmSession {
  public:
   // `film`: the video; `camera_csv`: its camera path; `options`: the command
-  // line's haptic settings. Reads the edits file beside the film when there
-  // is one and renders the track. Throws hapcine::Error naming the file.
+  // line's haptic settings. Reads the edits file beside the film
+  // (EditsPathForFilm) when there is one and renders the track. Throws
+  // hapcine::Error naming the file.
   FilmSession(std::string id, std::string film, std::string camera_csv, HapticOptions options);
 
   const std::string& id() const { return id_; }
@@ -59,7 +60,9 @@ class FilmSession {
   nlohmann::json TrackJson(double from_s, double to_s) const;  // throws HttpError (> 60 s)
   std::string EditsJson() const;
   int64_t revision() const;
-  // PUT /api/films/<id>/edits: {"revision": new}; throws HttpError 400/409.
+  // PUT /api/films/<id>/edits: {"revision": new}; throws HttpError 400 (the
+  // parser's or the render's one line), 409 (stale: body revision is not the
+  // current one; {"revision": current} in the error body).
   nlohmann::json SaveEdits(const std::string& body);
   std::shared_ptr<const HapticTrack> track() const;
   const HapticOptions& options() const { return options_; }
@@ -67,9 +70,9 @@ class FilmSession {
  private:
   struct Rendered;
   std::shared_ptr<const Rendered> Snapshot() const;
-  std::shared_ptr<const Rendered> Render(const std::string& edits_text, int64_t revision) const;
+  std::shared_ptr<const Rendered> Render(const HapticEdits& edits) const;
 
-  std::string id_, film_, camera_csv_;
+  std::string id_, film_, camera_csv_, edits_path_;
   HapticOptions options_;
   CameraPath path_;
   std::vector<ShotQuality> quality_;

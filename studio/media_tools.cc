@@ -75,7 +75,12 @@ double LastProgressSeconds(const std::string& path) {
 MediaProbe ProbeMedia(const std::string& film) {
   MediaProbe p;
   AVFormatContext* fmt = nullptr;
-  if (avformat_open_input(&fmt, film.c_str(), nullptr, nullptr) != 0) return p;
+  // A file libavformat cannot read is an answer here, not a message.
+  const int log_level = av_log_get_level();
+  av_log_set_level(AV_LOG_FATAL);
+  const int opened = avformat_open_input(&fmt, film.c_str(), nullptr, nullptr);
+  av_log_set_level(log_level);
+  if (opened != 0) return p;
   if (avformat_find_stream_info(fmt, nullptr) >= 0) {
     p.opened = true;
     p.container = fmt->iformat && fmt->iformat->name ? fmt->iformat->name : "";

@@ -64,6 +64,23 @@ double QueryNumber(const httplib::Request& req, const std::string& key, double f
   throw HttpError{400, key + ": not a number: '" + text.substr(0, 40) + "'"};
 }
 
+// Byte ranges [first, last] of a Range header (-1: absent) made explicit
+// and cut to the file; false when one starts past the end or is empty.
+bool ClampRanges(httplib::Ranges& ranges, size_t size) {
+  const auto n = static_cast<ssize_t>(size);
+  for (auto& [first, last] : ranges) {
+    if (first < 0) {  // "bytes=-N": the last N bytes
+      if (last <= 0) return false;
+      first = std::max<ssize_t>(0, n - last);
+      last = n - 1;
+    } else {
+      if (first >= n || (last >= 0 && last < first)) return false;
+      last = last < 0 ? n - 1 : std::min(last, n - 1);
+    }
+  }
+  return true;
+}
+
 nlohmann::json ParseJsonBody(const std::string& body) {
   try {
     return nlohmann::json::parse(body);
@@ -142,6 +159,12 @@ void StudioServer::ServeFile(const httplib::Request& req, httplib::Response& res
   std::error_code ec;
   const uintmax_t size = fs::file_size(path, ec);
   if (ec) throw HttpError{404, "cannot read " + fs::path(path).filename().string()};
+  // httplib 0.11 neither refuses nor clamps a range past the end; the
+  // request is this server's own object, so the ranges are fixed in place.
+  if (!ClampRanges(const_cast<httplib::Request&>(req).ranges, static_cast<size_t>(size))) {
+    res.set_header("Content-Range", "bytes */" + std::to_string(size));
+    throw HttpError{416, "range not satisfiable (the file has " + std::to_string(size) + " bytes)"};
+  }
   res.set_header("Accept-Ranges", "bytes");
   res.set_header("Cache-Control", "no-cache");
   // httplib cuts the provider's bytes to the request's Range (206).
