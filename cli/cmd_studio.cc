@@ -41,9 +41,9 @@ const std::map<std::string, std::string>& RefusedEstimateOptions() {
   return refused;
 }
 
-// Option name -> takes a value, for `hapcine estimate` (its own table, read
-// through ScopedAppProbe as `make` does).
-std::map<std::string, bool> EstimateOptionTable() {
+// Option name -> takes a value, for a command (its own table, read through
+// ScopedAppProbe as `make` does).
+std::map<std::string, bool> OptionTable(int (*run)(int, char**), const std::string& command) {
   std::map<std::string, bool> table;
   ScopedAppProbe probe([&](CLI::App& app, int, char**) {
     for (const CLI::Option* o : app.get_options()) {
@@ -53,22 +53,26 @@ std::map<std::string, bool> EstimateOptionTable() {
     }
     return 0;
   });
-  std::string prog = "hapcine estimate";
+  std::string prog = "hapcine " + command;
   char* argv[] = {prog.data(), nullptr};
-  RunEstimate(1, argv);
+  run(1, argv);
   return table;
 }
 
 // Deals argv to the studio (its own options and the films) or to estimate.
 void SplitArguments(int argc, char** argv, const CLI::App& app, std::vector<std::string>* own,
                     std::vector<std::string>* estimate) {
-  const std::map<std::string, bool> est = EstimateOptionTable();
+  const std::map<std::string, bool> est = OptionTable(RunEstimate, "estimate");
+  const std::map<std::string, bool> hap = OptionTable(RunHaptics, "haptics");
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     const std::string name = word.substr(0, word.find('='));
     const bool option = name.size() > 1 && name[0] == '-';
     const CLI::Option* mine = option ? app.get_option_no_throw(name) : nullptr;
     std::vector<std::string>* to = own;
+    if (option && !mine && !est.count(name) && hap.count(name))
+      throw UsageError(name + " is a haptics option: set it per shot on the studio's page (or use "
+                              "hapcine make / haptics)");
     if (option && !mine && est.count(name)) {
       const auto refused = RefusedEstimateOptions().find(name);
       if (refused != RefusedEstimateOptions().end())
