@@ -1,6 +1,7 @@
 // `hapcine batch`: a whole library through estimate + haptics, locally with N
 // workers or as a Slurm job array; resumable. The work is in batch/.
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -50,6 +51,10 @@ int RunBatch(int argc, char** argv) {
   app.add_option("--hapcine-exe", opt.step_exe,
                  "program run for the steps (default: this hapcine executable)");
   app.add_flag("--force", opt.force, "redo every film even if up to date");
+  bool no_edits = false;
+  app.add_flag("--no-edits", no_edits,
+               "ignore the films' <stem>.edits.json files (otherwise used when beside a film\n"
+               "or in its output folder; docs/formats.md \"Edits file\")");
   app.add_flag("--status", status,
                "print progress of OUT_DIR from its state files (done/failed/duplicate/\n"
                "running/pending) and exit");
@@ -79,6 +84,7 @@ int RunBatch(int argc, char** argv) {
       return kExitOk;
     }
     opt.library = positional;
+    opt.use_edits = !no_edits;
     // Outputs are committed as each film finishes; only the names are checked.
     CheckOutputPaths({{opt.library, "LIBRARY"}}, {{opt.out_dir, "-o", /*folder=*/true}});
     opt.models.clear();
@@ -111,6 +117,12 @@ int RunBatch(int argc, char** argv) {
               << s.Count(batch::FilmStatus::kFailed) << " failed, "
               << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
               << FormatDuration(s.wall_seconds) << "\n";
+    const auto edited = std::count_if(s.films.begin(), s.films.end(),
+                                      [](const batch::FilmOutcome& f) { return !f.edits.empty(); });
+    if (edited > 0) {
+      std::cerr << "batch: " << edited << " film(s) with an edits file (<stem>.edits.json, listed in "
+                << "summary.txt; --no-edits to ignore)\n";
+    }
     return s.ExitCode();
   });
 }

@@ -90,7 +90,7 @@ int RunHaptics(int argc, char** argv) {
       "Films are processed per shot (`shot` column) with a washout so no actuator leaves its\n"
       "workspace. Details and file formats: docs/haptics.md.",
       "hapcine haptics"};
-  std::string input, output, hjif, seat_file, model = "cinematic", keyframes, effects_out;
+  std::string input, output, hjif, seat_file, model = "cinematic", keyframes, effects_out, edits;
   HapticOptions opt;
   HjifOptions hjif_opt;
   double rate = 0;
@@ -126,8 +126,12 @@ int RunHaptics(int argc, char** argv) {
                  "semantic model: hand-placed effects, CSV 'start_s,end_s,effect,intensity'\n"
                  "(default: effects found automatically by the classifier)");
   app.add_option("--effects-out", effects_out,
-                 "also write the effect segments (the classifier's, or --keyframes) as a\n"
-                 "keyframe file: edit it and pass it back with --keyframes");
+                 "also write the effect segments (the classifier's, or --keyframes, or the\n"
+                 "edits' keyframes) as a keyframe file: edit it and pass it back with --keyframes");
+  app.add_option("--edits", edits,
+                 "a designer's edits file (*.edits.json, docs/formats.md \"Edits file\"): per\n"
+                 "shot model, gain, mute and washout, and keyframes replacing the classifier's;\n"
+                 "applied before the film-level safety (cut crossfades, speed limit, clamp)");
   AddWashoutOptions(app, &opt.washout, &washout, &no_washout);
   app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
                  "distance of the subject defining the zoom's equivalent forward distance,\n"
@@ -154,6 +158,7 @@ int RunHaptics(int argc, char** argv) {
 
   return RunApp(app, argc, argv, [&]() -> int {
     if (!seat_file.empty() && IsPlatformFile(seat_file)) {
+      if (!edits.empty()) throw UsageError("--edits applies to the HapSeat, not to a platform");
       return RunPlatformHaptics({seat_file, input, output, model, print_seat, rate,
                                  opt.cinematic.reference_depth_u, opt.max_gap_s,
                                  !hjif.empty() || !effects_out.empty()});
@@ -165,11 +170,13 @@ int RunHaptics(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("INPUT is required");
     if (output.empty()) throw UsageError("-o OUT.haptic.csv is required");
-    OutputSet outputs({{input, "INPUT"}, {seat_file, "--seat"}, {keyframes, "--keyframes"}},
+    OutputSet outputs({{input, "INPUT"}, {seat_file, "--seat"}, {keyframes, "--keyframes"},
+                       {edits, "--edits"}},
                       {{output, "-o"}, {hjif, "--hjif"}, {effects_out, "--effects-out"}});
     opt.model = HapticModelFromName(model);
     opt.rate_hz = rate;
     opt.keyframes_file = keyframes;
+    if (!edits.empty()) opt.edits = ReadHapticEditsFile(edits);
     if (app.count("--seed") > 0) opt.seed = seed;
     opt.washout.mode = WashoutModeFromName(no_washout ? "off" : washout);
     opt.source = input;
@@ -208,9 +215,7 @@ int RunHaptics(int argc, char** argv) {
     std::unique_ptr<AtomicFile> fx;
     if (!effects_out.empty()) {
       fx = std::make_unique<AtomicFile>(effects_out);
-      WriteKeyframes(keyframes.empty() ? ClassifyEffects(path, opt.classifier)
-                                       : ReadKeyframesFile(keyframes),
-                     fx->stream());
+      WriteKeyframes(EffectiveEffectSegments(path, opt), fx->stream());
     }
     csv.Commit();
     if (hj) hj->Commit();
@@ -219,6 +224,7 @@ int RunHaptics(int argc, char** argv) {
     for (const ShotConfidence& c : AssessShotConfidence(path, SplitShots(path))) {
       if (c.low) std::cerr << "hapcine haptics: " << input << ": warning: " << LowQualityShotLine(c) << "\n";
     }
+    if (!edits.empty()) std::cerr << "haptics: edits from " << edits << "\n";
     std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
               << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
               << (hjif.empty() ? "" : " + " + hjif)
