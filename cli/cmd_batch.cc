@@ -16,6 +16,24 @@
 
 namespace hapcine::cli {
 
+namespace {
+
+void PrintTotals(const batch::BatchSummary& s) {
+  std::cerr << "batch: " << s.films.size() << " films: " << s.Count(batch::FilmStatus::kDone)
+            << " done, " << s.Count(batch::FilmStatus::kSkipped) << " skipped, "
+            << s.Count(batch::FilmStatus::kFailed) << " failed, "
+            << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
+            << FormatDuration(s.wall_seconds) << "\n";
+  const auto edited = std::count_if(s.films.begin(), s.films.end(),
+                                    [](const batch::FilmOutcome& f) { return !f.edits.empty(); });
+  if (edited > 0) {
+    std::cerr << "batch: " << edited << " film(s) with an edits file (<stem>.edits.json, listed in "
+              << "summary.txt; --no-edits to ignore)\n";
+  }
+}
+
+}  // namespace
+
 int RunBatch(int argc, char** argv) {
   CLI::App app{
       "Process a video library: for every film `hapcine estimate` (camera path), then\n"
@@ -112,17 +130,7 @@ int RunBatch(int argc, char** argv) {
       return batch::SubmitSlurmBatch(opt, slurm);
     }
     const batch::BatchSummary s = batch::RunLocalBatch(opt);
-    std::cerr << "batch: " << s.films.size() << " films: " << s.Count(batch::FilmStatus::kDone)
-              << " done, " << s.Count(batch::FilmStatus::kSkipped) << " skipped, "
-              << s.Count(batch::FilmStatus::kFailed) << " failed, "
-              << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
-              << FormatDuration(s.wall_seconds) << "\n";
-    const auto edited = std::count_if(s.films.begin(), s.films.end(),
-                                      [](const batch::FilmOutcome& f) { return !f.edits.empty(); });
-    if (edited > 0) {
-      std::cerr << "batch: " << edited << " film(s) with an edits file (<stem>.edits.json, listed in "
-                << "summary.txt; --no-edits to ignore)\n";
-    }
+    PrintTotals(s);
     return s.ExitCode();
   });
 }

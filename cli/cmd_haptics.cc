@@ -75,6 +75,26 @@ void AddWashoutOptions(CLI::App& app, WashoutOptions* w, std::string* washout, b
       ->check(FiniteRange(0, 10));
 }
 
+// The cinematic model's scaling options (docs/haptics.md, "Scaling").
+void AddCinematicOptions(CLI::App& app, CinematicOptions* c) {
+  app.add_option("--reference-depth", c->reference_depth_u,
+                 "distance of the subject defining the zoom's equivalent forward distance,\n"
+                 "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
+                 "metadata subject_distance_m, else 1 (the median depth of estimated paths)")
+      ->default_val(c->reference_depth_u)
+      ->check(FiniteRange(0, 1e6));
+  app.add_option("--max-translation-gain", c->max_translation_gain,
+                 "cinematic: cap on the translation/zoom scale, metres per path unit")
+      ->default_val(c->max_translation_gain)
+      ->check(FiniteRange(0, 100));
+  app.add_option("--max-rotation-gain", c->max_rotation_gain,
+                 "cinematic: cap on the rotation scale (1 = the camera's own angles)")
+      ->default_val(c->max_rotation_gain)
+      ->check(FiniteRange(0, 10));
+  app.add_flag("--per-film-scaling", c->per_film_scaling,
+               "cinematic: one scaling for the whole film instead of one per shot");
+}
+
 }  // namespace
 
 int RunHaptics(int argc, char** argv) {
@@ -133,22 +153,7 @@ int RunHaptics(int argc, char** argv) {
                  "shot model, gain, mute and washout, and keyframes replacing the classifier's;\n"
                  "applied before the film-level safety (cut crossfades, speed limit, clamp)");
   AddWashoutOptions(app, &opt.washout, &washout, &no_washout);
-  app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
-                 "distance of the subject defining the zoom's equivalent forward distance,\n"
-                 "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
-                 "metadata subject_distance_m, else 1 (the median depth of estimated paths)")
-      ->default_val(opt.cinematic.reference_depth_u)
-      ->check(FiniteRange(0, 1e6));
-  app.add_option("--max-translation-gain", opt.cinematic.max_translation_gain,
-                 "cinematic: cap on the translation/zoom scale, metres per path unit")
-      ->default_val(opt.cinematic.max_translation_gain)
-      ->check(FiniteRange(0, 100));
-  app.add_option("--max-rotation-gain", opt.cinematic.max_rotation_gain,
-                 "cinematic: cap on the rotation scale (1 = the camera's own angles)")
-      ->default_val(opt.cinematic.max_rotation_gain)
-      ->check(FiniteRange(0, 10));
-  app.add_flag("--per-film-scaling", opt.cinematic.per_film_scaling,
-               "cinematic: one scaling for the whole film instead of one per shot");
+  AddCinematicOptions(app, &opt.cinematic);
   app.add_option("--max-gap", opt.max_gap_s, "reject time gaps longer than this inside a shot, s")
       ->default_val(opt.max_gap_s)
       ->check(FiniteRange(0.001, 600));
