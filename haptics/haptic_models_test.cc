@@ -672,6 +672,9 @@ TEST(HapticModelEdits, AShotNotInThePathIsAnErrorNamingIt) {
     EXPECT_EQ(e.where(), "film.camera.csv");
     EXPECT_NE(e.reason().find("shot 7 is not in the camera path"), std::string::npos) << e.what();
   }
+  EXPECT_THROW(CheckEditsForPath(MakeFilm(), o), Error);  // before making any track
+  o.edits.shots = {Shot(2)};
+  EXPECT_NO_THROW(CheckEditsForPath(MakeFilm(), o));
   // A path without a shot column is shot 0.
   o.edits.shots = {Shot(0)};
   EXPECT_NO_THROW(MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o));
