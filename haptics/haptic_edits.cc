@@ -34,8 +34,11 @@ bool IsExtensionKey(const std::string& key) { return key.rfind("x-", 0) == 0; }
 // Text from the file as an error message shows it: control characters as
 // \xHH (the message stays one line), at most 60 bytes.
 std::string Shown(const std::string& text) {
+  size_t cut = std::min<size_t>(text.size(), 60);
+  // Not inside a UTF-8 character: the message may become JSON (the studio's errors).
+  while (cut < text.size() && cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
   std::string out;
-  for (const char c : text.substr(0, 60)) {
+  for (const char c : text.substr(0, cut)) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
       const char* hex = "0123456789abcdef";
       out += std::string("\\x") + hex[(c >> 4) & 0xf] + hex[c & 0xf];
@@ -43,7 +46,7 @@ std::string Shown(const std::string& text) {
       out += c;
     }
   }
-  return text.size() > 60 ? out + "..." : out;
+  return cut < text.size() ? out + "..." : out;
 }
 
 void CheckKeys(const Reader& r, const json& object, const std::string& field,
