@@ -198,12 +198,10 @@ std::vector<SampleRange> ShotSampleRanges(const CameraPath& path,
                                           const std::vector<ShotRange>& shots,
                                           const std::vector<double>& time_s) {
   std::vector<SampleRange> ranges(shots.size());
-  for (size_t k = 0; k < shots.size(); ++k) {
+  for (size_t k = 1; k < shots.size(); ++k) {
     const double start = path.frames[shots[k].first].time_s;
-    ranges[k].begin = k == 0 ? 0 : static_cast<size_t>(std::lower_bound(time_s.begin(),
-                                                                         time_s.end(), start) -
-                                                        time_s.begin());
-    if (k > 0) ranges[k - 1].end = ranges[k].begin;
+    const auto first = std::lower_bound(time_s.begin(), time_s.end(), start);
+    ranges[k].begin = ranges[k - 1].end = static_cast<size_t>(first - time_s.begin());
   }
   ranges.back().end = time_s.size();
   return ranges;
