@@ -8,7 +8,9 @@
 // <reason>" for a file that is not a (fake) video or is "corrupt", and dies
 // by SIGSEGV for a file containing "segv". Its outputs depend only on the
 // input bytes and extra arguments, so runs can be compared byte for byte.
-// Each finished estimate appends "estimate <input path>" to a call log.
+// Each finished estimate appends "estimate <input path>" to a call log. A
+// haptics step given --edits FILE appends "edits:" and FILE's bytes to its
+// track; `plot` and `preview` write their input's bytes under their output names.
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -74,11 +76,32 @@ case "$cmd" in
     echo "estimate $in" >> "$LOG"
     ;;
   haptics)
-    cam=$1; model=$3; out=$5; hjif=$7
+    cam=$1; model=$3; out=$5; hjif=""; edits=""
+    args=("$@")
+    for ((i = 5; i + 1 < ${#args[@]}; i++)); do
+      [ "${args[$i]}" = --hjif ] && hjif=${args[$((i + 1))]}
+      [ "${args[$i]}" = --edits ] && edits=${args[$((i + 1))]}
+    done
     IFS= read -r -d '' camera < "$cam"
     printf 'model,%s\n%s' "$model" "$camera" > "$out"
-    echo "{\"model\":\"$model\"}" > "$hjif"
+    # An edits file's bytes end the track, so a test sees which edits made it.
+    if [ -n "$edits" ]; then IFS= read -r -d '' e < "$edits"; printf 'edits:%s' "$e" >> "$out"; fi
+    [ -n "$hjif" ] && echo "{\"model\":\"$model\"}" > "$hjif"
     echo "haptics $model $cam" >> "$LOG"
+    ;;
+  plot)
+    # plot camera|haptic FILE --format png -o PREFIX: a "picture" of FILE's bytes.
+    kind=$1; in=$2; prefix=$6
+    IFS= read -r -d '' content < "$in"
+    printf 'plot %s\n%s' "$kind" "$content" > "$prefix.png"
+    echo "plot $kind $in" >> "$LOG"
+    ;;
+  preview)
+    # preview FILM --track TRACK -o OUT: a "video" of the track's bytes.
+    track=$3; out=$5
+    IFS= read -r -d '' content < "$track"
+    printf 'preview\n%s' "$content" > "$out"
+    echo "preview $track" >> "$LOG"
     ;;
   *) echo "fake hapcine: unknown command $cmd" >&2; exit 2 ;;
 esac

@@ -31,6 +31,14 @@ FilmLayout MakeLayout(const MakeOptions& options, const FilmPlan& film) {
     layout.camera_plot = film.stem + ".camera.png";
     layout.haptic_plot = film.stem + ".haptic.png";
   }
+  // Beside the outputs (with -o DIR: where a studio serving them saves), then beside the film.
+  // Beside a video, its whole file stem (EditsPathForFilm's name, even where
+  // the output stem is cut to fit 255 bytes).
+  const std::string own_stem = IsImageSequenceInput(film.path) ? film.stem : FileStem(film.path);
+  FindEditsFile(MakeBatchOptions(options),
+                {(fs::path(layout.output_dir) / (film.stem + ".edits.json")).string(),
+                 (beside / (own_stem + ".edits.json")).string()},
+                &layout);
   return layout;
 }
 
@@ -56,6 +64,7 @@ BatchOptions MakeBatchOptions(const MakeOptions& options) {
   b.hjif = options.hjif;
   b.preview = options.preview;
   b.plot = options.plot;
+  b.use_edits = options.use_edits;
   return b;
 }
 
