@@ -36,6 +36,8 @@ window.hapcineStudio = {
   xToTime: (x) => studio.timeline.xToTime(x),
   state,
   setView,
+  lanes: LANES,
+  timeline: studio.timeline,
 };
 
 // ---- films
