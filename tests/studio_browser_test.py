@@ -195,15 +195,20 @@ def wait_for(driver, script, what, timeout=30):
     fail(f"timed out waiting for {what}")
 
 
-def click_timeline_at(driver, t, lane_y=None):
-    """Clicks the timeline canvas at time t (in the camera-angle lane unless told)."""
+def click_timeline_at(driver, t, lane="angles"):
+    """Clicks the timeline canvas at time t, in the middle of a lane, at viewport coordinates
+    (Selenium's element offsets count from the in-view centre, which moves when the page scrolls)."""
     from selenium.webdriver.common.action_chains import ActionChains
-    canvas = driver.find_element("id", "timeline")
-    x = driver.execute_script("return hapcineStudio.timeToX(arguments[0])", t)
-    y = lane_y if lane_y is not None else driver.execute_script(
-        "return hapcineStudio.lanes.find(l => l.key === 'angles').top + 20")
-    size = canvas.size
-    ActionChains(driver).move_to_element_with_offset(canvas, x - size["width"] / 2, y - size["height"] / 2).click().perform()
+    x, y = driver.execute_script(
+        "const canvas = document.getElementById('timeline');"
+        "const lane = hapcineStudio.lanes.find(l => l.key === arguments[1]);"
+        "canvas.scrollIntoView({block: 'nearest'});"
+        "const r = canvas.getBoundingClientRect();"
+        "return [r.left + hapcineStudio.timeToX(arguments[0]), r.top + lane.top + lane.height / 2];", t, lane)
+    actions = ActionChains(driver)
+    actions.w3c_actions.pointer_action.move_to_location(round(x), round(y))
+    actions.w3c_actions.pointer_action.click()
+    actions.perform()
 
 
 def video_time(driver):
