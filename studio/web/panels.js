@@ -41,7 +41,7 @@ export function renderShotPanel(studio) {
   $('shot-title').insertAdjacentHTML('beforeend',
     ` <span class="muted">${info.start_s.toFixed(2)}–${info.end_s.toFixed(2)} s</span>`);
   renderQuality(info.quality);
-  $('model-select').options[0].textContent = `film default (${film.model || 'cinematic'})`;
+  $('model-select').options[0].textContent = `default (${film.model || 'cinematic'})`;
   setValue('model-select', edit.model || '');
   setValue('gain-input', edit.gain !== undefined ? edit.gain : 1);
   setValue('gain-slider', edit.gain !== undefined ? edit.gain : 1);

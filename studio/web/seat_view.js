@@ -13,6 +13,9 @@ const DEFAULT_SEAT = {
   workspace_half_m: 0.05, usable_half_m: 0.045,
 };
 const WINDOW_BEFORE_S = 2, WINDOW_AFTER_S = 28, TRAIL_S = 0.6;
+// The workspaces (10 cm cubes) are drawn this much larger than the chair so that
+// a few millimetres of motion show.
+const MAGNIFY = 2.5;
 
 export class SeatView {
   constructor(canvas, fetchTrack) {
@@ -64,7 +67,7 @@ export class SeatView {
     this.ensure(t);
     const ctx = this.ctx;
     ctx.clearRect(0, 0, this.width, this.height);
-    const gaugeWidth = 84;
+    const gaugeWidth = 80;
     const now = this.sample(t);
     this.drawTopView(this.width - gaugeWidth - 8, now, t);
     this.drawGauges(this.width - gaugeWidth, gaugeWidth, now);
@@ -72,9 +75,9 @@ export class SeatView {
 
   // Seat frame metres -> top-view pixels: x right, z backward (down).
   topViewScale(width) {
-    const spanX = 0.78, spanZ = 0.6, h = this.height - 34;
+    const spanX = 0.8, spanZ = 0.6, h = this.height - 30;
     const scale = Math.min(width / spanX, h / spanZ);
-    const ox = width / 2, oz = 22 + h / 2 + 0.08 * scale;   // z = -0.08 m (between head and hands) in the middle
+    const ox = width / 2, oz = 20 + h / 2 + 0.1 * scale;   // z = -0.1 m (between head and hands) in the middle
     return { scale, toPx: (x, z) => [ox + x * scale, oz + z * scale] };
   }
 
@@ -82,34 +85,43 @@ export class SeatView {
     const ctx = this.ctx;
     const { scale, toPx } = this.topViewScale(width);
     drawChair(ctx, toPx, scale);
-    const half = this.seat.workspace_half_m;
+    const half = this.seat.workspace_half_m * MAGNIFY * scale;
+    const usable = this.seat.usable_half_m * MAGNIFY * scale;
+    ctx.font = '11px system-ui, sans-serif';
     for (const a of ACTUATORS) {
       const c = this.seat[a.centre];
       const [cx, cz] = toPx(c[0], c[2]);
-      ctx.strokeStyle = 'rgba(255,255,255,0.35)';
-      ctx.strokeRect(cx - half * scale, cz - half * scale, 2 * half * scale, 2 * half * scale);
-      this.drawTrail(a, c, toPx, t);
-      const d = now ? now[a.key] : [0, 0, 0];
-      const [px, pz] = toPx(c[0] + d[0] / 1000, c[2] + d[2] / 1000);
-      dot(ctx, px, pz, 6, a.color);
+      ctx.fillStyle = 'rgba(20,24,30,0.85)';
+      ctx.fillRect(cx - half, cz - half, 2 * half, 2 * half);
+      ctx.strokeStyle = 'rgba(255,255,255,0.45)';
+      ctx.strokeRect(cx - half, cz - half, 2 * half, 2 * half);
+      ctx.setLineDash([3, 3]);
+      ctx.strokeStyle = 'rgba(255,255,255,0.18)';
+      ctx.strokeRect(cx - usable, cz - usable, 2 * usable, 2 * usable);
+      ctx.setLineDash([]);
+      ctx.fillStyle = 'rgba(255,255,255,0.25)';
+      ctx.fillRect(cx - 4, cz, 9, 1);
+      ctx.fillRect(cx, cz - 4, 1, 9);
+      const grip = (d) => toPx(c[0] + (MAGNIFY * d[0]) / 1000, c[2] + (MAGNIFY * d[2]) / 1000);
+      this.drawTrail(a, grip, t);
+      const [px, pz] = grip(now ? now[a.key] : [0, 0, 0]);
+      dot(ctx, px, pz, 5, a.color);
       ctx.fillStyle = '#9aa3b2';
-      ctx.font = '11px system-ui, sans-serif';
-      ctx.fillText(a.label, cx - half * scale, cz + half * scale + 12);
+      ctx.fillText(a.label, cx - half + 3, cz - half + 12);
     }
     ctx.fillStyle = '#6f7887';
-    ctx.fillText('top view · screen ↑', 6, 12);
+    ctx.fillText(`top view, screen ↑ (grips ×${MAGNIFY})`, 6, 12);
   }
 
-  drawTrail(a, c, toPx, t) {
+  drawTrail(a, grip, t) {
     const ctx = this.ctx;
     ctx.strokeStyle = a.color;
-    ctx.globalAlpha = 0.45;
+    ctx.globalAlpha = 0.5;
     ctx.beginPath();
     for (let k = 0; k <= 12; k++) {
       const s = this.sample(t - TRAIL_S * (1 - k / 12));
       if (!s) break;
-      const d = s[a.key];
-      const [px, pz] = toPx(c[0] + d[0] / 1000, c[2] + d[2] / 1000);
+      const [px, pz] = grip(s[a.key]);
       if (k) ctx.lineTo(px, pz); else ctx.moveTo(px, pz);
     }
     ctx.stroke();
@@ -124,7 +136,7 @@ export class SeatView {
     const yOf = (mm) => bottom - ((mm + half) / (2 * half)) * (bottom - top);
     ctx.font = '11px system-ui, sans-serif';
     ctx.fillStyle = '#6f7887';
-    ctx.fillText('height', x0 + gap, 12);
+    ctx.fillText('height (y)', x0 + 4, 12);
     ACTUATORS.forEach((a, i) => {
       const x = x0 + gap + i * (barW + gap);
       ctx.fillStyle = '#1b2029';
