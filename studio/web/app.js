@@ -86,7 +86,7 @@ async function loadFilm(id) {
   document.title = `${film.name} — hapcine studio`;
   studio.timeline.setFilm(film);
   state.view = studio.timeline.view;
-  studio.seat.setSeat(film.seat);
+  studio.seat.setSeat(film.seat, film.duration_s);
   studio.seat.invalidate();
   studio.edits.load(edits, film.effects);
   setSaveStatus('', '');
@@ -242,7 +242,9 @@ function buildLaneLabels() {
 function render() {
   if (!state.film) return;
   const tl = studio.timeline;
+  const started = performance.now();
   tl.draw({ editsModel: studio.edits, selectedShot: state.selectedShot });
+  state.drawMs = performance.now() - started;
   panels.renderKeyframeBlocks(studio);
   panels.renderShotPanel(studio);
   panels.renderKeyframePanel(studio);
@@ -312,6 +314,8 @@ function showClock(t) {
 // ---- save
 async function save() {
   if (state.saving || !state.film) return;
+  // A field being typed in commits its value (its change event) first.
+  if (document.activeElement && document.activeElement !== document.body) document.activeElement.blur();
   if (!studio.edits.dirty) return setSaveStatus('ok', `No changes · revision ${studio.edits.revision}`);
   state.saving = true;
   $('save').disabled = true;

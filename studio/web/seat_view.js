@@ -25,21 +25,27 @@ export class SeatView {
     this.seat = DEFAULT_SEAT;
     this.track = null;
     this.loading = null;
+    this.failedAt = -Infinity;
     this.lastTime = 0;
+    this.duration = Infinity;
   }
 
-  setSeat(seat) { this.seat = Object.assign({}, DEFAULT_SEAT, seat || {}); }
+  setSeat(seat, duration_s) {
+    this.seat = Object.assign({}, DEFAULT_SEAT, seat || {});
+    this.duration = duration_s || Infinity;
+  }
   invalidate() { this.track = null; }
 
   // Ensures the samples around t are loaded (asynchronously).
   ensure(t) {
     const tr = this.track;
     const covered = tr && t >= tr.from && t <= tr.to - 1;
-    if (covered || this.loading) return;
-    const from = Math.max(0, t - WINDOW_BEFORE_S), to = t + WINDOW_AFTER_S;
+    // A failed request is retried after a pause, not at every frame.
+    if (covered || this.loading || performance.now() - this.failedAt < 2000) return;
+    const from = Math.max(0, t - WINDOW_BEFORE_S), to = Math.min(this.duration, t + WINDOW_AFTER_S);
     this.loading = this.fetchTrack(from, to)
-      .then((json) => { this.track = Object.assign(json, { from, to }); })
-      .catch(() => {})
+      .then((json) => { this.track = Object.assign(json, { from, to: to >= this.duration ? Infinity : to }); })
+      .catch(() => { this.failedAt = performance.now(); })
       .finally(() => { this.loading = null; this.draw(this.lastTime); });
   }
 

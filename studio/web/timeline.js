@@ -126,7 +126,8 @@ export class Timeline {
   drawShots(editsModel, selectedShot) {
     const lane = laneByKey('shots');
     for (const shot of this.film.shots) {
-      const x0 = this.timeToX(shot.start_s), x1 = this.timeToX(shot.end_s);
+      // Clamped to the canvas: a long shot at a high zoom stays cheap, its label in view.
+      const x0 = Math.max(-4, this.timeToX(shot.start_s)), x1 = Math.min(this.width + 4, this.timeToX(shot.end_s));
       if (x1 < 0 || x0 > this.width) continue;
       const edit = editsModel ? editsModel.shotEdit(shot.shot) : { shot: shot.shot };
       this.drawShotBlock(shot, edit, x0, x1, lane, shot.shot === selectedShot);
@@ -229,18 +230,30 @@ export class Timeline {
     this.drawLaneScale(lane, lo, hi);
   }
 
+  // The min..max band as one polygon per run of valid buckets (one fill: a
+  // rectangle per bucket costs far more in a software-rendered canvas).
   drawBand(t, s, yOf, color, alpha) {
     const ctx = this.ctx;
     ctx.fillStyle = color;
     ctx.globalAlpha = alpha;
-    const half = (t.length > 1 ? (t[1] - t[0]) / 2 : 0);
-    for (let i = 0; i < t.length; i++) {
-      if (!isNum(s.min[i]) || !isNum(s.max[i])) continue;
-      const x0 = this.timeToX(t[i] - half), x1 = this.timeToX(t[i] + half);
-      if (x1 < 0 || x0 > this.width) continue;
-      const ya = yOf(s.max[i]), yb = yOf(s.min[i]);
-      ctx.fillRect(x0, ya, Math.max(1, x1 - x0), Math.max(1, yb - ya));
+    const half = t.length > 1 ? (t[1] - t[0]) / 2 : 0;
+    const valid = (i) => isNum(s.min[i]) && isNum(s.max[i]);
+    const [first, last] = this.visibleIndices(t);
+    ctx.beginPath();
+    for (let i = first; i < last;) {
+      if (!valid(i)) { i++; continue; }
+      let j = i;
+      while (j + 1 < last && valid(j + 1)) j++;
+      ctx.moveTo(this.timeToX(t[i] - half), yOf(s.max[i]));
+      for (let k = i; k <= j; k++) ctx.lineTo(this.timeToX(t[k]), yOf(s.max[k]));
+      ctx.lineTo(this.timeToX(t[j] + half), yOf(s.max[j]));
+      ctx.lineTo(this.timeToX(t[j] + half), yOf(s.min[j]) + 1);
+      for (let k = j; k >= i; k--) ctx.lineTo(this.timeToX(t[k]), yOf(s.min[k]) + 1);
+      ctx.lineTo(this.timeToX(t[i] - half), yOf(s.min[i]) + 1);
+      ctx.closePath();
+      i = j + 1;
     }
+    ctx.fill();
     ctx.globalAlpha = 1;
   }
 
@@ -250,13 +263,21 @@ export class Timeline {
     ctx.lineWidth = 1.25;
     ctx.beginPath();
     let pen = false;
-    for (let i = 0; i < t.length; i++) {
+    const [first, last] = this.visibleIndices(t);
+    for (let i = first; i < last; i++) {
       if (!isNum(values[i])) { pen = false; continue; }
       const x = this.timeToX(t[i]), y = yOf(values[i]);
       if (pen) ctx.lineTo(x, y); else ctx.moveTo(x, y);
       pen = true;
     }
     ctx.stroke();
+  }
+
+  // [first, last) of the bucket centres t inside the view, plus one on each side.
+  visibleIndices(t) {
+    const first = Math.max(0, lowerBound(t, this.view.from) - 1);
+    const last = Math.min(t.length, lowerBound(t, this.view.to) + 1);
+    return [first, last];
   }
 
   drawLaneScale(lane, lo, hi) {
@@ -279,6 +300,12 @@ function seriesRanges(curves) {
     if (isFinite(lo)) ranges[name] = [lo, hi];
   }
   return ranges;
+}
+
+function lowerBound(sorted, x) {
+  let lo = 0, hi = sorted.length;
+  while (lo < hi) { const mid = (lo + hi) >> 1; if (sorted[mid] < x) lo = mid + 1; else hi = mid; }
+  return lo;
 }
 
 function bucketHalfWidth(curves) {
