@@ -130,11 +130,11 @@ export class Timeline {
       const x0 = Math.max(-4, this.timeToX(shot.start_s)), x1 = Math.min(this.width + 4, this.timeToX(shot.end_s));
       if (x1 < 0 || x0 > this.width) continue;
       const edit = editsModel ? editsModel.shotEdit(shot.shot) : { shot: shot.shot };
-      this.drawShotBlock(shot, edit, x0, x1, lane, shot.shot === selectedShot);
+      this.drawShotBlock(shot, edit, x0, x1, lane, shot.shot === selectedShot, this.timeToX(shot.start_s));
     }
   }
 
-  drawShotBlock(shot, edit, x0, x1, lane, selected) {
+  drawShotBlock(shot, edit, x0, x1, lane, selected, stripX) {
     const ctx = this.ctx;
     const y = lane.top + 3, h = lane.height - 6, w = Math.max(1, x1 - x0 - 2);
     ctx.save();
@@ -143,7 +143,7 @@ export class Timeline {
     ctx.clip();
     ctx.fillStyle = shot.shot % 2 ? '#27303d' : '#222a35';
     ctx.fillRect(x0 + 1, y, w, h);
-    this.drawFilmstrip(shot, x0 + 1, y, w, h);
+    this.drawFilmstrip(shot, stripX + 1, x0 + 1, y, w, h);
     const muted = edit.mute || edit.gain === 0;
     if (muted) { ctx.fillStyle = 'rgba(10,12,16,0.65)'; ctx.fillRect(x0 + 1, y, w, h); }
     if (shot.quality && shot.quality.doubtful) hatch(ctx, x0 + 1, y, w, h);
@@ -154,12 +154,15 @@ export class Timeline {
     ctx.strokeRect(x0 + 1.5, y + 0.5, w - 1, h - 1);
   }
 
-  drawFilmstrip(shot, x, y, w, h) {
+  // Copies of the shot's thumbnail side by side from the shot's start (stripX),
+  // the visible ones only.
+  drawFilmstrip(shot, stripX, x, y, w, h) {
     const image = this.thumbnails.get(shot.thumbnail_url);
     if (!image || !image.complete || !image.naturalWidth) return;
     const tw = (image.naturalWidth / image.naturalHeight) * h;
     this.ctx.globalAlpha = 0.8;
-    for (let tx = x; tx < x + w; tx += tw) this.ctx.drawImage(image, tx, y, tw, h);
+    const firstTile = stripX + Math.floor((x - stripX) / tw) * tw;
+    for (let tx = firstTile; tx < x + w; tx += tw) this.ctx.drawImage(image, tx, y, tw, h);
     this.ctx.globalAlpha = 1;
   }
 
