@@ -32,7 +32,7 @@ import zlib
 SKIP = 77
 CHROMIUM_FLAGS = ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--window-size=1440,900", "--autoplay-policy=no-user-gesture-required", "--mute-audio"]
+                  "--window-size=1440,1000", "--autoplay-policy=no-user-gesture-required", "--mute-audio"]
 PRESET, CUT_S, CUT_RAMP_S, DURATION_S = "hard_cut", 2.0, 0.5, 4.0
 
 
@@ -326,13 +326,35 @@ def step_render_check(driver, shots_dir):
     for element_id, minimum in (("video", 0.2), ("timeline", 0.05), ("seat-view", 0.03)):
         element = driver.find_element("id", element_id)
         png = element.screenshot_as_png
-        if shots_dir:
-            with open(os.path.join(shots_dir, f"studio_{element_id.replace('-', '_')}.png"), "wb") as f:
-                f.write(png)
         fraction = drawn_fraction(png)
         check(fraction > minimum, f"#{element_id} renders: {100 * fraction:.1f} % of its pixels differ from its background")
-    if shots_dir:
-        driver.save_screenshot(os.path.join(shots_dir, "studio_page.png"))
+
+
+def step_docs_screenshots(driver, shots_dir):
+    """The page after the edits (shot 1 muted, the moved effect selected), and the seat and
+    the timeline on their own, for docs/studio.md."""
+    if not shots_dir:
+        return
+    click_timeline_at(driver, 0.9)
+    wait_for(driver, "return Math.abs(document.getElementById('video').currentTime - 0.9) < 0.05", "seek to 0.9 s")
+    driver.find_element("id", "keyframe-0").click()
+    time.sleep(0.5)
+    save_page_screenshot(driver, os.path.join(shots_dir, "studio_page.png"))
+    for element_id in ("timeline-area", "seat-panel", "shot-panel"):
+        with open(os.path.join(shots_dir, f"studio_{element_id.replace('-', '_')}.png"), "wb") as f:
+            f.write(driver.find_element("id", element_id).screenshot_as_png)
+
+
+def save_page_screenshot(driver, path, scale=0.75):
+    """The whole page, scaled down (a small PNG for the docs)."""
+    import base64
+    width, height = driver.execute_script(
+        "return [document.documentElement.scrollWidth, document.documentElement.scrollHeight]")
+    shot = driver.execute_cdp_cmd("Page.captureScreenshot", {
+        "format": "png", "captureBeyondViewport": True,
+        "clip": {"x": 0, "y": 0, "width": width, "height": height, "scale": scale}})
+    with open(path, "wb") as f:
+        f.write(base64.b64decode(shot["data"]))
 
 
 def browser_log_errors(driver):
@@ -381,6 +403,7 @@ def run(args, driver_path):
               f"the edits file holds shot 1's gain 0: {saved.get('shots')}")
         step_export(driver, track_path, os.path.getmtime(track_path))
         compare_tracks(before, read_track(track_path))
+        step_docs_screenshots(driver, args.screenshots)
         step_conflict(driver, url)
         errors = browser_log_errors(driver)
         check(not errors, f"no errors in the browser console {errors}")
