@@ -8,9 +8,23 @@ export function wireKeyboard(studio) {
     if (!studio.state.film) return;
     const ctrl = e.ctrlKey || e.metaKey;
     if (ctrl && handleCtrl(studio, e)) { e.preventDefault(); return; }
-    if (ctrl || e.altKey || typing(document.activeElement)) return;
+    if (ctrl || e.altKey || typing(document.activeElement) || nativeKey(document.activeElement, e.key)) return;
     if (handlePlain(studio, e)) e.preventDefault();
   });
+  // A button clicked with the mouse gives the focus back, so that Space plays
+  // the film instead of pressing the button again.
+  document.addEventListener('click', (e) => {
+    const button = e.target.closest && e.target.closest('button');
+    if (button && e.detail > 0) button.blur();
+  });
+}
+
+// Keys the focused element handles itself (the video's own controls, a button).
+function nativeKey(el, key) {
+  if (!el) return false;
+  if (el.tagName === 'VIDEO') return [' ', 'ArrowLeft', 'ArrowRight', 'Home', 'End'].includes(key);
+  if (el.tagName === 'BUTTON' || el.tagName === 'SUMMARY') return key === ' ' || key === 'Enter';
+  return false;
 }
 
 function handleCtrl(studio, e) {
