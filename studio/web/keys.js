@@ -17,6 +17,11 @@ export function wireKeyboard(studio) {
     const button = e.target.closest && e.target.closest('button');
     if (button && e.detail > 0) button.blur();
   });
+  // So does a menu, a check box or a slider once changed.
+  document.addEventListener('change', (e) => {
+    const el = e.target;
+    if (el.tagName === 'SELECT' || el.type === 'checkbox' || el.type === 'range') el.blur();
+  });
 }
 
 // Keys the focused element handles itself (the video's own controls, a button).
