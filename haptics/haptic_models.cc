@@ -136,6 +136,201 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
   track->metadata["confidence_gain"] = gains;
 }
 
+
+// The semantic segments of a path already joined across lost frames.
+std::vector<EffectSegment> EffectSegmentsOfJoinedPath(const CameraPath& path,
+                                                      const HapticOptions& o) {
+  if (o.edits.keyframes) return *o.edits.keyframes;
+  if (!o.keyframes_file.empty()) return ReadKeyframesFile(o.keyframes_file);
+  return ClassifyEffects(path, o.classifier);
+}
+
+std::string EffectsFrom(const HapticOptions& o) {
+  if (o.edits.keyframes) return "edits";
+  return o.keyframes_file.empty() ? "classifier" : o.keyframes_file;
+}
+
+uint64_t RandomSeed(const CameraPath& read_path, const HapticOptions& o) {
+  return o.seed ? *o.seed : DefaultRandomSeed(read_path);
+}
+
+// The film's model over the whole path: positions into track->samples
+// (their times already set), its metadata, and the semantic effect per sample.
+void RunFilmModel(const CameraPath& path, const CameraPath& read_path,
+                  const std::vector<ShotRange>& shots, const std::vector<double>& time_s,
+                  const HapticOptions& o, HapticTrack* track, std::vector<CameraEffect>* effects) {
+  switch (o.model) {
+    case HapticModel::kNone:
+      break;  // samples start centred
+    case HapticModel::kCinematic:
+      MakeCinematicSamples(path, shots, o, track);
+      break;
+    case HapticModel::kSemantic: {
+      const std::vector<EffectSegment> segs = EffectSegmentsOfJoinedPath(path, o);
+      CopyPositions(SemanticFrames(time_s, segs, o.seat, o.semantic, effects), &track->samples);
+      track->metadata["effects_from"] = EffectsFrom(o);
+      track->metadata["effect_segments"] = std::to_string(segs.size());
+      break;
+    }
+    case HapticModel::kRandom: {
+      RandomOptions r;
+      r.seed = RandomSeed(read_path, o);
+      r.cutoff_hz = o.random_cutoff_hz;
+      CopyPositions(RandomFrames(time_s.size(), o.OutputRateHz(), o.seat, r), &track->samples);
+      track->metadata["seed"] = std::to_string(r.seed);
+      track->metadata["seed_from"] = o.seed ? "option" : "content";
+      track->metadata["cutoff_hz"] = FormatDouble(o.random_cutoff_hz);
+      break;
+    }
+  }
+}
+
+// Edits (haptic_edits.h): per-shot model, washout, gain and mute, applied to
+// the film model's samples before the film-level safety.
+
+// Samples [begin, end) of each shot run: from its first frame up to the next
+// run's first frame (the first run also takes any sample before it), the
+// rule LabelSamples uses.
+struct SampleRange {
+  size_t begin = 0, end = 0;
+};
+std::vector<SampleRange> ShotSampleRanges(const CameraPath& path,
+                                          const std::vector<ShotRange>& shots,
+                                          const std::vector<double>& time_s) {
+  std::vector<SampleRange> ranges(shots.size());
+  for (size_t k = 0; k < shots.size(); ++k) {
+    const double start = path.frames[shots[k].first].time_s;
+    ranges[k].begin = k == 0 ? 0 : static_cast<size_t>(std::lower_bound(time_s.begin(),
+                                                                         time_s.end(), start) -
+                                                        time_s.begin());
+    if (k > 0) ranges[k - 1].end = ranges[k].begin;
+  }
+  ranges.back().end = time_s.size();
+  return ranges;
+}
+
+// A shot's effective options: the film's, with the shot's model and washout fields.
+HapticOptions ShotOptions(const HapticOptions& o, const ShotEdit& e, const std::string& source) {
+  HapticOptions s = o;
+  if (e.model) s.model = *e.model;
+  const std::string where = "edits: shot " + std::to_string(e.shot);
+  if (!e.washout) return s;
+  const WashoutEdit& w = *e.washout;
+  try {
+    if (w.mode) s.washout.mode = WashoutModeFromName(*w.mode);
+    if (w.return_accel_m_s2) s.washout.return_accel_m_s2 = *w.return_accel_m_s2;
+    if (w.window_s) s.washout.window_s = *w.window_s;
+    if (w.tau_s) s.washout.tau_s = *w.tau_s;
+    if (w.order) s.washout.order = *w.order;
+    s.washout.Check();
+  } catch (const UsageError& error) {
+    throw Error(source, where + ": " + error.what());
+  }
+  return s;
+}
+
+bool SameWashout(const WashoutOptions& a, const WashoutOptions& b) {
+  return a.mode == b.mode && a.tau_s == b.tau_s && a.order == b.order &&
+         a.window_s == b.window_s && a.return_accel_m_s2 == b.return_accel_m_s2;
+}
+
+// Whether the shot's samples must be made again (its model or, for the
+// cinematic model, its washout differs from the film's).
+bool NeedsOwnModel(const HapticOptions& film, const HapticOptions& shot) {
+  if (shot.model != film.model) return true;
+  return shot.model == HapticModel::kCinematic && !SameWashout(film.washout, shot.washout);
+}
+
+// The cinematic model on shot run k alone, with the factors the whole path
+// gets under this shot's washout (or the fixed ones), resampled at `out`'s times.
+void CinematicShot(const CameraPath& path, const std::vector<ShotRange>& shots, size_t k,
+                   const HapticOptions& s, std::vector<HapticSample>* out) {
+  const CinematicScaling film_scaling =
+      s.cinematic_scaling ? *s.cinematic_scaling
+                          : ComputeCinematicScaling(path, s.seat, s.cinematic, s.washout);
+  CinematicScaling scaling;
+  scaling.per_shot.push_back(film_scaling.ForShot(k));
+  CameraPath one;
+  one.metadata = path.metadata;
+  one.frames.assign(path.frames.begin() + shots[k].first, path.frames.begin() + shots[k].last + 1);
+  const auto per_frame = CinematicFrames(one, s.seat, s.cinematic, s.washout, scaling);
+  ResampleFrames(one, SplitShots(one), per_frame, out);
+}
+
+// Shot run k's samples made by its own model `s.model` (samples[r) replaced).
+void RunShotModel(const CameraPath& path, const CameraPath& read_path,
+                  const std::vector<ShotRange>& shots, size_t k, const SampleRange& r,
+                  const std::vector<double>& time_s, const HapticOptions& s,
+                  const std::vector<EffectSegment>& segs, std::vector<HapticSample>* samples,
+                  std::vector<CameraEffect>* effects) {
+  std::vector<HapticSample> out(samples->begin() + r.begin, samples->begin() + r.end);
+  const std::vector<double> times(time_s.begin() + r.begin, time_s.begin() + r.end);
+  for (HapticSample& x : out) {
+    for (Eigen::Vector3d& p : x.pos_m) p.setZero();
+  }
+  std::vector<CameraEffect> shot_effects(times.size(), CameraEffect::kNone);
+  if (s.model == HapticModel::kCinematic) CinematicShot(path, shots, k, s, &out);
+  if (s.model == HapticModel::kSemantic) {
+    CopyPositions(SemanticFrames(times, segs, s.seat, s.semantic, &shot_effects), &out);
+  }
+  if (s.model == HapticModel::kRandom) {
+    RandomOptions random;  // each shot its own noise, faded in and out at its ends
+    random.seed = RandomSeed(read_path, s) + static_cast<uint64_t>(k) + 1;
+    random.cutoff_hz = s.random_cutoff_hz;
+    CopyPositions(RandomFrames(times.size(), s.OutputRateHz(), s.seat, random), &out);
+  }
+  std::copy(out.begin(), out.end(), samples->begin() + r.begin);
+  const bool any_effect = std::any_of(shot_effects.begin(), shot_effects.end(),
+                                      [](CameraEffect e) { return e != CameraEffect::kNone; });
+  if (effects->empty() && any_effect) effects->assign(time_s.size(), CameraEffect::kNone);
+  if (!effects->empty()) std::copy(shot_effects.begin(), shot_effects.end(), effects->begin() + r.begin);
+}
+
+// Throws Error(source) naming the first edited shot the path does not have.
+void CheckEditedShotsExist(const std::vector<ShotRange>& shots, const HapticEdits& edits,
+                           const std::string& source) {
+  for (const ShotEdit& e : edits.shots) {
+    if (std::none_of(shots.begin(), shots.end(), [&](const ShotRange& r) { return r.shot == e.shot; })) {
+      throw Error(source, "edits: shot " + std::to_string(e.shot) +
+                              " is not in the camera path (its shots are " +
+                              std::to_string(shots.front().shot) + " to " +
+                              std::to_string(shots.back().shot) + ")");
+    }
+    if (!(e.Scale() >= 0 && e.Scale() <= kMaxShotGain)) {
+      throw Error(source, "edits: shot " + std::to_string(e.shot) + ": gain must be in [0, 4]");
+    }
+  }
+}
+
+void ApplyEdits(const CameraPath& path, const CameraPath& read_path,
+                const std::vector<ShotRange>& shots, const std::vector<double>& time_s,
+                const HapticOptions& o, HapticTrack* track, std::vector<CameraEffect>* effects) {
+  const std::string source = o.source.empty() ? "camera path" : o.source;
+  CheckEditedShotsExist(shots, o.edits, source);
+  const std::vector<SampleRange> ranges = ShotSampleRanges(path, shots, time_s);
+  std::string edited;
+  std::optional<std::vector<EffectSegment>> segs;  // made once, for the first semantic shot
+  for (size_t k = 0; k < shots.size(); ++k) {
+    const ShotEdit* e = o.edits.FindShot(shots[k].shot);
+    if (!e) continue;
+    const HapticOptions s = ShotOptions(o, *e, source);
+    if (NeedsOwnModel(o, s)) {
+      if (s.model == HapticModel::kSemantic && !segs) {
+        segs = EffectSegmentsOfJoinedPath(path, s);
+        track->metadata["effects_from"] = EffectsFrom(s);
+      }
+      RunShotModel(path, read_path, shots, k, ranges[k], time_s, s,
+                   segs ? *segs : std::vector<EffectSegment>{}, &track->samples, effects);
+    }
+    const double scale = e->Scale();
+    for (size_t i = ranges[k].begin; i < ranges[k].end && scale != 1.0; ++i) {
+      for (Eigen::Vector3d& p : track->samples[i].pos_m) p *= scale;
+    }
+    edited += (edited.empty() ? "" : ";") + std::to_string(shots[k].shot);
+  }
+  if (!edited.empty()) track->metadata["edited_shots"] = edited;
+}
+
 }  // namespace
 
 uint64_t DefaultRandomSeed(const CameraPath& path) {
@@ -198,7 +393,10 @@ void HapticOptions::Check() const {
     throw UsageError("random cutoff must be below a quarter of the output rate");
   }
   if (!(max_gap_s > 0 && max_gap_s <= 600)) throw UsageError("max gap must be in (0, 600] s");
-  if (!keyframes_file.empty() && model != HapticModel::kSemantic) {
+  const bool semantic_shot = std::any_of(edits.shots.begin(), edits.shots.end(), [](const ShotEdit& e) {
+    return e.model == HapticModel::kSemantic;
+  });
+  if (!keyframes_file.empty() && model != HapticModel::kSemantic && !semantic_shot) {
     throw UsageError("keyframes only apply to the semantic model");
   }
 }
@@ -238,32 +436,8 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   track.samples.resize(n);
   for (size_t i = 0; i < n; ++i) track.samples[i].time_s = time_s[i];
   std::vector<CameraEffect> effects;
-  switch (o.model) {
-    case HapticModel::kNone:
-      break;  // samples start centred
-    case HapticModel::kCinematic:
-      MakeCinematicSamples(path, shots, o, &track);
-      break;
-    case HapticModel::kSemantic: {
-      const std::vector<EffectSegment> segs = o.keyframes_file.empty()
-                                                  ? ClassifyEffects(path, o.classifier)
-                                                  : ReadKeyframesFile(o.keyframes_file);
-      CopyPositions(SemanticFrames(time_s, segs, o.seat, o.semantic, &effects), &track.samples);
-      track.metadata["effects_from"] = o.keyframes_file.empty() ? "classifier" : o.keyframes_file;
-      track.metadata["effect_segments"] = std::to_string(segs.size());
-      break;
-    }
-    case HapticModel::kRandom: {
-      RandomOptions r;
-      r.seed = o.seed ? *o.seed : DefaultRandomSeed(read_path);
-      r.cutoff_hz = o.random_cutoff_hz;
-      CopyPositions(RandomFrames(n, rate, o.seat, r), &track.samples);
-      track.metadata["seed"] = std::to_string(r.seed);
-      track.metadata["seed_from"] = o.seed ? "option" : "content";
-      track.metadata["cutoff_hz"] = FormatDouble(o.random_cutoff_hz);
-      break;
-    }
-  }
+  RunFilmModel(path, read_path, shots, time_s, o, &track, &effects);
+  if (!o.edits.empty()) ApplyEdits(path, read_path, shots, time_s, o, &track, &effects);
   ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &track.samples);
   const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &track.samples);
   const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &track.samples);
@@ -321,6 +495,16 @@ std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath&
   HapticTrack a = MakeHapticTrack(reference, o);
   HapticTrack b = MakeHapticTrack(other, o);
   return {std::move(a), std::move(b)};
+}
+
+}  // namespace hapcine
+
+namespace hapcine {
+
+std::vector<EffectSegment> EffectiveEffectSegments(const CameraPath& path,
+                                                   const HapticOptions& options) {
+  const std::optional<CameraPath> joined = JoinAcrossLostFrames(path);
+  return EffectSegmentsOfJoinedPath(joined ? *joined : path, options);
 }
 
 }  // namespace hapcine

@@ -20,21 +20,20 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/camera_path.h"
 #include "core/haptic_track.h"
 #include "haptics/cinematic_model.h"
 #include "haptics/effect_classifier.h"
+#include "haptics/haptic_edits.h"
+#include "haptics/haptic_model_kind.h"
 #include "haptics/random_model.h"
 #include "haptics/seat_geometry.h"
 #include "haptics/semantic_model.h"
 #include "haptics/washout.h"
 
 namespace hapcine {
-
-enum class HapticModel { kCinematic, kSemantic, kRandom, kNone };
-const char* HapticModelName(HapticModel m);  // "cinematic", "semantic", "random", "none"
-HapticModel HapticModelFromName(const std::string& name);  // throws UsageError
 
 struct HapticOptions {
   HapticModel model = HapticModel::kCinematic;
@@ -51,6 +50,9 @@ struct HapticOptions {
   SemanticOptions semantic;       // pattern period, release
   ClassifierOptions classifier;   // automatic effect segments
   std::string keyframes_file;     // semantic: hand-placed effects; "" = classify
+  // A designer's per-shot model, gain, mute and washout and keyframes
+  // (haptic_edits.h), applied before the film-level safety; empty = none.
+  HapticEdits edits;
   double random_cutoff_hz = 0.5;  // random: low-pass cutoff (the paper: 0.5 Hz)
   double max_gap_s = 1.0;         // reject time gaps longer than this inside a shot
   std::string source;             // written as the track's `source`; names errors
@@ -59,6 +61,12 @@ struct HapticOptions {
 };
 
 HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& options);
+
+// The semantic effect segments MakeHapticTrack uses for this path and these
+// options: the edits' keyframes when present, else the keyframes file, else
+// the classifier's segments.
+std::vector<EffectSegment> EffectiveEffectSegments(const CameraPath& path,
+                                                   const HapticOptions& options);
 
 // A 64-bit FNV-1a hash of the path's frames (time, centre, rotation, field of
 // view, shot): the random model's seed when none is given.
