@@ -57,7 +57,8 @@ class FilmSession {
   nlohmann::json Summary() const;  // GET /api/films entry
   nlohmann::json Details() const;  // GET /api/films/<id>
   std::string CurvesJson(double from_s, double to_s, int points) const;
-  nlohmann::json TrackJson(double from_s, double to_s) const;  // throws HttpError (> 60 s)
+  // The samples in [from_s, to_s], cut to 60 s; throws HttpError when to < from.
+  nlohmann::json TrackJson(double from_s, double to_s) const;
   std::string EditsJson() const;
   int64_t revision() const;
   // PUT /api/films/<id>/edits: {"revision": new}; throws HttpError 400 (the

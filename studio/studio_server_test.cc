@@ -265,7 +265,9 @@ TEST_F(StudioServerTest, CurvesAndTrackRangesAreChecked) {
   GetJson("/api/films/f0/curves?points=20001", 400);
   GetJson("/api/films/f0/curves?from=abc", 400);
   GetJson("/api/films/f0/curves?from=5&to=1", 400);
-  GetJson("/api/films/f0/track?from=0&to=61", 400);
+  GetJson("/api/films/f0/track?from=3&to=1", 400);
+  const nlohmann::json capped = GetJson("/api/films/f0/track?from=0&to=1000");
+  EXPECT_LE(capped["t"].back().get<double>(), 14.1);  // the whole film: under 60 s
   const nlohmann::json track = GetJson("/api/films/f0/track?from=1&to=2");
   EXPECT_EQ(track["rate_hz"], 100.0);
   EXPECT_EQ(track["t"].size(), 101u);
