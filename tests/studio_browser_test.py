@@ -66,7 +66,7 @@ def make_film(hapcine, work):
     if not os.path.exists(film):
         subprocess.run([hapcine, "synth", PRESET, "-o", films, "--width", "256", "--height", "144",
                         "--duration-s", str(DURATION_S), "--supersample", "1"], check=True,
-                       stdout=subprocess.DEVNULL)
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return film
 
 
@@ -234,21 +234,30 @@ def step_seek(driver):
 
 
 def step_drag_keyframe(driver):
-    """Drags effect 0 right by 30 px; returns its new (start, end)."""
+    """Drags effect 0 by 30 px towards the larger free room; returns its new (start, end)."""
     from selenium.webdriver.common.action_chains import ActionChains
     state = "hapcineStudio.state.edits.keyframes()"
     if not driver.execute_script(f"return {state}.length"):
         driver.execute_script("document.getElementById('video').currentTime = 0.2")
         wait_for(driver, "return Math.abs(document.getElementById('video').currentTime - 0.2) < 0.01", "seek to 0.2 s")
         driver.find_element("id", "add-keyframe").click()
-    before = driver.execute_script(f"return {state}[0]")
+    segments = driver.execute_script(f"return {state}")
+    before = segments[0]
+    room_left = before["start_s"]
+    room_right = (segments[1]["start_s"] if len(segments) > 1 else DURATION_S) - before["end_s"]
+    pixels = 30 if room_right >= room_left else -30
+    seconds_per_px = driver.execute_script("return hapcineStudio.xToTime(1) - hapcineStudio.xToTime(0)")
+    fps = driver.execute_script("return hapcineStudio.state.film.fps")
+    expected = max(-room_left, min(room_right, pixels * seconds_per_px))
     block = driver.find_element("id", "keyframe-0")
-    ActionChains(driver).click_and_hold(block).move_by_offset(15, 0).move_by_offset(15, 0).release().perform()
+    ActionChains(driver).click_and_hold(block).move_by_offset(pixels // 2, 0).move_by_offset(pixels // 2, 0) \
+        .release().perform()
     after = driver.execute_script(f"return {state}[0]")
-    check(after["start_s"] > before["start_s"] and
-          abs((after["end_s"] - after["start_s"]) - (before["end_s"] - before["start_s"])) < 1e-6,
-          f"dragging keyframe-0 moves it ({before['start_s']:.3f}-{before['end_s']:.3f} -> "
-          f"{after['start_s']:.3f}-{after['end_s']:.3f} s), same length")
+    moved = after["start_s"] - before["start_s"]
+    length_change = (after["end_s"] - after["start_s"]) - (before["end_s"] - before["start_s"])
+    check(abs(moved - expected) <= 1 / fps + 1e-6 and moved != 0 and abs(length_change) < 1e-5,
+          f"dragging keyframe-0 by {pixels} px moves it by {moved:+.3f} s (expected {expected:+.3f} s within a frame): "
+          f"{before['start_s']:.3f}-{before['end_s']:.3f} -> {after['start_s']:.3f}-{after['end_s']:.3f} s, same length")
     return after
 
 
@@ -397,7 +406,7 @@ def run(args, driver_path):
         step_save(driver)
         saved = json.load(open(f"{stem}.edits.json"))
         kf = saved.get("keyframes", [{}])[0]
-        check(abs(kf.get("start_s", -1) - moved["start_s"]) < 1e-6 and abs(kf.get("end_s", -1) - moved["end_s"]) < 1e-6,
+        check(abs(kf.get("start_s", -1) - moved["start_s"]) < 1e-5 and abs(kf.get("end_s", -1) - moved["end_s"]) < 1e-5,
               f"the edits file holds the moved effect {kf}")
         check(any(s.get("shot") == 1 and s.get("gain") == 0 for s in saved.get("shots", [])),
               f"the edits file holds shot 1's gain 0: {saved.get('shots')}")

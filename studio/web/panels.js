@@ -117,7 +117,7 @@ export function addKeyframeAtPlayhead(studio) {
   const [, hi] = freeGap(list, -1, t, duration);
   const end = Math.min(hi, t + 2);
   if (end - t < MIN_EFFECT_S * 2) return studio.toast('No room for an effect at the playhead.');
-  const index = studio.edits.addKeyframe({ start_s: round3(t), end_s: round3(end), effect: studio.state.lastEffect || 'zoom_in', intensity: 1 });
+  const index = studio.edits.addKeyframe({ start_s: round6(t), end_s: round6(end), effect: studio.state.lastEffect || 'zoom_in', intensity: 1 });
   studio.state.selectedKeyframe = index;
   studio.render();
 }
@@ -226,8 +226,9 @@ function dragTo(studio, index, mode, drag, clientX) {
   } else {
     end = Math.max(Math.min(drag.hi, snap(drag.end + dt)), drag.start + MIN_EFFECT_S);
   }
-  studio.edits.moveKeyframeLive(index, round3(start), round3(end));
+  studio.edits.moveKeyframeLive(index, round6(start), round6(end));
 }
 
 const snapToFrame = (t, fps) => (fps > 0 ? Math.round(t * fps) / fps : t);
-const round3 = (t) => Math.round(t * 1000) / 1000;
+// Microseconds: readable numbers in the edits file, a moved effect keeps its length.
+const round6 = (t) => Math.round(t * 1e6) / 1e6;
