@@ -29,6 +29,7 @@ const studio = {
 };
 studio.seat = new SeatView($('seat-view'), (from, to) => api.track(state.film.id, from, to));
 state.edits = studio.edits;
+studio.timeline.onThumbnail = () => scheduleRender();
 state.view = studio.timeline.view;
 
 window.hapcineStudio = {
@@ -48,7 +49,10 @@ async function init() {
   panels.wireShotPanel(studio);
   panels.wireKeyframePanel(studio);
   wireKeyboard(studio);
-  window.addEventListener('resize', onResize);
+  // Any change of the canvases' size (window, a wrapped tool bar) redraws them.
+  const observer = new ResizeObserver(() => onResize());
+  observer.observe($('timeline-wrap'));
+  observer.observe($('seat-view'));
   window.addEventListener('beforeunload', (e) => { if (studio.edits.dirty) { e.preventDefault(); e.returnValue = ''; } });
   onResize();
   requestAnimationFrame(tick);
@@ -239,6 +243,14 @@ function buildLaneLabels() {
 }
 
 // ---- rendering
+let renderPending = false;
+// One render at the next frame for any number of requests (thumbnails arriving).
+function scheduleRender() {
+  if (renderPending) return;
+  renderPending = true;
+  requestAnimationFrame(() => { renderPending = false; render(); });
+}
+
 function render() {
   if (!state.film) return;
   const tl = studio.timeline;
@@ -260,6 +272,7 @@ function onResize() {
   $('timeline').style.height = `${TIMELINE_HEIGHT}px`;
   studio.timeline.resize();
   studio.seat.resize();
+  if (state.film) studio.seat.draw(studio.currentTime());
   render();
   requestDetail();
 }
@@ -390,7 +403,8 @@ async function exportFilm(kind) {
   try {
     const answer = await api.exportFilm(state.film.id, kind);
     const path = answer.job ? await followJob(answer.job, bar, text) : answer.path;
-    text.textContent = `Wrote ${path}`;
+    text.textContent = `Wrote ${path.split('/').pop()}`;
+    text.title = path;
   } catch (e) {
     status.classList.add('error');
     text.textContent = `Export failed: ${e.message}`;

@@ -32,7 +32,11 @@ for (const lane of LANES) { lane.top = top; top += lane.height; }
 export const TIMELINE_HEIGHT = top;
 export const laneByKey = (key) => LANES.find((l) => l.key === key);
 
-const LOW_CONFIDENCE = 0.5;
+// Under this the frame is as doubtful as a doubtful shot's median (docs/estimate.md,
+// "Shot quality"); lost frames have confidence 0.
+const LOW_CONFIDENCE = 0.12;
+const MAX_THUMBNAIL_LOADS = 2;
+const MIN_THUMBNAIL_PX = 40, MIN_LABEL_PX = 36, MIN_DETAIL_PX = 5;
 
 export class Timeline {
   constructor(canvas) {
@@ -50,15 +54,34 @@ export class Timeline {
   setFilm(film) {
     this.film = film;
     this.view = { from: 0, to: film.duration_s };
-    for (const shot of film.shots) this.loadThumbnail(shot);
+    this.thumbnailQueue = [];
+    this.thumbnailsLoading = 0;
   }
 
-  loadThumbnail(shot) {
-    if (!shot.thumbnail_url || this.thumbnails.has(shot.thumbnail_url)) return;
-    const image = new Image();
-    image.onload = () => this.draw();
-    image.src = shot.thumbnail_url;
-    this.thumbnails.set(shot.thumbnail_url, image);
+  // Thumbnails are made by the server on first request: ask only for the shots
+  // wide enough on screen to show one, a few at a time, so that a film of
+  // hundreds of shots does not hold up the curves.
+  wantThumbnail(shot) {
+    const url = shot.thumbnail_url;
+    if (!url || this.thumbnails.has(url)) return;
+    this.thumbnails.set(url, null);
+    this.thumbnailQueue.push(url);
+    this.pumpThumbnails();
+  }
+
+  pumpThumbnails() {
+    while (this.thumbnailsLoading < MAX_THUMBNAIL_LOADS && this.thumbnailQueue.length) {
+      const url = this.thumbnailQueue.shift();
+      const image = new Image();
+      this.thumbnailsLoading++;
+      image.onload = image.onerror = () => {
+        this.thumbnailsLoading--;
+        this.thumbnails.set(url, image);
+        this.pumpThumbnails();
+        if (this.onThumbnail) this.onThumbnail();
+      };
+      image.src = url;
+    }
   }
 
   setOverview(curves) { this.overview = curves; this.ranges = seriesRanges(curves); this.detail = null; }
@@ -137,6 +160,8 @@ export class Timeline {
   drawShotBlock(shot, edit, x0, x1, lane, selected, stripX) {
     const ctx = this.ctx;
     const y = lane.top + 3, h = lane.height - 6, w = Math.max(1, x1 - x0 - 2);
+    if (w < MIN_DETAIL_PX) return this.drawThinShot(shot, edit, x0, w, y, h, selected);
+    if (w >= MIN_THUMBNAIL_PX) this.wantThumbnail(shot);
     ctx.save();
     ctx.beginPath();
     ctx.rect(x0 + 1, y, w, h);
@@ -147,7 +172,7 @@ export class Timeline {
     const muted = edit.mute || edit.gain === 0;
     if (muted) { ctx.fillStyle = 'rgba(10,12,16,0.65)'; ctx.fillRect(x0 + 1, y, w, h); }
     if (shot.quality && shot.quality.doubtful) hatch(ctx, x0 + 1, y, w, h);
-    this.drawShotLabel(shot, edit, x0 + 1, y, muted);
+    if (w >= MIN_LABEL_PX) this.drawShotLabel(shot, edit, x0 + 1, y, muted);
     ctx.restore();
     ctx.strokeStyle = selected ? '#4da3ff' : 'rgba(255,255,255,0.18)';
     ctx.lineWidth = selected ? 2 : 1;
@@ -156,6 +181,15 @@ export class Timeline {
 
   // Copies of the shot's thumbnail side by side from the shot's start (stripX),
   // the visible ones only.
+  // A shot a few pixels wide (a long film seen whole): a plain stripe.
+  drawThinShot(shot, edit, x, w, y, h, selected) {
+    const ctx = this.ctx;
+    const muted = edit.mute || edit.gain === 0;
+    ctx.fillStyle = selected ? '#4da3ff' : shot.quality && shot.quality.doubtful ? '#6b3a35'
+      : muted ? '#15181d' : shot.shot % 2 ? '#2f3a4a' : '#252d39';
+    ctx.fillRect(x + 1, y, w, h);
+  }
+
   drawFilmstrip(shot, stripX, x, y, w, h) {
     const image = this.thumbnails.get(shot.thumbnail_url);
     if (!image || !image.complete || !image.naturalWidth) return;
