@@ -355,12 +355,11 @@ def step_docs_screenshots(driver, shots_dir):
 
 
 def save_page_screenshot(driver, path, scale=0.75):
-    """The whole page, scaled down (a small PNG for the docs)."""
+    """The window, scaled down (a small PNG for the docs)."""
     import base64
-    width, height = driver.execute_script(
-        "return [document.documentElement.scrollWidth, document.documentElement.scrollHeight]")
+    width, height = driver.execute_script("return [window.innerWidth, window.innerHeight]")
     shot = driver.execute_cdp_cmd("Page.captureScreenshot", {
-        "format": "png", "captureBeyondViewport": True,
+        "format": "png",
         "clip": {"x": 0, "y": 0, "width": width, "height": height, "scale": scale}})
     with open(path, "wb") as f:
         f.write(base64.b64decode(shot["data"]))

@@ -27,7 +27,7 @@ const studio = {
   setView,
   save,
 };
-studio.seat = new SeatView($('seat-view'), (from, to) => api.track(state.film.id, from, to));
+studio.seat = new SeatView($('seat-view'), $('seat-readout'), (from, to) => api.track(state.film.id, from, to));
 state.edits = studio.edits;
 studio.timeline.onThumbnail = () => scheduleRender();
 state.view = studio.timeline.view;
@@ -318,10 +318,6 @@ function showClock(t) {
   $('time-display').textContent = `${formatTime(t, 0.1)} / ${formatTime(film.duration_s, 0.1)}`;
   const frame = Math.floor(t * film.fps + 1e-6);
   $('clock-detail').textContent = `frame ${frame} · shot #${state.selectedShot}`;
-  const s = studio.seat.sample(t);
-  $('seat-readout').textContent = s
-    ? ['head', 'left', 'right'].map((k) => `${k} ${s[k].map((v) => v.toFixed(1)).join(' ')}`).join(' · ') + ' mm'
-    : '';
 }
 
 // ---- save

@@ -18,8 +18,9 @@ const WINDOW_BEFORE_S = 2, WINDOW_AFTER_S = 28, TRAIL_S = 0.6;
 const MAGNIFY = 2.5;
 
 export class SeatView {
-  constructor(canvas, fetchTrack) {
+  constructor(canvas, readout, fetchTrack) {
     this.canvas = canvas;
+    this.readout = readout;   // an element for the three positions in mm
     this.ctx = canvas.getContext('2d');
     this.fetchTrack = fetchTrack;   // (from, to) => Promise<track JSON>
     this.seat = DEFAULT_SEAT;
@@ -77,6 +78,9 @@ export class SeatView {
     const now = this.sample(t);
     this.drawTopView(this.width - gaugeWidth - 8, now, t);
     this.drawGauges(this.width - gaugeWidth, gaugeWidth, now);
+    this.readout.textContent = now
+      ? ACTUATORS.map((a) => `${a.key} ${now[a.key].map((v) => v.toFixed(1)).join(' ')}`).join(' · ') + ' mm'
+      : '';
   }
 
   // Seat frame metres -> top-view pixels: x right, z backward (down).
