@@ -7,7 +7,7 @@ import * as panels from './panels.js';
 import { wireKeyboard } from './keys.js';
 
 const $ = (id) => document.getElementById(id);
-const OVERVIEW_POINTS = 2000, MAX_POINTS = 20000, DETAIL_DELAY_MS = 60;
+const MAX_OVERVIEW_POINTS = 2000, MAX_POINTS = 20000, DETAIL_DELAY_MS = 60;
 
 const state = {
   films: [], film: null, selectedShot: -1, selectedKeyframe: -1, lastEffect: 'zoom_in',
@@ -82,6 +82,9 @@ async function switchFilm(id) {
 async function loadFilm(id) {
   location.hash = id;
   const started = performance.now();
+  // The overview needs only the duration (in the list): all three at once.
+  const summary = state.films.find((f) => f.id === id);
+  const overview = summary ? api.curves(id, 0, summary.duration_s, overviewPoints()) : null;
   const [film, edits] = await Promise.all([api.film(id), api.edits(id)]);
   state.film = film;
   state.selectedShot = film.shots.length ? film.shots[0].shot : -1;
@@ -95,13 +98,16 @@ async function loadFilm(id) {
   studio.edits.load(edits, film.effects);
   setSaveStatus('', '');
   loadVideo(film.video_url);
-  await loadCurves();
+  await loadCurves(overview);
   state.curvesLoadMs = performance.now() - started;
   render();
 }
 
-async function loadCurves() {
-  const overview = await api.curves(state.film.id, 0, state.film.duration_s, OVERVIEW_POINTS);
+// The whole film at about one bucket per pixel (the view starts there).
+const overviewPoints = () => Math.min(MAX_OVERVIEW_POINTS, Math.max(500, Math.ceil(studio.timeline.width)));
+
+async function loadCurves(pending = null) {
+  const overview = await (pending || api.curves(state.film.id, 0, state.film.duration_s, overviewPoints()));
   studio.timeline.setOverview(overview);
   requestDetail();
 }
