@@ -329,6 +329,37 @@ def step_conflict(driver, base_url):
     check(driver.execute_script("return hapcineStudio.state.edits.shotEdit(1).gain") == 0, "reload brings the saved edits back")
 
 
+def step_panel_controls(driver):
+    """The shot panel's other controls and the effect buttons edit the state; undo walks back."""
+    from selenium.webdriver.support.ui import Select
+    edit = "return hapcineStudio.state.edits.shotEdit(0)"
+    click_timeline_at(driver, 0.3)
+    wait_for(driver, "return hapcineStudio.state.selectedShot === 0", "shot 0 selected")
+    Select(driver.find_element("id", "model-select")).select_by_value("semantic")
+    Select(driver.find_element("id", "washout-select")).select_by_value("off")
+    driver.find_element("id", "mute-checkbox").click()
+    got = driver.execute_script(edit)
+    check(got == {"shot": 0, "model": "semantic", "mute": True, "washout": {"mode": "off"}},
+          f"model, washout and mute of shot 0 in the edits: {got}")
+    driver.find_element("id", "reset-shot").click()
+    check(driver.execute_script(edit) == {"shot": 0}, "reset-shot removes the shot's edits")
+    count = "return hapcineStudio.state.edits.keyframes().length"
+    segments = driver.execute_script("return hapcineStudio.state.edits.keyframes()")
+    n = len(segments)
+    bounds = [0.0] + [x for k in segments for x in (k["start_s"], k["end_s"])] + [DURATION_S]
+    gap_start, _ = max(zip(bounds[::2], bounds[1::2]), key=lambda g: g[1] - g[0])
+    click_timeline_at(driver, gap_start + 0.05, lane="fov")  # in the largest free gap
+    driver.find_element("id", "add-keyframe").click()
+    added = driver.execute_script(count)
+    driver.find_element("id", "delete-keyframe").click()
+    check(added == n + 1 and driver.execute_script(count) == n,
+          f"add-keyframe adds an effect at the playhead ({n} -> {added}), delete-keyframe deletes it")
+    for _ in range(6):
+        driver.find_element("id", "undo").click()
+    got, now = driver.execute_script(edit), driver.execute_script(count)
+    check(got == {"shot": 0} and now == n, f"the undo button walks the six steps back: {got}, {now} effects")
+
+
 def step_render_check(driver, shots_dir):
     """Each of video, timeline and seat view draws something (and the page screenshots for the docs)."""
     wait_for(driver, "return document.getElementById('video').readyState >= 2", "a video frame")
@@ -413,6 +444,7 @@ def run(args, driver_path):
         compare_tracks(before, read_track(track_path))
         step_docs_screenshots(driver, args.screenshots)
         step_conflict(driver, url)
+        step_panel_controls(driver)
         errors = browser_log_errors(driver)
         check(not errors, f"no errors in the browser console {errors}")
     finally:
