@@ -32,6 +32,11 @@ struct BatchOptions {
   std::string step_exe;
   // Redo every film even if its outputs are up to date.
   bool force = false;
+  // Honour a film's edits file, "<stem>.edits.json" beside its outputs or
+  // beside the film (docs/formats.md): its haptics steps get --edits, and
+  // the file's content joins their step keys (not the settings hash: a
+  // film without edits keeps its key). false: --no-edits.
+  bool use_edits = true;
   // Outputs beyond the camera path and haptic tracks (`hapcine make`):
   // a .hjif per model (batch: always), a preview video, camera and haptic plots.
   bool hjif = true;

@@ -188,6 +188,47 @@ TEST_F(BatchTest, EditingAFileNamedInStepArgumentsRedoesTheStepsThatReadIt) {
   EXPECT_TRUE((*done)["settings"]["haptics_arg_files"].contains("--keyframes=" + seat));
 }
 
+TEST_F(BatchTest, AnEditsFileBesideAFilmRedoesOnlyItsHaptics) {
+  RunLocalBatch(options_);
+  const std::string edits = lib_.root + "/a.edits.json";
+  WriteFile(edits, "{\"format\":\"hapcine-edits\",\"version\":1}\n");
+  BatchSummary s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 1);
+  EXPECT_EQ(s.Count(FilmStatus::kSkipped), 4);
+  const FilmOutcome* a = Find(s, "a.mp4");
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->edits, edits);
+  ASSERT_EQ(a->steps.size(), 3u);
+  EXPECT_TRUE(a->steps[0].reused);   // estimate
+  EXPECT_FALSE(a->steps[1].reused);  // haptics-cinematic
+  EXPECT_FALSE(a->steps[2].reused);  // haptics-semantic
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 5u);  // never estimated again
+  const std::string track = ReadAll(FilmDir("a.mp4") + "/a.cinematic.haptic.csv");
+  EXPECT_NE(track.find("edits:{\"format\""), std::string::npos) << track;
+  EXPECT_NE(ReadAll(options_.out_dir + "/summary.txt").find("edits " + edits), std::string::npos);
+  EXPECT_EQ((*ReadJsonFile(FilmDir("a.mp4") + "/done.json"))["edits_hash"], FullFileHash(edits));
+
+  // Unchanged: up to date. Changed bytes: redone. In the output folder: that one wins.
+  EXPECT_EQ(RunLocalBatch(options_).Count(FilmStatus::kSkipped), 5);
+  WriteFile(edits, "{\"format\":\"hapcine-edits\",\"version\":1,\"revision\":1}\n");
+  EXPECT_EQ(RunLocalBatch(options_).Count(FilmStatus::kDone), 1);
+  const std::string beside_outputs = FilmDir("a.mp4") + "/a.edits.json";
+  WriteFile(beside_outputs, "{\"format\":\"hapcine-edits\",\"version\":1,\"revision\":2}\n");
+  s = RunLocalBatch(options_);
+  EXPECT_EQ(Find(s, "a.mp4")->edits, beside_outputs);
+  EXPECT_NE(ReadAll(FilmDir("a.mp4") + "/a.cinematic.haptic.csv").find("\"revision\":2"),
+            std::string::npos);
+
+  // --no-edits: the plain tracks again, still no estimate.
+  options_.use_edits = false;
+  s = RunLocalBatch(options_);
+  EXPECT_EQ(s.Count(FilmStatus::kDone), 1);
+  EXPECT_EQ(Find(s, "a.mp4")->edits, "");
+  EXPECT_EQ(ReadAll(FilmDir("a.mp4") + "/a.cinematic.haptic.csv").find("edits:"), std::string::npos);
+  EXPECT_EQ(LogLines(log_, "estimate ").size(), 5u);
+  EXPECT_EQ(RunLocalBatch(options_).Count(FilmStatus::kSkipped), 5);
+}
+
 TEST(BatchOptionsTest, ArgumentFileHashesSeeOnlyExistingFiles) {
   TempDir dir("batch_argfiles");
   const std::string f = dir.path() + "/k.csv";

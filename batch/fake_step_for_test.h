@@ -8,7 +8,8 @@
 // <reason>" for a file that is not a (fake) video or is "corrupt", and dies
 // by SIGSEGV for a file containing "segv". Its outputs depend only on the
 // input bytes and extra arguments, so runs can be compared byte for byte.
-// Each finished estimate appends "estimate <input path>" to a call log.
+// Each finished estimate appends "estimate <input path>" to a call log. A
+// haptics step given --edits FILE appends "edits:" and FILE's bytes to its track.
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -74,10 +75,17 @@ case "$cmd" in
     echo "estimate $in" >> "$LOG"
     ;;
   haptics)
-    cam=$1; model=$3; out=$5; hjif=$7
+    cam=$1; model=$3; out=$5; hjif=""; edits=""
+    args=("$@")
+    for ((i = 5; i + 1 < ${#args[@]}; i++)); do
+      [ "${args[$i]}" = --hjif ] && hjif=${args[$((i + 1))]}
+      [ "${args[$i]}" = --edits ] && edits=${args[$((i + 1))]}
+    done
     IFS= read -r -d '' camera < "$cam"
     printf 'model,%s\n%s' "$model" "$camera" > "$out"
-    echo "{\"model\":\"$model\"}" > "$hjif"
+    # An edits file's bytes end the track, so a test sees which edits made it.
+    if [ -n "$edits" ]; then IFS= read -r -d '' e < "$edits"; printf 'edits:%s' "$e" >> "$out"; fi
+    [ -n "$hjif" ] && echo "{\"model\":\"$model\"}" > "$hjif"
     echo "haptics $model $cam" >> "$LOG"
     ;;
   *) echo "fake hapcine: unknown command $cmd" >&2; exit 2 ;;

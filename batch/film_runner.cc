@@ -11,9 +11,11 @@
 
 #include "batch/content_hash.h"
 #include "batch/json_bytes.h"
+#include "batch/library.h"
 #include "batch/state_files.h"
 #include "batch/subprocess.h"
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace hapcine::batch {
 namespace fs = std::filesystem;
@@ -39,6 +41,14 @@ struct Step {
   std::vector<std::string> command;  // writes those names inside .tmp/
 };
 
+// The key of a step that reads a haptic track: the haptics settings plus,
+// when the film has an edits file, its content.
+std::string TrackStepKey(const BatchOptions& options, const std::string& model,
+                         const FilmLayout& layout) {
+  const std::string key = HapticsStepKey(options, model);
+  return layout.edits_hash.empty() ? key : Fnv1a64Hex(key + "\nedits:" + layout.edits_hash);
+}
+
 // The optional steps after haptics: a preview of the first model's track and
 // the plots. Each reads the FINAL files of the steps before it.
 void AddReviewSteps(const BatchOptions& options, const std::string& exe, const FilmPlan& film,
@@ -46,7 +56,7 @@ void AddReviewSteps(const BatchOptions& options, const std::string& exe, const F
   if (layout.models.empty()) return;
   const fs::path out(layout.output_dir), tmp = fs::path(layout.state_dir) / kTempDir;
   const ModelOutputs& first = layout.models.front();
-  const std::string key = HapticsStepKey(options, first.model);
+  const std::string key = TrackStepKey(options, first.model, layout);
   if (!layout.preview.empty()) {
     steps->push_back({"preview", key, {layout.preview},
                       {exe, "preview", film.path, "--track", (out / first.haptic).string(), "-o",
@@ -80,10 +90,11 @@ std::vector<Step> StepsOf(const BatchOptions& options, const std::string& exe, c
     std::vector<std::string> outputs = {m.haptic};
     if (!m.hjif.empty()) outputs.push_back(m.hjif);
     // haptics reads the FINAL camera path: it was renamed in when estimate succeeded.
-    steps.push_back({"haptics-" + m.model, HapticsStepKey(options, m.model), outputs,
-                     HapticsCommand(options, exe, (out / layout.camera).string(), m.model,
-                                    (tmp / m.haptic).string(),
-                                    m.hjif.empty() ? "" : (tmp / m.hjif).string())});
+    std::vector<std::string> command =
+        HapticsCommand(options, exe, (out / layout.camera).string(), m.model,
+                       (tmp / m.haptic).string(), m.hjif.empty() ? "" : (tmp / m.hjif).string());
+    if (!layout.edits.empty()) command.insert(command.end(), {"--edits", layout.edits});
+    steps.push_back({"haptics-" + m.model, TrackStepKey(options, m.model, layout), outputs, command});
   }
   AddReviewSteps(options, exe, film, layout, &steps);
   return steps;
@@ -161,16 +172,18 @@ nlohmann::json OutcomeToJson(const FilmOutcome& o) {
   for (const StepRecord& s : o.steps) {
     steps.push_back({{"name", s.name}, {"seconds", s.seconds}, {"reused", s.reused}});
   }
-  return {{"id", o.id},
-          {"path", JsonFromBytes(o.path)},
-          {"status", FilmStatusName(o.status)},
-          {"reason", o.reason},
-          {"duplicate_of", o.duplicate_of},
-          {"seconds", o.seconds},
-          {"steps", steps},
-          {"shots", o.shots},
-          {"doubtful_shots", o.doubtful_shots},
-          {"lost_frames", o.lost_frames}};
+  nlohmann::json j = {{"id", o.id},
+                      {"path", JsonFromBytes(o.path)},
+                      {"status", FilmStatusName(o.status)},
+                      {"reason", o.reason},
+                      {"duplicate_of", o.duplicate_of},
+                      {"seconds", o.seconds},
+                      {"steps", steps},
+                      {"shots", o.shots},
+                      {"doubtful_shots", o.doubtful_shots},
+                      {"lost_frames", o.lost_frames}};
+  if (!o.edits.empty()) j["edits"] = JsonFromBytes(o.edits);
+  return j;
 }
 
 FilmOutcome OutcomeFromJson(const nlohmann::json& j) {
@@ -188,6 +201,7 @@ FilmOutcome OutcomeFromJson(const nlohmann::json& j) {
   o.shots = j.value("shots", -1);
   o.doubtful_shots = j.value("doubtful_shots", 0);
   o.lost_frames = j.value("lost_frames", 0);
+  if (j.contains("edits")) o.edits = BytesFromJson(j.at("edits"));
   for (const auto& js : j.value("steps", nlohmann::json::array())) {
     o.steps.push_back({js.value("name", ""), js.value("seconds", 0.0), js.value("reused", false)});
   }
@@ -211,12 +225,14 @@ std::vector<std::string> HapticsCommand(const BatchOptions& options, const std::
 }
 
 bool FilmIsDone(const std::string& state_dir, const FilmPlan& film,
-                const std::string& settings_hash, const std::string& output_dir) {
+                const std::string& settings_hash, const std::string& output_dir,
+                const std::optional<std::string>& edits_hash) {
   const auto done = ReadJsonFile((fs::path(state_dir) / kDoneFile).string());
   if (!done || done->value("input_hash", "") != film.input_hash ||
       done->value("settings_hash", "") != settings_hash) {
     return false;
   }
+  if (edits_hash && done->value("edits_hash", "") != *edits_hash) return false;
   const fs::path out_dir = output_dir.empty() ? fs::path(state_dir) : fs::path(output_dir);
   std::error_code ec;
   try {
@@ -232,6 +248,25 @@ bool FilmIsDone(const std::string& state_dir, const FilmPlan& film,
   return true;
 }
 
+void FindEditsFile(const BatchOptions& options, const std::vector<std::string>& candidates,
+                   FilmLayout* layout) {
+  layout->edits.clear();
+  layout->edits_hash.clear();
+  const auto& args = options.haptics_args;
+  const bool explicit_edits = std::any_of(args.begin(), args.end(), [](const std::string& a) {
+    return a == "--edits" || a.rfind("--edits=", 0) == 0;
+  });
+  if (!options.use_edits || explicit_edits) return;
+  std::error_code ec;
+  for (const std::string& c : candidates) {
+    if (fs::is_regular_file(c, ec)) {
+      layout->edits = fs::absolute(c).lexically_normal().string();
+      layout->edits_hash = FullFileHash(layout->edits);
+      return;
+    }
+  }
+}
+
 FilmLayout BatchFilmLayout(const BatchOptions& options, const FilmPlan& film) {
   FilmLayout layout;
   layout.output_dir = layout.state_dir = (fs::path(options.out_dir) / film.id).string();
@@ -240,6 +275,12 @@ FilmLayout BatchFilmLayout(const BatchOptions& options, const FilmPlan& film) {
     layout.models.push_back({model, film.stem + "." + model + ".haptic.csv",
                              options.hjif ? film.stem + "." + model + ".hjif" : ""});
   }
+  // Beside the outputs first (where a studio serving them saves), then beside the film.
+  const std::string edits_name = film.stem + ".edits.json";
+  FindEditsFile(options,
+                {(fs::path(layout.output_dir) / edits_name).string(),
+                 (fs::path(film.path).parent_path() / (FileStem(film.path) + ".edits.json")).string()},
+                &layout);
   return layout;
 }
 
@@ -299,7 +340,8 @@ bool FinishedBeforeSteps(const BatchOptions& options, const std::string& setting
     outcome->reason = film.precheck_error;
     return true;
   }
-  if (!options.force && FilmIsDone(dir.string(), film, settings_hash, layout.output_dir)) {
+  if (!options.force &&
+      FilmIsDone(dir.string(), film, settings_hash, layout.output_dir, layout.edits_hash)) {
     fs::remove(dir / kFailedFile, ec);
     outcome->status = FilmStatus::kSkipped;
     ReadShotQualityCounts((fs::path(layout.output_dir) / layout.camera).string(), outcome);
@@ -311,19 +353,23 @@ bool FinishedBeforeSteps(const BatchOptions& options, const std::string& setting
 void WriteDoneRecord(const BatchOptions& options, const std::string& settings_hash,
                      const FilmPlan& film, const FilmLayout& layout, const FilmOutcome& outcome,
                      const nlohmann::json& outputs) {
-  WriteJsonAtomic((fs::path(layout.state_dir) / kDoneFile).string(),
-                  {{"id", film.id},
-                   {"path", JsonFromBytes(film.path)},
-                   {"stem", JsonFromBytes(film.stem)},
-                   {"input_hash", film.input_hash},
-                   {"size_bytes", film.size_bytes},
-                   {"settings_hash", settings_hash},
-                   {"settings", SettingsJson(options)},
-                   {"outputs", outputs},
-                   {"steps", OutcomeToJson(outcome)["steps"]},
-                   {"seconds", outcome.seconds},
-                   {"host", HostName()},
-                   {"finished_utc", UtcNow()}});
+  nlohmann::json done = {{"id", film.id},
+                         {"path", JsonFromBytes(film.path)},
+                         {"stem", JsonFromBytes(film.stem)},
+                         {"input_hash", film.input_hash},
+                         {"size_bytes", film.size_bytes},
+                         {"settings_hash", settings_hash},
+                         {"settings", SettingsJson(options)},
+                         {"outputs", outputs},
+                         {"steps", OutcomeToJson(outcome)["steps"]},
+                         {"seconds", outcome.seconds},
+                         {"host", HostName()},
+                         {"finished_utc", UtcNow()}};
+  if (!layout.edits.empty()) {  // only then, so records without edits stay as they were
+    done["edits"] = JsonFromBytes(layout.edits);
+    done["edits_hash"] = layout.edits_hash;
+  }
+  WriteJsonAtomic((fs::path(layout.state_dir) / kDoneFile).string(), done);
 }
 
 }  // namespace
@@ -335,6 +381,7 @@ FilmOutcome RunFilm(const BatchOptions& options, const std::string& step_exe,
   FilmOutcome outcome;
   outcome.id = film.id;
   outcome.path = film.path;
+  outcome.edits = layout.edits;
   const fs::path dir(layout.state_dir), out_dir(layout.output_dir);
   std::error_code ec;
   for (const fs::path& d : {dir, out_dir}) {

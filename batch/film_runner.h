@@ -10,6 +10,7 @@
 // atomicity and failure records for both.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@ struct FilmOutcome {
   // (docs/formats.md): shots, those flagged doubtful, lost frames; -1 when
   // the film has no camera path or its header has no summary.
   int shots = -1, doubtful_shots = 0, lost_frames = 0;
+  std::string edits;  // the edits file its haptics used; empty: none
 };
 
 // Where one film's outputs and state go, and which outputs it has.
@@ -61,7 +63,17 @@ struct FilmLayout {
   std::string preview;      // preview video of the first model's track; empty: none
   std::string camera_plot;  // plot PNG file names; empty: none
   std::string haptic_plot;
+  // The film's edits file passed to its haptics steps (empty: none) and the
+  // hash of its bytes, part of the keys of the steps that read the track.
+  std::string edits;
+  std::string edits_hash;
 };
+
+// Sets layout->edits to the first existing regular file of `candidates`
+// (unless options.use_edits is false or the haptics arguments already name
+// an --edits file) and layout->edits_hash to its content hash.
+void FindEditsFile(const BatchOptions& options, const std::vector<std::string>& candidates,
+                   FilmLayout* layout);
 // batch's: everything in OUT_DIR/<id>/, "<stem>.<model>.haptic.csv" and
 // "<stem>.<model>.hjif" for every model.
 FilmLayout BatchFilmLayout(const BatchOptions& options, const FilmPlan& film);
@@ -100,8 +112,10 @@ FilmOutcome ProcessFilm(const BatchOptions& options, const std::string& step_exe
 
 // True if <state_dir>/done.json records this content and these settings and
 // every output it lists is present in output_dir (default: state_dir) with
-// its recorded size.
+// its recorded size, and, when edits_hash is given, it was made with those
+// edits ("" = none).
 bool FilmIsDone(const std::string& state_dir, const FilmPlan& film,
-                const std::string& settings_hash, const std::string& output_dir = "");
+                const std::string& settings_hash, const std::string& output_dir = "",
+                const std::optional<std::string>& edits_hash = std::nullopt);
 
 }  // namespace hapcine::batch

@@ -31,6 +31,11 @@ FilmLayout MakeLayout(const MakeOptions& options, const FilmPlan& film) {
     layout.camera_plot = film.stem + ".camera.png";
     layout.haptic_plot = film.stem + ".haptic.png";
   }
+  // Beside the outputs (with -o DIR: where a studio serving them saves), then beside the film.
+  const std::string edits_name = film.stem + ".edits.json";
+  FindEditsFile(MakeBatchOptions(options),
+                {(fs::path(layout.output_dir) / edits_name).string(), (beside / edits_name).string()},
+                &layout);
   return layout;
 }
 
@@ -56,6 +61,7 @@ BatchOptions MakeBatchOptions(const MakeOptions& options) {
   b.hjif = options.hjif;
   b.preview = options.preview;
   b.plot = options.plot;
+  b.use_edits = options.use_edits;
   return b;
 }
 

@@ -29,6 +29,7 @@ struct MakeOptions {
   std::vector<std::string> haptics_args;   // words for `hapcine haptics` (not --model/-o/--hjif)
   bool hjif = false, preview = false, plot = false;
   bool force = false;    // redo every step
+  bool use_edits = true;  // honour <stem>.edits.json (film_runner.h FindEditsFile)
   std::string step_exe;  // empty: this executable
 };
 
@@ -38,7 +39,8 @@ struct MakeResult {
 };
 
 // The layout of `film`'s outputs: <stem>.camera.csv, <stem>.haptic.csv,
-// <stem>.hjif, <stem>.preview.mp4, <stem>.camera.png, <stem>.haptic.png.
+// <stem>.hjif, <stem>.preview.mp4, <stem>.camera.png, <stem>.haptic.png;
+// the edits file: <stem>.edits.json beside the outputs, else beside the film.
 FilmLayout MakeLayout(const MakeOptions& options, const FilmPlan& film);
 
 // Step names in run order, for a progress display.

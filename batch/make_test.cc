@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "batch/content_hash.h"
+#include "batch/fake_step_for_test.h"
 #include "batch/job_progress.h"
 
 namespace hapcine::batch {
@@ -46,6 +48,31 @@ TEST(MakeTest, LayoutBesideTheFilmOrInTheOutputFolder) {
   EXPECT_EQ(l.models[0].hjif, "a b.hjif");
   EXPECT_EQ(MakeStepNames(l), (std::vector<std::string>{"estimate", "haptics-semantic", "preview",
                                                         "plot-camera", "plot-haptic"}));
+}
+
+TEST(MakeTest, EditsFileBesideTheOutputsThenBesideTheFilm) {
+  testutil::TempDir dir("make_edits");
+  const std::string films = dir.path() + "/films", out = dir.path() + "/out";
+  FilmPlan film;
+  film.path = films + "/clip.mp4";
+  film.id = "clip-12345678";
+  film.stem = "clip";
+  MakeOptions opt;
+  EXPECT_EQ(MakeLayout(opt, film).edits, "");
+  testutil::WriteFile(films + "/clip.edits.json", "{}");
+  FilmLayout l = MakeLayout(opt, film);
+  EXPECT_EQ(l.edits, films + "/clip.edits.json");
+  EXPECT_EQ(l.edits_hash, FullFileHash(films + "/clip.edits.json"));
+  opt.out_dir = out;
+  EXPECT_EQ(MakeLayout(opt, film).edits, films + "/clip.edits.json");
+  testutil::WriteFile(out + "/clip.edits.json", "{ }");
+  EXPECT_EQ(MakeLayout(opt, film).edits, out + "/clip.edits.json");
+  opt.use_edits = false;
+  EXPECT_EQ(MakeLayout(opt, film).edits, "");
+  // An --edits FILE among the haptics options is the one used.
+  opt.use_edits = true;
+  opt.haptics_args = {"--edits", dir.path() + "/mine.json"};
+  EXPECT_EQ(MakeLayout(opt, film).edits, "");
 }
 
 TEST(MakeTest, OutputsOnRequestChangeTheSettingsButNotABatchs) {

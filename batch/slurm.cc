@@ -117,6 +117,7 @@ std::string SlurmJobScript(const BatchOptions& options, const SlurmOptions& slur
     cmd.push_back(JoinQuoted(options.haptics_args));
   }
   if (options.force) cmd.push_back("--force");
+  if (!options.use_edits) cmd.push_back("--no-edits");
   const std::string status_dir =
       (fs::absolute(options.out_dir).lexically_normal() / "slurm").string();
   std::ostringstream s;

@@ -1,6 +1,7 @@
 // `hapcine batch`: a whole library through estimate + haptics, locally with N
 // workers or as a Slurm job array; resumable. The work is in batch/.
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -14,6 +15,24 @@
 #include "core/output_files.h"
 
 namespace hapcine::cli {
+
+namespace {
+
+void PrintTotals(const batch::BatchSummary& s) {
+  std::cerr << "batch: " << s.films.size() << " films: " << s.Count(batch::FilmStatus::kDone)
+            << " done, " << s.Count(batch::FilmStatus::kSkipped) << " skipped, "
+            << s.Count(batch::FilmStatus::kFailed) << " failed, "
+            << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
+            << FormatDuration(s.wall_seconds) << "\n";
+  const auto edited = std::count_if(s.films.begin(), s.films.end(),
+                                    [](const batch::FilmOutcome& f) { return !f.edits.empty(); });
+  if (edited > 0) {
+    std::cerr << "batch: " << edited << " film(s) with an edits file (<stem>.edits.json, listed in "
+              << "summary.txt; --no-edits to ignore)\n";
+  }
+}
+
+}  // namespace
 
 int RunBatch(int argc, char** argv) {
   CLI::App app{
@@ -50,6 +69,10 @@ int RunBatch(int argc, char** argv) {
   app.add_option("--hapcine-exe", opt.step_exe,
                  "program run for the steps (default: this hapcine executable)");
   app.add_flag("--force", opt.force, "redo every film even if up to date");
+  bool no_edits = false;
+  app.add_flag("--no-edits", no_edits,
+               "ignore the films' <stem>.edits.json files (otherwise used when beside a film\n"
+               "or in its output folder; docs/formats.md \"Edits file\")");
   app.add_flag("--status", status,
                "print progress of OUT_DIR from its state files (done/failed/duplicate/\n"
                "running/pending) and exit");
@@ -79,6 +102,7 @@ int RunBatch(int argc, char** argv) {
       return kExitOk;
     }
     opt.library = positional;
+    opt.use_edits = !no_edits;
     // Outputs are committed as each film finishes; only the names are checked.
     CheckOutputPaths({{opt.library, "LIBRARY"}}, {{opt.out_dir, "-o", /*folder=*/true}});
     opt.models.clear();
@@ -106,11 +130,7 @@ int RunBatch(int argc, char** argv) {
       return batch::SubmitSlurmBatch(opt, slurm);
     }
     const batch::BatchSummary s = batch::RunLocalBatch(opt);
-    std::cerr << "batch: " << s.films.size() << " films: " << s.Count(batch::FilmStatus::kDone)
-              << " done, " << s.Count(batch::FilmStatus::kSkipped) << " skipped, "
-              << s.Count(batch::FilmStatus::kFailed) << " failed, "
-              << s.Count(batch::FilmStatus::kDuplicate) << " duplicate in "
-              << FormatDuration(s.wall_seconds) << "\n";
+    PrintTotals(s);
     return s.ExitCode();
   });
 }

@@ -75,6 +75,26 @@ void AddWashoutOptions(CLI::App& app, WashoutOptions* w, std::string* washout, b
       ->check(FiniteRange(0, 10));
 }
 
+// The cinematic model's scaling options (docs/haptics.md, "Scaling").
+void AddCinematicOptions(CLI::App& app, CinematicOptions* c) {
+  app.add_option("--reference-depth", c->reference_depth_u,
+                 "distance of the subject defining the zoom's equivalent forward distance,\n"
+                 "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
+                 "metadata subject_distance_m, else 1 (the median depth of estimated paths)")
+      ->default_val(c->reference_depth_u)
+      ->check(FiniteRange(0, 1e6));
+  app.add_option("--max-translation-gain", c->max_translation_gain,
+                 "cinematic: cap on the translation/zoom scale, metres per path unit")
+      ->default_val(c->max_translation_gain)
+      ->check(FiniteRange(0, 100));
+  app.add_option("--max-rotation-gain", c->max_rotation_gain,
+                 "cinematic: cap on the rotation scale (1 = the camera's own angles)")
+      ->default_val(c->max_rotation_gain)
+      ->check(FiniteRange(0, 10));
+  app.add_flag("--per-film-scaling", c->per_film_scaling,
+               "cinematic: one scaling for the whole film instead of one per shot");
+}
+
 }  // namespace
 
 int RunHaptics(int argc, char** argv) {
@@ -90,7 +110,7 @@ int RunHaptics(int argc, char** argv) {
       "Films are processed per shot (`shot` column) with a washout so no actuator leaves its\n"
       "workspace. Details and file formats: docs/haptics.md.",
       "hapcine haptics"};
-  std::string input, output, hjif, seat_file, model = "cinematic", keyframes, effects_out;
+  std::string input, output, hjif, seat_file, model = "cinematic", keyframes, effects_out, edits;
   HapticOptions opt;
   HjifOptions hjif_opt;
   double rate = 0;
@@ -126,25 +146,14 @@ int RunHaptics(int argc, char** argv) {
                  "semantic model: hand-placed effects, CSV 'start_s,end_s,effect,intensity'\n"
                  "(default: effects found automatically by the classifier)");
   app.add_option("--effects-out", effects_out,
-                 "also write the effect segments (the classifier's, or --keyframes) as a\n"
-                 "keyframe file: edit it and pass it back with --keyframes");
+                 "also write the effect segments (the classifier's, or --keyframes, or the\n"
+                 "edits' keyframes) as a keyframe file: edit it and pass it back with --keyframes");
+  app.add_option("--edits", edits,
+                 "a designer's edits file (*.edits.json, docs/formats.md \"Edits file\"): per\n"
+                 "shot model, gain, mute and washout, and keyframes replacing the classifier's;\n"
+                 "applied before the film-level safety (cut crossfades, speed limit, clamp)");
   AddWashoutOptions(app, &opt.washout, &washout, &no_washout);
-  app.add_option("--reference-depth", opt.cinematic.reference_depth_u,
-                 "distance of the subject defining the zoom's equivalent forward distance,\n"
-                 "in path units; 0 = per shot: a dolly zoom's own subject distance, else\n"
-                 "metadata subject_distance_m, else 1 (the median depth of estimated paths)")
-      ->default_val(opt.cinematic.reference_depth_u)
-      ->check(FiniteRange(0, 1e6));
-  app.add_option("--max-translation-gain", opt.cinematic.max_translation_gain,
-                 "cinematic: cap on the translation/zoom scale, metres per path unit")
-      ->default_val(opt.cinematic.max_translation_gain)
-      ->check(FiniteRange(0, 100));
-  app.add_option("--max-rotation-gain", opt.cinematic.max_rotation_gain,
-                 "cinematic: cap on the rotation scale (1 = the camera's own angles)")
-      ->default_val(opt.cinematic.max_rotation_gain)
-      ->check(FiniteRange(0, 10));
-  app.add_flag("--per-film-scaling", opt.cinematic.per_film_scaling,
-               "cinematic: one scaling for the whole film instead of one per shot");
+  AddCinematicOptions(app, &opt.cinematic);
   app.add_option("--max-gap", opt.max_gap_s, "reject time gaps longer than this inside a shot, s")
       ->default_val(opt.max_gap_s)
       ->check(FiniteRange(0.001, 600));
@@ -154,6 +163,7 @@ int RunHaptics(int argc, char** argv) {
 
   return RunApp(app, argc, argv, [&]() -> int {
     if (!seat_file.empty() && IsPlatformFile(seat_file)) {
+      if (!edits.empty()) throw UsageError("--edits applies to the HapSeat, not to a platform");
       return RunPlatformHaptics({seat_file, input, output, model, print_seat, rate,
                                  opt.cinematic.reference_depth_u, opt.max_gap_s,
                                  !hjif.empty() || !effects_out.empty()});
@@ -165,11 +175,13 @@ int RunHaptics(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("INPUT is required");
     if (output.empty()) throw UsageError("-o OUT.haptic.csv is required");
-    OutputSet outputs({{input, "INPUT"}, {seat_file, "--seat"}, {keyframes, "--keyframes"}},
+    OutputSet outputs({{input, "INPUT"}, {seat_file, "--seat"}, {keyframes, "--keyframes"},
+                       {edits, "--edits"}},
                       {{output, "-o"}, {hjif, "--hjif"}, {effects_out, "--effects-out"}});
     opt.model = HapticModelFromName(model);
     opt.rate_hz = rate;
     opt.keyframes_file = keyframes;
+    if (!edits.empty()) opt.edits = ReadHapticEditsFile(edits);
     if (app.count("--seed") > 0) opt.seed = seed;
     opt.washout.mode = WashoutModeFromName(no_washout ? "off" : washout);
     opt.source = input;
@@ -208,9 +220,7 @@ int RunHaptics(int argc, char** argv) {
     std::unique_ptr<AtomicFile> fx;
     if (!effects_out.empty()) {
       fx = std::make_unique<AtomicFile>(effects_out);
-      WriteKeyframes(keyframes.empty() ? ClassifyEffects(path, opt.classifier)
-                                       : ReadKeyframesFile(keyframes),
-                     fx->stream());
+      WriteKeyframes(EffectiveEffectSegments(path, opt), fx->stream());
     }
     csv.Commit();
     if (hj) hj->Commit();
@@ -219,6 +229,7 @@ int RunHaptics(int argc, char** argv) {
     for (const ShotConfidence& c : AssessShotConfidence(path, SplitShots(path))) {
       if (c.low) std::cerr << "hapcine haptics: " << input << ": warning: " << LowQualityShotLine(c) << "\n";
     }
+    if (!edits.empty()) std::cerr << "haptics: edits from " << edits << "\n";
     std::cerr << "haptics: " << model << " track of " << track.samples.size() << " samples ("
               << track.duration_s() << " s at " << track.rate_hz << " Hz) -> " << output
               << (hjif.empty() ? "" : " + " + hjif)

@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "estimate/shot_quality.h"
+#include "haptics/haptic_edits.h"
 
 namespace hapcine::cli {
 namespace {
@@ -172,8 +173,12 @@ void PrintSummary(const batch::MakeOptions& options, const batch::MakeResult& r,
 // Runs the film on a worker thread while this one redraws the progress.
 batch::MakeResult RunWithProgress(const batch::MakeOptions& options, ProgressMode mode) {
   const batch::FilmPlan film = batch::MakeFilmPlan(options.film);
-  batch::JobProgress progress(std::cerr, mode, "make",
-                              batch::MakeStepNames(batch::MakeLayout(options, film)));
+  const batch::FilmLayout layout = batch::MakeLayout(options, film);
+  if (!layout.edits.empty()) {
+    ReadHapticEditsFile(layout.edits);  // a bad file fails now, not after the estimate
+    std::cerr << "make: edits from " << layout.edits << " (--no-edits to ignore)\n";
+  }
+  batch::JobProgress progress(std::cerr, mode, "make", batch::MakeStepNames(layout));
   // The steps write a progress line every half second into their logs.
   ::setenv("HAPCINE_PROGRESS_INTERVAL", "0.5", 1);
   batch::MakeResult result;
@@ -227,6 +232,11 @@ int RunMake(int argc, char** argv) {
                "also render <stem>.preview.mp4: the film with the actuators drawn in an inset");
   app.add_flag("--plot", opt.plot, "also draw <stem>.camera.png and <stem>.haptic.png");
   app.add_flag("--force", opt.force, "redo every step, even those whose results are up to date");
+  bool no_edits = false;
+  app.add_flag("--no-edits", no_edits,
+               "ignore <stem>.edits.json (a designer's per-shot gains, models, washout and\n"
+               "keyframes, docs/formats.md), which is otherwise used when it is beside the\n"
+               "outputs or beside the film");
   app.add_option("--progress", progress, "auto (bar on a terminal, lines otherwise), bar, lines or quiet")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "bar", "lines", "quiet"}));
@@ -249,6 +259,7 @@ int RunMake(int argc, char** argv) {
   return RunApp(app, static_cast<int>(own.size()), own_argv.data(), [&]() -> int {
     CheckArguments(RunEstimate, "estimate", split.estimate);
     CheckArguments(RunHaptics, "haptics", split.haptics);
+    opt.use_edits = !no_edits;
     opt.estimate_args = split.estimate;
     opt.haptics_args = split.haptics;
     if (!opt.out_dir.empty()) CheckOutputPaths({{opt.film, "FILM"}}, {{opt.out_dir, "-o", true}});

@@ -41,9 +41,9 @@ const std::map<std::string, std::string>& RefusedEstimateOptions() {
   return refused;
 }
 
-// Option name -> takes a value, for `hapcine estimate` (its own table, read
-// through ScopedAppProbe as `make` does).
-std::map<std::string, bool> EstimateOptionTable() {
+// Option name -> takes a value, for a command (its own table, read through
+// ScopedAppProbe as `make` does).
+std::map<std::string, bool> OptionTable(int (*run)(int, char**), const std::string& command) {
   std::map<std::string, bool> table;
   ScopedAppProbe probe([&](CLI::App& app, int, char**) {
     for (const CLI::Option* o : app.get_options()) {
@@ -53,22 +53,26 @@ std::map<std::string, bool> EstimateOptionTable() {
     }
     return 0;
   });
-  std::string prog = "hapcine estimate";
+  std::string prog = "hapcine " + command;
   char* argv[] = {prog.data(), nullptr};
-  RunEstimate(1, argv);
+  run(1, argv);
   return table;
 }
 
 // Deals argv to the studio (its own options and the films) or to estimate.
 void SplitArguments(int argc, char** argv, const CLI::App& app, std::vector<std::string>* own,
                     std::vector<std::string>* estimate) {
-  const std::map<std::string, bool> est = EstimateOptionTable();
+  const std::map<std::string, bool> est = OptionTable(RunEstimate, "estimate");
+  const std::map<std::string, bool> hap = OptionTable(RunHaptics, "haptics");
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     const std::string name = word.substr(0, word.find('='));
     const bool option = name.size() > 1 && name[0] == '-';
     const CLI::Option* mine = option ? app.get_option_no_throw(name) : nullptr;
     std::vector<std::string>* to = own;
+    if (option && !mine && !est.count(name) && hap.count(name))
+      throw UsageError(name + " is a haptics option: set it per shot on the studio's page (or use "
+                              "hapcine make / haptics)");
     if (option && !mine && est.count(name)) {
       const auto refused = RefusedEstimateOptions().find(name);
       if (refused != RefusedEstimateOptions().end())
@@ -130,7 +134,7 @@ batch::MakeResult MakeWithProgress(const batch::MakeOptions& options, ProgressMo
 
 struct StudioArgs {
   std::vector<std::string> inputs;
-  std::string host = "127.0.0.1", model = "cinematic", seat, web_dir, progress = "auto";
+  std::string host = "127.0.0.1", model = "cinematic", seat, web_dir, camera, progress = "auto";
   int port = 8787;
   bool open = false, force = false, quiet = false;
   std::vector<std::string> estimate;
@@ -146,6 +150,15 @@ std::vector<std::unique_ptr<studio::FilmSession>> LoadFilms(const StudioArgs& a)
                             : a.progress == "lines"          ? ProgressMode::kLines
                                                              : ProgressModeFor(false);
   std::vector<std::unique_ptr<studio::FilmSession>> films;
+  if (!a.camera.empty()) {  // a camera path of the user's: no make
+    std::error_code ec;
+    if (a.inputs.size() != 1 || fs::is_directory(a.inputs[0], ec))
+      throw UsageError("--camera goes with exactly one film");
+    if (!fs::is_regular_file(a.inputs[0], ec)) throw Error(a.inputs[0], "no such file");
+    films.push_back(std::make_unique<studio::FilmSession>(
+        "f0", fs::absolute(a.inputs[0]).lexically_normal().string(), a.camera, haptics));
+    return films;
+  }
   for (const std::string& film : ExpandFilms(a.inputs)) {
     batch::MakeOptions make;
     make.film = film;
@@ -216,6 +229,10 @@ int RunStudio(int argc, char** argv) {
   app.add_option("--web-dir", a.web_dir,
                  "serve the front end from this folder instead of the copy built in\n"
                  "(front-end work: edit studio/web/ and reload the page)");
+  app.add_option("--camera", a.camera,
+                 "use this camera path for the (one) film instead of running make (e.g. one you\n"
+                 "estimated with your own settings, or a ground truth)")
+      ->check(CLI::ExistingFile);
   app.add_flag("--force", a.force, "redo every make step, even those whose results are up to date");
   app.add_option("--progress", a.progress, "auto (bar on a terminal, lines otherwise), bar, lines or quiet")
       ->capture_default_str()

@@ -501,6 +501,12 @@ std::pair<HapticTrack, HapticTrack> MakeComparableHapticTracks(const CameraPath&
 
 namespace hapcine {
 
+void CheckEditsForPath(const CameraPath& path, const HapticOptions& options) {
+  const std::string source = options.source.empty() ? "camera path" : options.source;
+  CheckEditedShotsExist(SplitShots(path), options.edits, source);
+  for (const ShotEdit& e : options.edits.shots) ShotOptions(options, e, source);
+}
+
 std::vector<EffectSegment> EffectiveEffectSegments(const CameraPath& path,
                                                    const HapticOptions& options) {
   const std::optional<CameraPath> joined = JoinAcrossLostFrames(path);

@@ -62,6 +62,11 @@ struct HapticOptions {
 
 HapticTrack MakeHapticTrack(const CameraPath& path, const HapticOptions& options);
 
+// Throws Error(source, reason) for edits MakeHapticTrack would refuse on this
+// path (a shot number the path does not have, a gain outside [0, 4], a
+// washout setting out of range), so a save can be refused before it is written.
+void CheckEditsForPath(const CameraPath& path, const HapticOptions& options);
+
 // The semantic effect segments MakeHapticTrack uses for this path and these
 // options: the edits' keyframes when present, else the keyframes file, else
 // the classifier's segments.

@@ -427,3 +427,265 @@ TEST(HapticModels, ComparableTracksShareTheScaling) {
 
 }  // namespace
 }  // namespace hapcine
+
+// ---- Edits (haptic_edits.h) ----
+
+namespace hapcine {
+namespace {
+
+using testing::MaxCoord;
+using testing::MaxStep;
+using testing::MakeEffectPath;
+
+
+// MakeFilm's shots: 0 = [0, 25) s, 1 = [25, 45) s, 2 = [45, 60) s.
+constexpr double kCut1 = 25, kCut2 = 45;
+
+HapticOptions FilmOptions(HapticModel model = HapticModel::kCinematic) {
+  HapticOptions o;
+  o.model = model;
+  o.source = "film.camera.csv";
+  return o;  // 100 Hz
+}
+
+ShotEdit Shot(int shot) {
+  ShotEdit e;
+  e.shot = shot;
+  return e;
+}
+
+std::string TrackText(const HapticTrack& t) {
+  std::stringstream ss;
+  WriteHapticTrack(t, ss);
+  return ss.str();
+}
+
+// Largest |a - b| of any coordinate over the samples with from <= t < to.
+double MaxDifference(const HapticTrack& a, const HapticTrack& b, double from, double to) {
+  EXPECT_EQ(a.samples.size(), b.samples.size());
+  double m = 0;
+  for (size_t i = 0; i < a.samples.size() && i < b.samples.size(); ++i) {
+    const double t = a.samples[i].time_s;
+    if (t < from - 1e-9 || t >= to - 1e-9) continue;
+    for (int k = 0; k < kNumActuators; ++k) {
+      m = std::max(m, (a.samples[i].pos_m[k] - b.samples[i].pos_m[k]).cwiseAbs().maxCoeff());
+    }
+  }
+  return m;
+}
+
+double MaxAbs(const HapticTrack& a, double from, double to) {
+  HapticTrack zero = a;
+  for (HapticSample& s : zero.samples) {
+    for (Eigen::Vector3d& p : s.pos_m) p.setZero();
+  }
+  return MaxDifference(a, zero, from, to);
+}
+
+
+TEST(HapticModelEdits, NoEditsIsTheSameFileAndNeutralEditsTheSameSamples) {
+  const CameraPath film = MakeFilm();
+  const HapticTrack plain = MakeHapticTrack(film, FilmOptions());
+  HapticOptions o = FilmOptions();
+  o.edits = HapticEdits{};
+  o.edits.revision = 12;  // the studio's counter changes nothing
+  EXPECT_EQ(TrackText(MakeHapticTrack(film, o)), TrackText(plain));
+  // Entries that change nothing (gain 1, the film's own model and washout)
+  // leave every sample as it was; only the metadata names the shots.
+  ShotEdit same = Shot(1);
+  same.gain = 1;
+  same.mute = false;
+  same.model = HapticModel::kCinematic;
+  same.washout = WashoutEdit{};
+  same.washout->mode = "adaptive";
+  o.edits.shots = {Shot(0), same};
+  const HapticTrack neutral = MakeHapticTrack(film, o);
+  EXPECT_EQ(MaxDifference(neutral, plain, 0, 1e9), 0.0);
+  EXPECT_EQ(neutral.metadata.at("edited_shots"), "0;1");
+  EXPECT_EQ(plain.metadata.count("edited_shots"), 0u);
+}
+
+TEST(HapticModelEdits, GainZeroSilencesOneShotAndLeavesTheOthers) {
+  const CameraPath film = MakeFilm();
+  const HapticOptions plain_options = FilmOptions();
+  const HapticTrack plain = MakeHapticTrack(film, plain_options);
+  HapticOptions o = FilmOptions();
+  ShotEdit e = Shot(1);
+  e.gain = 0;
+  o.edits.shots = {e};
+  const HapticTrack silent = MakeHapticTrack(film, o);
+  const double ramp = o.washout.cut_ramp_s;
+  ASSERT_GT(MaxAbs(plain, kCut1 + ramp, kCut2), 0.01);  // the shot did move
+  // Zero after the crossfade into it; the other shots untouched, except the
+  // crossfade out of it, which starts from zero instead of its last value.
+  EXPECT_EQ(MaxAbs(silent, kCut1 + ramp, kCut2), 0.0);
+  EXPECT_EQ(MaxDifference(silent, plain, 0, kCut1), 0.0);
+  EXPECT_EQ(MaxDifference(silent, plain, kCut2 + ramp, 1e9), 0.0);
+  EXPECT_GT(MaxDifference(silent, plain, kCut2, kCut2 + ramp), 0.0);
+  EXPECT_LE(MaxStep(silent), o.washout.max_speed_m_s / o.OutputRateHz() + 1e-15);
+  // Mute is gain 0.
+  ShotEdit muted = Shot(1);
+  muted.mute = true;
+  muted.gain = 3;
+  o.edits.shots = {muted};
+  EXPECT_EQ(TrackText(MakeHapticTrack(film, o)), TrackText(silent));
+  // Half the gain, half the displacement (away from the crossfades).
+  ShotEdit half = Shot(1);
+  half.gain = 0.5;
+  o.edits.shots = {half};
+  const HapticTrack halved = MakeHapticTrack(film, o);
+  for (size_t i = 0; i < halved.samples.size(); i += 7) {
+    const double t = halved.samples[i].time_s;
+    if (t < kCut1 + ramp || t >= kCut2) continue;
+    for (int k = 0; k < kNumActuators; ++k) {
+      EXPECT_LT((halved.samples[i].pos_m[k] - 0.5 * plain.samples[i].pos_m[k]).norm(), 1e-15) << t;
+    }
+  }
+}
+
+TEST(HapticModelEdits, ModelOverrideInOneShotIsThatModelThere) {
+  const CameraPath film = MakeFilm();
+  const HapticTrack cinematic = MakeHapticTrack(film, FilmOptions());
+  const HapticTrack semantic = MakeHapticTrack(film, FilmOptions(HapticModel::kSemantic));
+  HapticOptions o = FilmOptions();
+  ShotEdit s1 = Shot(1), s2 = Shot(2);
+  s1.model = HapticModel::kSemantic;
+  s2.model = HapticModel::kNone;
+  o.edits.shots = {s1, s2};
+  const HapticTrack mixed = MakeHapticTrack(film, o);
+  const double ramp = o.washout.cut_ramp_s;
+  ASSERT_GT(MaxDifference(cinematic, semantic, kCut1 + ramp, kCut2), 0.01);
+  EXPECT_EQ(MaxDifference(mixed, cinematic, 0, kCut1), 0.0);
+  EXPECT_LT(MaxDifference(mixed, semantic, kCut1 + ramp, kCut2), 1e-12);
+  EXPECT_EQ(MaxAbs(mixed, kCut2 + ramp, 1e9), 0.0);
+  EXPECT_EQ(mixed.model, "cinematic");  // the film's model; the shots are listed
+  EXPECT_EQ(mixed.metadata.at("edited_shots"), "1;2");
+  EXPECT_EQ(mixed.metadata.at("effects_from"), "classifier");
+  // The semantic shot is labelled with its effects, the others with none.
+  bool labelled = false;
+  for (const HapticSample& s : mixed.samples) {
+    ASSERT_TRUE(s.effect.has_value());
+    if (s.time_s < kCut1 || s.time_s >= kCut2) EXPECT_EQ(*s.effect, "none");
+    labelled = labelled || *s.effect != "none";
+  }
+  EXPECT_TRUE(labelled);
+  // The reverse: a cinematic shot in a semantic film is the cinematic model's shot.
+  HapticOptions r = FilmOptions(HapticModel::kSemantic);
+  ShotEdit c1 = Shot(1);
+  c1.model = HapticModel::kCinematic;
+  r.edits.shots = {c1};
+  EXPECT_LT(MaxDifference(MakeHapticTrack(film, r), cinematic, kCut1 + ramp, kCut2), 1e-12);
+  // A random shot moves, stays in the usable range, and is the same twice.
+  ShotEdit n0 = Shot(0);
+  n0.model = HapticModel::kRandom;
+  o.edits.shots = {n0};
+  const HapticTrack noisy = MakeHapticTrack(film, o);
+  EXPECT_GT(MaxAbs(noisy, 0, kCut1), 0.005);
+  EXPECT_LE(MaxCoord(noisy), o.seat.usable_half_m + 1e-12);
+  EXPECT_EQ(TrackText(MakeHapticTrack(film, o)), TrackText(noisy));
+  EXPECT_EQ(MaxDifference(noisy, cinematic, kCut1 + ramp, 1e9), 0.0);
+}
+
+TEST(HapticModelEdits, WashoutOverrideActsInItsShotOnly) {
+  const CameraPath film = MakeFilm();
+  const HapticTrack adaptive = MakeHapticTrack(film, FilmOptions());
+  HapticOptions hp_options = FilmOptions();
+  hp_options.washout.mode = WashoutMode::kHighPass;
+  hp_options.washout.tau_s = 2;
+  const HapticTrack highpass = MakeHapticTrack(film, hp_options);
+  HapticOptions o = FilmOptions();
+  ShotEdit e = Shot(0);  // the 25 s drift
+  e.washout = WashoutEdit{};
+  e.washout->mode = "highpass";
+  e.washout->tau_s = 2;
+  o.edits.shots = {e};
+  const HapticTrack mixed = MakeHapticTrack(film, o);
+  ASSERT_GT(MaxDifference(adaptive, highpass, 0, kCut1), 0.01);
+  EXPECT_LT(MaxDifference(mixed, highpass, 0, kCut1), 1e-12);
+  EXPECT_EQ(MaxDifference(mixed, adaptive, kCut1 + o.washout.cut_ramp_s, 1e9), 0.0);
+  // A washout setting the command line would refuse is refused here too.
+  e.washout->tau_s = 0.01;
+  o.edits.shots = {e};
+  try {
+    MakeHapticTrack(film, o);
+    FAIL();
+  } catch (const Error& err) {
+    EXPECT_NE(std::string(err.what()).find("edits: shot 0: washout tau_s"), std::string::npos)
+        << err.what();
+  }
+}
+
+TEST(HapticModelEdits, KeyframesReplaceTheClassifier) {
+  const CameraPath path = MakeEffectPath(CameraEffect::kTraveling);
+  HapticOptions o;
+  o.rate_hz = 1000;
+  o.model = HapticModel::kSemantic;
+  const std::vector<EffectSegment> classified = EffectiveEffectSegments(path, o);
+  ASSERT_FALSE(classified.empty());
+  EXPECT_EQ(classified[0].effect, CameraEffect::kTraveling);
+  EffectSegment tilt;
+  tilt.start_s = 2;
+  tilt.end_s = 4;
+  tilt.effect = CameraEffect::kTilting;
+  tilt.intensity = 0.5;
+  o.edits.keyframes = std::vector<EffectSegment>{tilt};
+  const std::vector<EffectSegment> effective = EffectiveEffectSegments(path, o);
+  ASSERT_EQ(effective.size(), 1u);
+  EXPECT_EQ(effective[0].effect, CameraEffect::kTilting);
+  const HapticTrack t = MakeHapticTrack(path, o);
+  EXPECT_NEAR(t.samples[4000].pos_m[0].y(), -0.5 * o.seat.usable_half_m, 1e-9);
+  EXPECT_EQ(*t.samples[3000].effect, "tilting");
+  EXPECT_EQ(*t.samples[1500].effect, "none");  // the classifier's traveling is gone
+  EXPECT_EQ(t.metadata.at("effects_from"), "edits");
+  EXPECT_EQ(t.metadata.at("effect_segments"), "1");
+  // An empty list replaces the classifier by nothing: a still track.
+  o.edits.keyframes = std::vector<EffectSegment>{};
+  EXPECT_EQ(MaxCoord(MakeHapticTrack(path, o)), 0.0);
+}
+
+TEST(HapticModelEdits, GainFourOnAnExtremePathStaysInTheWorkspace) {
+  const CameraPath film = MakeFilm();  // its drift holds at the edge of the usable range
+  for (HapticModel m : {HapticModel::kCinematic, HapticModel::kSemantic, HapticModel::kRandom}) {
+    HapticOptions o = FilmOptions(m);
+    for (int shot : {0, 1, 2}) {
+      ShotEdit e = Shot(shot);
+      e.gain = kMaxShotGain;
+      o.edits.shots.push_back(e);
+    }
+    const HapticTrack t = MakeHapticTrack(film, o);
+    EXPECT_LE(MaxCoord(t), o.seat.clamp_half_m + 1e-15) << HapticModelName(m);
+    EXPECT_LE(MaxStep(t), o.washout.max_speed_m_s / o.OutputRateHz() + 1e-15);
+    if (m == HapticModel::kCinematic) {
+      EXPECT_GT(MaxCoord(t), o.seat.usable_half_m);  // it did push: the clamp held it
+      EXPECT_NE(t.metadata.at("clamped_samples"), "0");
+    }
+  }
+}
+
+TEST(HapticModelEdits, AShotNotInThePathIsAnErrorNamingIt) {
+  HapticOptions o = FilmOptions();
+  o.edits.shots = {Shot(1), Shot(7)};
+  try {
+    MakeHapticTrack(MakeFilm(), o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), "film.camera.csv");
+    EXPECT_NE(e.reason().find("shot 7 is not in the camera path"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(CheckEditsForPath(MakeFilm(), o), Error);  // before making any track
+  o.edits.shots = {Shot(2)};
+  EXPECT_NO_THROW(CheckEditsForPath(MakeFilm(), o));
+  // A path without a shot column is shot 0.
+  o.edits.shots = {Shot(0)};
+  EXPECT_NO_THROW(MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o));
+  o.edits.shots = {Shot(1)};
+  EXPECT_THROW(MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o), Error);
+  // A gain the parser would refuse, set in code, is refused too.
+  ShotEdit nan = Shot(0);
+  nan.gain = std::nan("");
+  o.edits.shots = {nan};
+  EXPECT_THROW(MakeHapticTrack(MakeEffectPath(CameraEffect::kTraveling), o), Error);
+}
+
+}  // namespace
+}  // namespace hapcine

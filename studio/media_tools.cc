@@ -129,19 +129,24 @@ void MakeProxy(const std::string& film, double duration_s, const std::string& ou
 
 void MakeThumbnail(const std::string& film, double time_s, int width, const std::string& output) {
   const std::string temp = output + ".part.jpg";
-  char at[32];
-  std::snprintf(at, sizeof at, "%.3f", std::max(0.0, time_s));
-  try {
-    RunFfmpeg(film,
-              {"-ss", at, "-i", film, "-frames:v", "1", "-vf", "scale=" + std::to_string(width) + ":-2",
-               "-q:v", "4", temp},
-              output + ".log");
-  } catch (...) {
-    std::remove(temp.c_str());
-    throw;
-  }
   std::error_code ec;
-  if (!fs::exists(temp, ec)) throw Error(film, "ffmpeg wrote no frame at " + std::string(at) + " s");
+  // Past the video's end (a camera path longer than the film) ffmpeg writes
+  // nothing: then the first frame.
+  for (const double t : {std::max(0.0, time_s), 0.0}) {
+    char at[32];
+    std::snprintf(at, sizeof at, "%.3f", t);
+    try {
+      RunFfmpeg(film,
+                {"-ss", at, "-i", film, "-frames:v", "1", "-vf",
+                 "scale=" + std::to_string(width) + ":-2", "-q:v", "4", temp},
+                output + ".log");
+    } catch (...) {
+      std::remove(temp.c_str());
+      throw;
+    }
+    if (fs::exists(temp, ec)) break;
+  }
+  if (!fs::exists(temp, ec)) throw Error(film, "ffmpeg wrote no frame");
   fs::rename(temp, output, ec);
   if (ec) throw Error(output, "cannot rename the thumbnail into place: " + ec.message());
 }

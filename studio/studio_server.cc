@@ -1,6 +1,7 @@
 #include "studio/studio_server.h"
 
 #include <httplib.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -354,9 +355,14 @@ void StudioServer::Stop() {
 }
 
 std::string StudioServer::Url() const {
-  const bool v6 = options_.host.find(':') != std::string::npos;
-  std::string url = "http://" + (v6 ? "[" + options_.host + "]" : options_.host) + ":" +
-                    std::to_string(port_) + "/";
+  std::string host = options_.host;
+  // Every address: name the machine, which others can reach.
+  if (host == "0.0.0.0" || host == "::") {
+    char name[256] = {0};
+    host = gethostname(name, sizeof name - 1) == 0 && name[0] ? name : host;
+  }
+  const bool v6 = host.find(':') != std::string::npos;
+  std::string url = "http://" + (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port_) + "/";
   if (!options_.token.empty()) url += "?token=" + options_.token;
   return url;
 }

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -29,9 +31,10 @@ std::string EditsBody(int revision) {
 
 class StudioServerTest : public ::testing::Test {
  protected:
-  void Start(ServerOptions options = {}) {
+  void Start(ServerOptions options = {}, std::string film = "") {
     std::vector<std::unique_ptr<FilmSession>> films;
-    films.push_back(std::make_unique<FilmSession>("f0", film_.film(), film_.camera(), HapticOptions{}));
+    films.push_back(std::make_unique<FilmSession>("f0", film.empty() ? film_.film() : film,
+                                                  film_.camera(), HapticOptions{}));
     options.host = "127.0.0.1";
     options.port = 0;
     server_ = std::make_unique<StudioServer>(std::move(films), std::move(options));
@@ -290,6 +293,42 @@ TEST_F(StudioServerTest, ExportsWriteBesideTheFilm) {
   ASSERT_TRUE(bogus);
   EXPECT_EQ(bogus->status, 400);
   GetJson("/api/jobs/j99", 404);
+}
+
+// A real clip a browser cannot play (MPEG-4 Part 2 in AVI, made by ffmpeg):
+// the server points at a proxy, answers 202 with progress while ffmpeg makes
+// it, then serves an MP4; and a thumbnail of a shot.
+TEST_F(StudioServerTest, AnUnplayableCodecGetsAnH264ProxyAndThumbnails) {
+  const std::string avi = film_.dir() + "/clip.avi";
+  const std::string make = "ffmpeg -nostdin -loglevel error -f lavfi -i testsrc=size=64x48:rate=5:duration=8 "
+                           "-c:v mpeg4 " + avi;
+  if (std::system(make.c_str()) != 0) GTEST_SKIP() << "ffmpeg cannot make the test clip";
+  Start({}, avi);
+  EXPECT_EQ(GetJson("/api/films/f0")["video_url"], "/api/films/f0/proxy.mp4");
+  httplib::Response proxy;
+  bool saw_202 = false;
+  for (int i = 0; i < 600; ++i) {
+    auto res = Client().Get("/api/films/f0/proxy.mp4");
+    ASSERT_TRUE(res);
+    proxy = *res;
+    if (proxy.status != 202) break;
+    saw_202 = true;
+    EXPECT_TRUE(nlohmann::json::parse(proxy.body).contains("progress"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_TRUE(saw_202);
+  ASSERT_EQ(proxy.status, 200) << proxy.body;
+  EXPECT_EQ(proxy.get_header_value("Content-Type"), "video/mp4");
+  ASSERT_GT(proxy.body.size(), 8u);
+  EXPECT_EQ(proxy.body.substr(4, 4), "ftyp");
+  auto thumb = Client().Get("/api/films/f0/thumbnails/0.jpg");
+  ASSERT_TRUE(thumb);
+  ASSERT_EQ(thumb->status, 200) << thumb->body;
+  EXPECT_EQ(thumb->body.substr(0, 2), "\xff\xd8");
+  // Shot 1 lies past the clip's end: the first frame stands in.
+  EXPECT_EQ(Client().Get("/api/films/f0/thumbnails/1.jpg")->status, 200);
+  EXPECT_EQ(Client().Get("/api/films/f0/thumbnails/7.jpg")->status, 404);
+  EXPECT_EQ(Client().Get("/api/films/f0/video")->status, 200);  // the original stays reachable
 }
 
 }  // namespace

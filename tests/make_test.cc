@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -116,6 +117,69 @@ TEST_F(MakeTest, ReusesTheCameraPathUntilTheFilmOrEstimateSettingsChange) {
   const RunResult fourth = Make("--draft --tracks 150");
   ASSERT_EQ(fourth.exit_code, 0) << fourth.err;
   EXPECT_NE(fourth.err.find("estimate            ran"), std::string::npos) << fourth.err;
+}
+
+// The largest |value| of the actuator columns of a haptic track's rows.
+double LargestDisplacement(const std::string& track) {
+  std::istringstream in(track);
+  double largest = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || line.rfind("time_s", 0) == 0) continue;
+    std::istringstream row(line);
+    std::string cell;
+    std::getline(row, cell, ',');  // time_s
+    for (int k = 0; k < 9 && std::getline(row, cell, ','); ++k)
+      largest = std::max(largest, std::abs(std::stod(cell)));
+  }
+  return largest;
+}
+
+TEST_F(MakeTest, AnEditsFileReRendersTheHapticsButNeverReEstimates) {
+  const RunResult first = Make("--draft --hjif");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const fs::path haptic = film_dir_ / "clip.haptic.csv", edits = film_dir_ / "clip.edits.json";
+  const std::string plain = Slurp(haptic), plain_hjif = Slurp(film_dir_ / "clip.hjif");
+  ASSERT_GT(LargestDisplacement(plain), 0.01);
+  const auto log_time = EstimateLogTime(film_dir_);
+
+  { std::ofstream(edits) << R"({"format": "hapcine-edits", "version": 1, "shots": [{"shot": 0, "gain": 0.5}]})"; }
+  const RunResult edited = Make("--draft --hjif");
+  ASSERT_EQ(edited.exit_code, 0) << edited.err;
+  EXPECT_NE(edited.err.find("make: edits from " + edits.string()), std::string::npos) << edited.err;
+  EXPECT_NE(edited.err.find("estimate            reused"), std::string::npos) << edited.err;
+  EXPECT_NE(edited.err.find("haptics-cinematic   ran"), std::string::npos) << edited.err;
+  EXPECT_EQ(EstimateLogTime(film_dir_), log_time) << "the estimate ran again";
+  const std::string halved = Slurp(haptic);
+  EXPECT_NE(halved.find("# edited_shots=0"), std::string::npos);
+  EXPECT_NEAR(LargestDisplacement(halved), 0.5 * LargestDisplacement(plain), 2e-7);
+  EXPECT_NE(Slurp(film_dir_ / "clip.hjif"), plain_hjif);  // made from the new track
+
+  // Unchanged edits: nothing runs. A bad one: refused before any step, naming the field.
+  EXPECT_NE(Make("--draft --hjif").err.find("every output up to date"), std::string::npos);
+  { std::ofstream(edits) << R"({"format": "hapcine-edits", "version": 1, "shots": [{"shot": 0, "gain": 9}]})"; }
+  const RunResult bad = Make("--draft --hjif");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(LastLine(bad.err),
+            "hapcine make: " + edits.string() + ": shots[0].gain: must be in [0, 4]");
+  EXPECT_EQ(Slurp(haptic), halved);
+
+  // --no-edits: the plain track again, still without estimating.
+  const RunResult ignored = Make("--draft --hjif --no-edits");
+  ASSERT_EQ(ignored.exit_code, 0) << ignored.err;
+  EXPECT_EQ(ignored.err.find("make: edits from"), std::string::npos) << ignored.err;
+  EXPECT_EQ(Slurp(haptic), plain);
+  EXPECT_EQ(EstimateLogTime(film_dir_), log_time);
+
+  // `hapcine haptics --edits` says the same of a bad file, and makes the same track of a good one.
+  const std::string haptics = "haptics " + Quote(film_dir_ / "clip.camera.csv") + " -o " +
+                              Quote(film_dir_ / "direct.haptic.csv") + " --edits " + Quote(edits);
+  const RunResult direct = RunHapcine(haptics, film_dir_);
+  EXPECT_EQ(direct.exit_code, 1);
+  EXPECT_EQ(LastLine(direct.err),
+            "hapcine haptics: " + edits.string() + ": shots[0].gain: must be in [0, 4]");
+  { std::ofstream(edits) << R"({"format": "hapcine-edits", "version": 1, "shots": [{"shot": 0, "gain": 0.5}]})"; }
+  ASSERT_EQ(RunHapcine(haptics, film_dir_).exit_code, 0);
+  EXPECT_EQ(Slurp(film_dir_ / "direct.haptic.csv"), halved);
 }
 
 TEST_F(MakeTest, OutputFolderHoldsEverything) {
