@@ -101,6 +101,7 @@ async function loadFilm(id) {
   await loadCurves(overview);
   state.curvesLoadMs = performance.now() - started;
   render();
+  state.readyMs = performance.now();   // since the navigation started: the page is usable
 }
 
 // The whole film at about one bucket per pixel (the view starts there).
