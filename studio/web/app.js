@@ -143,7 +143,8 @@ async function fetchDetail() {
   const serial = ++state.detailRequests;
   const points = Math.min(MAX_POINTS, Math.max(50, Math.ceil(studio.timeline.width)));
   try {
-    const curves = await api.curves(film.id, from, to, points);
+    // Rounded outwards to the 0.1 ms the request carries, so that the answer covers the view.
+    const curves = await api.curves(film.id, Math.floor(from * 1e4) / 1e4, Math.ceil(to * 1e4) / 1e4, points);
     if (serial !== state.detailRequests || film !== state.film) return;
     studio.timeline.setDetail(curves);
     render();

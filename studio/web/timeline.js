@@ -101,7 +101,7 @@ export class Timeline {
   // The curves that cover the view best: the detail when it spans the view.
   visibleCurves() {
     const d = this.detail;
-    if (d && d.from <= this.view.from + 1e-6 && d.to >= this.view.to - 1e-6) return d;
+    if (d && d.from <= this.view.from + 1e-4 && d.to >= this.view.to - 1e-4) return d;
     return this.overview;
   }
 
