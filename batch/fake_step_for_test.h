@@ -9,7 +9,8 @@
 // by SIGSEGV for a file containing "segv". Its outputs depend only on the
 // input bytes and extra arguments, so runs can be compared byte for byte.
 // Each finished estimate appends "estimate <input path>" to a call log. A
-// haptics step given --edits FILE appends "edits:" and FILE's bytes to its track.
+// haptics step given --edits FILE appends "edits:" and FILE's bytes to its
+// track; `plot` and `preview` write their input's bytes under their output names.
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -87,6 +88,20 @@ case "$cmd" in
     if [ -n "$edits" ]; then IFS= read -r -d '' e < "$edits"; printf 'edits:%s' "$e" >> "$out"; fi
     [ -n "$hjif" ] && echo "{\"model\":\"$model\"}" > "$hjif"
     echo "haptics $model $cam" >> "$LOG"
+    ;;
+  plot)
+    # plot camera|haptic FILE --format png -o PREFIX: a "picture" of FILE's bytes.
+    kind=$1; in=$2; prefix=$6
+    IFS= read -r -d '' content < "$in"
+    printf 'plot %s\n%s' "$kind" "$content" > "$prefix.png"
+    echo "plot $kind $in" >> "$LOG"
+    ;;
+  preview)
+    # preview FILM --track TRACK -o OUT: a "video" of the track's bytes.
+    track=$3; out=$5
+    IFS= read -r -d '' content < "$track"
+    printf 'preview\n%s' "$content" > "$out"
+    echo "preview $track" >> "$LOG"
     ;;
   *) echo "fake hapcine: unknown command $cmd" >&2; exit 2 ;;
 esac

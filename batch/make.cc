@@ -32,9 +32,12 @@ FilmLayout MakeLayout(const MakeOptions& options, const FilmPlan& film) {
     layout.haptic_plot = film.stem + ".haptic.png";
   }
   // Beside the outputs (with -o DIR: where a studio serving them saves), then beside the film.
-  const std::string edits_name = film.stem + ".edits.json";
+  // Beside a video, its whole file stem (EditsPathForFilm's name, even where
+  // the output stem is cut to fit 255 bytes).
+  const std::string own_stem = IsImageSequenceInput(film.path) ? film.stem : FileStem(film.path);
   FindEditsFile(MakeBatchOptions(options),
-                {(fs::path(layout.output_dir) / edits_name).string(), (beside / edits_name).string()},
+                {(fs::path(layout.output_dir) / (film.stem + ".edits.json")).string(),
+                 (beside / (own_stem + ".edits.json")).string()},
                 &layout);
   return layout;
 }

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "batch/content_hash.h"
 #include "batch/fake_step_for_test.h"
@@ -73,6 +74,37 @@ TEST(MakeTest, EditsFileBesideTheOutputsThenBesideTheFilm) {
   opt.use_edits = true;
   opt.haptics_args = {"--edits", dir.path() + "/mine.json"};
   EXPECT_EQ(MakeLayout(opt, film).edits, "");
+}
+
+TEST(MakeTest, AnEditedFilmRedoesWhatReadsTheTrackAndNeverTheEstimate) {
+  testutil::TempDir dir("make_edits_run");
+  const std::string log = dir.path() + "/calls.log";
+  MakeOptions opt;
+  opt.film = dir.path() + "/clip.mp4";
+  testutil::WriteFile(opt.film, "FAKEVIDEO clip\n");
+  opt.step_exe = testutil::WriteFakeStep(dir.path(), log);
+  opt.hjif = opt.preview = opt.plot = true;
+  RunMake(opt, nullptr);
+  const std::string track = dir.path() + "/clip.haptic.csv";
+  const std::string plain = testutil::ReadAll(track);
+
+  testutil::WriteFile(dir.path() + "/clip.edits.json", "{\"format\":\"hapcine-edits\",\"version\":1}");
+  const MakeResult edited = RunMake(opt, nullptr);
+  ASSERT_EQ(edited.outcome.status, FilmStatus::kDone);
+  std::map<std::string, bool> reused;
+  for (const StepRecord& s : edited.outcome.steps) reused[s.name] = s.reused;
+  EXPECT_EQ(reused, (std::map<std::string, bool>{{"estimate", true},
+                                                 {"haptics-cinematic", false},
+                                                 {"preview", false},
+                                                 {"plot-camera", true},
+                                                 {"plot-haptic", false}}));
+  EXPECT_EQ(testutil::LogLines(log, "estimate ").size(), 1u);
+  const std::string with_edits = testutil::ReadAll(track);
+  EXPECT_NE(with_edits, plain);
+  EXPECT_NE(with_edits.find("edits:{\"format\""), std::string::npos);
+  EXPECT_NE(testutil::ReadAll(dir.path() + "/clip.preview.mp4").find(with_edits), std::string::npos);
+  EXPECT_NE(testutil::ReadAll(dir.path() + "/clip.haptic.png").find(with_edits), std::string::npos);
+  EXPECT_EQ(RunMake(opt, nullptr).outcome.status, FilmStatus::kSkipped);
 }
 
 TEST(MakeTest, OutputsOnRequestChangeTheSettingsButNotABatchs) {

@@ -9,6 +9,7 @@
 #include "batch/library.h"
 #include "batch/progress.h"
 #include "batch/slurm.h"
+#include "cli/cmd_haptics_platform.h"
 #include "cli/command.h"
 #include "cli/option_checks.h"
 #include "core/error.h"
@@ -17,6 +18,16 @@
 namespace hapcine::cli {
 
 namespace {
+
+// "cinematic,semantic" -> {"cinematic", "semantic"} (empty names dropped).
+std::vector<std::string> SplitModels(const std::string& models) {
+  std::vector<std::string> names;
+  std::stringstream ms(models);
+  for (std::string m; std::getline(ms, m, ',');) {
+    if (!m.empty()) names.push_back(m);
+  }
+  return names;
+}
 
 void PrintTotals(const batch::BatchSummary& s) {
   std::cerr << "batch: " << s.films.size() << " films: " << s.Count(batch::FilmStatus::kDone)
@@ -105,13 +116,13 @@ int RunBatch(int argc, char** argv) {
     opt.use_edits = !no_edits;
     // Outputs are committed as each film finishes; only the names are checked.
     CheckOutputPaths({{opt.library, "LIBRARY"}}, {{opt.out_dir, "-o", /*folder=*/true}});
-    opt.models.clear();
-    std::stringstream ms(models);
-    for (std::string m; std::getline(ms, m, ',');) {
-      if (!m.empty()) opt.models.push_back(m);
-    }
+    opt.models = SplitModels(models);
     opt.estimate_args = batch::SplitArgs(estimate_args);
     opt.haptics_args = batch::SplitArgs(haptics_args);
+    if (ArgumentsChoosePlatform(opt.haptics_args)) {
+      opt.use_edits = false;  // only the HapSeat models take an edits file
+      if (!no_edits) std::cerr << "batch: a motion platform takes no edits files\n";
+    }
     if (!shard.empty()) {
       char slash = 0;
       std::istringstream ss(shard);

@@ -10,6 +10,7 @@
 #include "core/output_files.h"
 #include "haptics/camera_signals.h"
 #include "platform/motion_cueing.h"
+#include "platform/platform_config.h"
 #include "platform/platform_safety.h"
 
 namespace hapcine::cli {
@@ -48,6 +49,16 @@ int RunPlatformHaptics(const PlatformRunArgs& a) {
             << "; clamped samples: " << track.metadata.at("clamped_samples")
             << ", stroke-limited: " << track.metadata.at("stroke_limited_samples") << "\n";
   return kExitOk;
+}
+
+bool ArgumentsChoosePlatform(const std::vector<std::string>& args) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::string seat;
+    if (args[i] == "--seat" && i + 1 < args.size()) seat = args[i + 1];
+    if (args[i].rfind("--seat=", 0) == 0) seat = args[i].substr(7);
+    if (!seat.empty() && IsRegularFile(seat) && IsPlatformFile(seat)) return true;
+  }
+  return false;
 }
 
 }  // namespace hapcine::cli

@@ -4,6 +4,7 @@
 // file says "type": "platform".
 
 #include <string>
+#include <vector>
 
 namespace hapcine::cli {
 
@@ -17,5 +18,10 @@ struct PlatformRunArgs {
 };
 
 int RunPlatformHaptics(const PlatformRunArgs& args);
+
+// True when words for `hapcine haptics` choose a motion platform (`--seat FILE`
+// or `--seat=FILE` of "type": "platform"): make and batch then pass no edits
+// file, which only the HapSeat models take.
+bool ArgumentsChoosePlatform(const std::vector<std::string>& haptics_args);
 
 }  // namespace hapcine::cli

@@ -19,6 +19,7 @@
 
 #include "batch/job_progress.h"
 #include "batch/make.h"
+#include "cli/cmd_haptics_platform.h"
 #include "cli/command.h"
 #include "core/error.h"
 #include "core/output_files.h"
@@ -259,7 +260,8 @@ int RunMake(int argc, char** argv) {
   return RunApp(app, static_cast<int>(own.size()), own_argv.data(), [&]() -> int {
     CheckArguments(RunEstimate, "estimate", split.estimate);
     CheckArguments(RunHaptics, "haptics", split.haptics);
-    opt.use_edits = !no_edits;
+    opt.use_edits = !no_edits && !ArgumentsChoosePlatform(split.haptics);
+    if (!no_edits && !opt.use_edits) std::cerr << "make: a motion platform takes no edits file\n";
     opt.estimate_args = split.estimate;
     opt.haptics_args = split.haptics;
     if (!opt.out_dir.empty()) CheckOutputPaths({{opt.film, "FILM"}}, {{opt.out_dir, "-o", true}});

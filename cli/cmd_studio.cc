@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "batch/job_progress.h"
@@ -85,17 +86,24 @@ void SplitArguments(int argc, char** argv, const CLI::App& app, std::vector<std:
   }
 }
 
-// The films of the arguments: files as given, folders searched for videos.
+// The films of the arguments: files as given, folders searched for videos;
+// a film named twice is served once (one session per edits file).
 std::vector<std::string> ExpandFilms(const std::vector<std::string>& inputs) {
   std::vector<std::string> films;
+  std::set<std::string> seen;
+  auto add = [&](const std::string& film) {
+    std::error_code ec;
+    const fs::path key = fs::weakly_canonical(fs::absolute(film), ec);
+    if (seen.insert(ec ? film : key.string()).second) films.push_back(film);
+  };
   for (const std::string& input : inputs) {
     std::error_code ec;
     if (fs::is_directory(input, ec) && !batch::IsImageSequenceInput(input)) {
       const std::vector<std::string> found = batch::ListLibrary(input);
       if (found.empty()) throw Error(input, "no video files in this folder");
-      films.insert(films.end(), found.begin(), found.end());
+      for (const std::string& film : found) add(film);
     } else {
-      films.push_back(input);
+      add(input);
     }
   }
   return films;

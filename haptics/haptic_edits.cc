@@ -31,13 +31,31 @@ struct Reader {
 
 bool IsExtensionKey(const std::string& key) { return key.rfind("x-", 0) == 0; }
 
+// Text from the file as an error message shows it: control characters as
+// \xHH (the message stays one line), at most 60 bytes.
+std::string Shown(const std::string& text) {
+  size_t cut = std::min<size_t>(text.size(), 60);
+  // Not inside a UTF-8 character: the message may become JSON (the studio's errors).
+  while (cut < text.size() && cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  std::string out;
+  for (const char c : text.substr(0, cut)) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      const char* hex = "0123456789abcdef";
+      out += std::string("\\x") + hex[(c >> 4) & 0xf] + hex[c & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return cut < text.size() ? out + "..." : out;
+}
+
 void CheckKeys(const Reader& r, const json& object, const std::string& field,
                std::initializer_list<const char*> allowed) {
   for (const auto& item : object.items()) {
     const std::string& key = item.key();
     if (IsExtensionKey(key)) continue;
     if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
-      r.Fail(field.empty() ? key : field + "." + key,
+      r.Fail(field.empty() ? Shown(key) : field + "." + Shown(key),
              "unknown key (a typo? keys of your own start with \"x-\")");
     }
   }
@@ -84,7 +102,7 @@ WashoutEdit ParseWashout(const Reader& r, const json& j, const std::string& fiel
   if (j.contains("mode")) {
     w.mode = String(r, j["mode"], field + ".mode");
     if (*w.mode != "adaptive" && *w.mode != "highpass" && *w.mode != "off") {
-      r.Fail(field + ".mode", "'" + *w.mode + "' is not adaptive, highpass or off");
+      r.Fail(field + ".mode", "'" + Shown(*w.mode) + "' is not adaptive, highpass or off");
     }
   }
   // The ranges of WashoutOptions::Check.
@@ -110,7 +128,7 @@ ShotEdit ParseShot(const Reader& r, const json& j, const std::string& field) {
     try {
       s.model = HapticModelFromName(name);
     } catch (const UsageError&) {
-      r.Fail(field + ".model", "'" + name + "' is not cinematic, semantic, random or none");
+      r.Fail(field + ".model", "'" + Shown(name) + "' is not cinematic, semantic, random or none");
     }
   }
   if (j.contains("gain")) s.gain = NumberIn(r, j["gain"], field + ".gain", 0, kMaxShotGain);
@@ -151,7 +169,7 @@ EffectSegment ParseKeyframe(const Reader& r, const json& j, const std::string& f
   const std::string name = String(r, j["effect"], field + ".effect");
   const std::optional<CameraEffect> effect = EffectFromName(name);
   if (!effect || *effect == CameraEffect::kNone) {
-    r.Fail(field + ".effect", "unknown effect '" + name + "' (a Table 1 or Table 2 name)");
+    r.Fail(field + ".effect", "unknown effect '" + Shown(name) + "' (a Table 1 or Table 2 name)");
   }
   s.effect = *effect;
   if (j.contains("intensity")) s.intensity = NumberIn(r, j["intensity"], field + ".intensity", -1, 1);
@@ -195,7 +213,7 @@ void CheckHeader(const Reader& r, const json& j) {
   }
   if (!j.contains("version")) r.Fail("version", "missing (must be 1)");
   if (!j["version"].is_number_integer() || j["version"].get<int64_t>() != kFormatVersion) {
-    r.Fail("version", j["version"].dump() + " is not supported (this hapcine reads version 1)");
+    r.Fail("version", Shown(j["version"].dump()) + " is not supported (this hapcine reads version 1)");
   }
 }
 
@@ -212,9 +230,9 @@ bool ShotEdit::operator==(const ShotEdit& o) const {
 }
 
 const ShotEdit* HapticEdits::FindShot(int shot) const {
-  auto it = std::lower_bound(shots.begin(), shots.end(), shot,
-                             [](const ShotEdit& s, int n) { return s.shot < n; });
-  return it != shots.end() && it->shot == shot ? &*it : nullptr;
+  // A scan, not a binary search: edits built in code need not be sorted.
+  auto it = std::find_if(shots.begin(), shots.end(), [&](const ShotEdit& s) { return s.shot == shot; });
+  return it != shots.end() ? &*it : nullptr;
 }
 
 bool HapticEdits::operator==(const HapticEdits& o) const {

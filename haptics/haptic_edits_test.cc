@@ -143,6 +143,12 @@ TEST(HapticEdits, EveryParseErrorNamesItsField) {
        "keyframes[1].start_s: starts before the previous keyframe ends"},
       {R"("keyframes":[{"start_s":0,"end_s":1,"effect":"tilting","speed":2}])",
        "keyframes[0].speed: unknown key"},
+      // Text from the file is shown on one line, control characters escaped.
+      {R"("shots":[{"shot":0,"model":"semantic\nfoo"}])", "shots[0].model: 'semantic\\x0afoo' is not"},
+      {R"("a\tb":1)", "a\\x09b: unknown key"},
+      // Cut after 60 bytes, never inside a UTF-8 character (here 59 'a' then a 2-byte 'é').
+      {R"("shots":[{"shot":0,"model":"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaéé"}])",
+       "'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa...' is not"},
   };
   std::vector<BadCase> all = cases;
   std::vector<std::string> texts;

@@ -198,12 +198,10 @@ std::vector<SampleRange> ShotSampleRanges(const CameraPath& path,
                                           const std::vector<ShotRange>& shots,
                                           const std::vector<double>& time_s) {
   std::vector<SampleRange> ranges(shots.size());
-  for (size_t k = 0; k < shots.size(); ++k) {
+  for (size_t k = 1; k < shots.size(); ++k) {
     const double start = path.frames[shots[k].first].time_s;
-    ranges[k].begin = k == 0 ? 0 : static_cast<size_t>(std::lower_bound(time_s.begin(),
-                                                                         time_s.end(), start) -
-                                                        time_s.begin());
-    if (k > 0) ranges[k - 1].end = ranges[k].begin;
+    const auto first = std::lower_bound(time_s.begin(), time_s.end(), start);
+    ranges[k].begin = ranges[k - 1].end = static_cast<size_t>(first - time_s.begin());
   }
   ranges.back().end = time_s.size();
   return ranges;
@@ -245,14 +243,19 @@ bool NeedsOwnModel(const HapticOptions& film, const HapticOptions& shot) {
 // gets under this shot's washout (or the fixed ones), resampled at `out`'s times.
 void CinematicShot(const CameraPath& path, const std::vector<ShotRange>& shots, size_t k,
                    const HapticOptions& s, std::vector<HapticSample>* out) {
-  const CinematicScaling film_scaling =
-      s.cinematic_scaling ? *s.cinematic_scaling
-                          : ComputeCinematicScaling(path, s.seat, s.cinematic, s.washout);
-  CinematicScaling scaling;
-  scaling.per_shot.push_back(film_scaling.ForShot(k));
   CameraPath one;
   one.metadata = path.metadata;
   one.frames.assign(path.frames.begin() + shots[k].first, path.frames.begin() + shots[k].last + 1);
+  CinematicScaling scaling;
+  if (s.cinematic_scaling) {
+    scaling.per_shot.push_back(s.cinematic_scaling->ForShot(k));
+  } else if (!s.cinematic.per_film_scaling) {
+    // Per-shot factors depend on the shot alone: no pass over the whole film.
+    scaling = ComputeCinematicScaling(one, s.seat, s.cinematic, s.washout);
+  } else {
+    scaling.per_shot.push_back(
+        ComputeCinematicScaling(path, s.seat, s.cinematic, s.washout).ForShot(k));
+  }
   const auto per_frame = CinematicFrames(one, s.seat, s.cinematic, s.washout, scaling);
   ResampleFrames(one, SplitShots(one), per_frame, out);
 }

@@ -603,6 +603,11 @@ TEST(HapticModelEdits, WashoutOverrideActsInItsShotOnly) {
   ASSERT_GT(MaxDifference(adaptive, highpass, 0, kCut1), 0.01);
   EXPECT_LT(MaxDifference(mixed, highpass, 0, kCut1), 1e-12);
   EXPECT_EQ(MaxDifference(mixed, adaptive, kCut1 + o.washout.cut_ramp_s, 1e9), 0.0);
+  // One scaling for the whole film: the shot still equals the film-level track there.
+  hp_options.cinematic.per_film_scaling = o.cinematic.per_film_scaling = true;
+  EXPECT_LT(MaxDifference(MakeHapticTrack(film, o), MakeHapticTrack(film, hp_options), 0, kCut1),
+            1e-12);
+  o.cinematic.per_film_scaling = false;
   // A washout setting the command line would refuse is refused here too.
   e.washout->tau_s = 0.01;
   o.edits.shots = {e};

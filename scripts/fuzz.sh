@@ -18,7 +18,7 @@ if ! [[ "$SECONDS_EACH" =~ ^[0-9]+$ ]] || [ "$SECONDS_EACH" -lt 1 ]; then
 fi
 TARGETS=("$@")
 if [ ${#TARGETS[@]} -eq 0 ]; then
-  TARGETS=(camera_path haptic_track keyframes seat_json platform study_plan study_results tum colmap)
+  TARGETS=(camera_path haptic_track keyframes seat_json edits platform study_plan study_results tum colmap)
 fi
 BUILD_DIR=${BUILD_DIR:-build-fuzz}
 FINDINGS="$BUILD_DIR/findings"

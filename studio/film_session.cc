@@ -259,6 +259,9 @@ nlohmann::json FilmSession::SaveEdits(const std::string& body) {
   HapticEdits edits;
   try {
     edits = ParseHapticEdits(body, "edits");
+    HapticOptions options = options_;
+    options.edits = edits;
+    CheckEditsForPath(path_, options);  // a shot the path lacks, a value out of range
   } catch (const Error& e) {
     throw HttpError{400, e.what()};
   }

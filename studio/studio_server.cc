@@ -1,5 +1,7 @@
-#include "studio/studio_server.h"
+#include "studio/studio_server.h"  // first: Eigen before httplib.h
 
+// httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's headers
+// when they come after it.
 #include <httplib.h>
 #include <unistd.h>
 
