@@ -31,6 +31,9 @@ PACKAGES=(
   # ../shared/tools/mpeg-haptics/validate.sh: cmake, make, g++ above, and
   # its schema check in python jsonschema).
   python3 python3-jsonschema
+  # hapcine studio's real-browser test (tests/studio_browser_test.py):
+  # headless Chromium driven by Selenium.
+  chromium chromium-driver python3-selenium
   # Compiler cache: rebuilds of unchanged files are nearly free.
   ccache
   # Fuzzing the readers (scripts/fuzz.sh): clang and its libFuzzer runtime.

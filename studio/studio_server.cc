@@ -23,7 +23,9 @@ namespace fs = std::filesystem;
 constexpr int kDefaultCurvePoints = 2000;
 constexpr int kMaxCurvePoints = 20000;
 constexpr size_t kFileChunkBytes = 256 * 1024;
-const char kJson[] = "application/json";
+// The charset keeps cpp-httplib from compressing JSON (it matches the bare type
+// only): its Brotli takes seconds for a long film's curves, for nothing on loopback.
+const char kJson[] = "application/json; charset=utf-8";
 
 void SendJson(httplib::Response& res, const nlohmann::json& body, int status = 200) {
   res.status = status;
