@@ -372,14 +372,20 @@ std::vector<int> PlaneSupportOf(const WindowProblem& p, const std::vector<const 
 // Along the optical axis the fit cannot tell the dolly/zoom branches apart:
 // the occlusion order can (occlusion_order.h), or without occlusion events
 // the floor (plane_prior.h: on the wrong branch it cannot be parallel to the
-// move). [0]: the constant-focal solve, [c + 1]: zoomed[c]. Returns whether
-// the occlusion order decided.
+// move). Either rules out a branch, never a candidate on the branch it
+// supports (RuledOutOtherBranch): there the window's BIC decides whether the
+// focal changes. [0]: the constant-focal solve, [c + 1]: zoomed[c]. Returns
+// whether the occlusion order decided.
 bool RuleOutBranches(const WindowProblem& p, const Candidate& constant, const std::vector<Candidate>& zoomed,
                      std::vector<char>* ruled_out, std::vector<WindowCandidate>* reports) {
   std::vector<const std::vector<BaCamera>*> candidate_cams{&constant.cams};
   for (const Candidate& c : zoomed) candidate_cams.push_back(&c.cams);
   const std::vector<OcclusionVotes> votes = OcclusionVotesOf(p, candidate_cams);
-  *ruled_out = ContradictedByOcclusion(votes);
+  std::vector<int> direction;
+  for (const auto* c : candidate_cams) direction.push_back(AxialDirection(*c, p.held));
+  std::vector<double> z;
+  for (const auto& v : votes) z.push_back(v.Z());
+  *ruled_out = RuledOutOtherBranch(ContradictedByOcclusion(votes), direction, z);
   bool by_occlusion = false;
   for (char r : *ruled_out) by_occlusion |= r;
   for (size_t c = 0; c < reports->size() && c < votes.size(); ++c) {
@@ -388,7 +394,8 @@ bool RuleOutBranches(const WindowProblem& p, const Candidate& constant, const st
   }
   if (!by_occlusion && p.opt->motion_plane_prior) {
     const std::vector<int> support = PlaneSupportOf(p, candidate_cams);
-    *ruled_out = ContradictedByPlane(support);
+    *ruled_out = RuledOutOtherBranch(ContradictedByPlane(support), direction,
+                                     std::vector<double>(support.begin(), support.end()));
     for (size_t c = 0; c < reports->size() && c < support.size(); ++c) (*reports)[c].plane_support = support[c];
   }
   return by_occlusion;
