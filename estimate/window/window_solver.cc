@@ -379,13 +379,9 @@ std::vector<OcclusionVotes> OcclusionVotesOf(const WindowProblem& p,
   const OcclusionOptions opt;
   const std::vector<OcclusionEvent> events = FindOcclusionEvents(
       frames, frame_keyframe, Eigen::Vector2d(0.5, 0.5 * p.in->height / p.in->width), opt);
-  // Not the tracks the camera's motion does not explain (two-view outliers,
-  // movers): their triangulated depth is no depth, and a walker's tracks
-  // next to an ending background track would make its depth edge.
   std::map<long, KeyframeTrack> tracks;
   for (int i = 0; i < n; ++i)
-    for (const auto& [id, u] : *p.keyframes[i].tracks)
-      if (!p.in->outlier_tracks.count(id)) tracks[id].push_back({i, u});
+    for (const auto& [id, u] : *p.keyframes[i].tracks) tracks[id].push_back({i, u});
   for (size_t c = 0; c < candidates.size(); ++c) votes[c] = CountOcclusionVotes(*candidates[c], tracks, events, opt);
   return votes;
 }
