@@ -316,6 +316,9 @@ Candidate SolveAsDolly(const WindowProblem& p, const Candidate& zoom, const std:
   BaOptions ba = p.ba;
   ba.use_depth = true;
   ba.scale_a = ba.scale_b = -1;
+  // Half the iterations, as the focal starts: the test needs the basin,
+  // and a dolly taken is solved in full from there.
+  ba.max_iterations = std::max(1, ba.max_iterations / 2);
   Candidate c;
   c.cams = DollyStart(CamerasOf(p, false, &labels), zoom.cams, p.held, p.in->scene_depth);
   for (int i = p.held + 1; i < p.n; ++i) {
