@@ -795,6 +795,44 @@ TEST(TrackEstimator, ForwardDollyIsNotAZoom) {
   }
 }
 
+// A slow push-in towards a background 5 to 17 units away (a camera easing
+// 0.2 units closer to a set, a fixed lens): between two keyframes its
+// parallax is under the noise, so every pair reads as a zoom; over the window
+// it is not (dolly_or_zoom.h). Before: rotation+zoom, 2 % of zoom and no move.
+TEST(TrackEstimator, SlowPushInTowardsADeepBackgroundIsNotAZoom) {
+  const auto pts = RandomPoints(1500, 5, 17, 0.8, 7);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.center = Eigen::Vector3d(0, 0, -0.2 * (i < 10 ? 0 : i >= 100 ? 1 : Ease(i - 10, 90)));
+    c.focal_px = 700;
+    return c;
+  };
+  const SimRun run = Simulate(110, cam_at, pts, 0.3);
+  EXPECT_EQ(run.models.count("zoom") + run.models.count("rotation+zoom") + run.models.count("general+zoom"), 0u);
+  EXPECT_LT(MaxZoomRatioErrorPercent(run), 0.2);
+  // Forward: along the camera's -Z, in the shot's units (any scale).
+  const Eigen::Vector3d end = run.path.frames[109].center;
+  EXPECT_LT(end.z(), 0.0);
+  EXPECT_LT(std::abs(end.x()) + std::abs(end.y()), 0.1 * std::abs(end.z()));
+  EXPECT_LT(run.mean_rot_err_deg, 0.05);
+}
+
+// The other way: a zoom on a wall facing the camera (every point at one
+// depth) is exactly a push-in towards it; nothing in the images tells them
+// apart, and the zoom, with fewer parameters, stays.
+TEST(TrackEstimator, ZoomOnAFlatWallStaysAZoom) {
+  std::vector<Eigen::Vector3d> pts = RandomPoints(800, 10, 10, 0.8, 3);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.focal_px = 800 * (1 + 0.3 * (i < 10 ? 0 : i >= 70 ? 1 : Ease(i - 10, 60)));
+    return c;
+  };
+  const SimRun run = Simulate(80, cam_at, pts, 0.3);
+  EXPECT_EQ(run.max_abs_translation, 0.0);
+  EXPECT_EQ(run.models.count("general"), 0u);
+  EXPECT_NEAR(*run.path.frames[79].focal_px / *run.path.frames[0].focal_px / 1.3, 1.0, 0.005);
+}
+
 // A car's camera: a wide fixed lens (88 degrees, the prior is 50) driving
 // forward along a street through a 90 degree turn. The two-view chain is
 // built at the prior, where every turn comes out short; a solve started

@@ -29,6 +29,7 @@ nlohmann::json CandidateJson(const WindowCandidate& c, int width) {
   if (c.occlusion_agree >= 0) j["occlusion_votes"] = {{"agree", c.occlusion_agree}, {"disagree", c.occlusion_disagree}};
   if (c.plane_support >= 0) j["plane_support"] = c.plane_support;
   if (c.focal_first_px > 0) j["focal_px"] = {c.focal_first_px, c.focal_last_px};
+  if (c.depth_relief >= 0) j["depth_relief"] = c.depth_relief;
   return j;
 }
 

@@ -31,6 +31,24 @@ bool IsAxialMotion(const std::vector<BaCamera>& cams, int pivot, double min_axia
   return std::abs(in_cam.z()) >= min_axial_share * len;
 }
 
+int AxialDirection(const std::vector<BaCamera>& cams, int pivot) {
+  if (pivot < 0 || pivot + 1 >= static_cast<int>(cams.size())) return 0;
+  const double z = FarthestMoveInPivot(cams, pivot).z();
+  return z > 0 ? 1 : z < 0 ? -1 : 0;
+}
+
+std::vector<char> RuledOutOtherBranch(const std::vector<char>& ruled_out, const std::vector<int>& direction,
+                                      const std::vector<double>& score) {
+  const size_t n = std::min({ruled_out.size(), direction.size(), score.size()});
+  int best = -1;
+  for (size_t c = 0; c < n; ++c)
+    if (!ruled_out[c] && (best < 0 || score[c] > score[best])) best = static_cast<int>(c);
+  if (best < 0 || direction[best] == 0) return ruled_out;
+  std::vector<char> out = ruled_out;
+  for (size_t c = 0; c < n; ++c) out[c] = ruled_out[c] && direction[c] != direction[best];
+  return out;
+}
+
 double RadialScalePercentile(const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& matches,
                              double percentile, double min_radius) {
   std::vector<double> s;

@@ -28,6 +28,22 @@ namespace hapcine {
 // optical axis (|forward component| >= `min_axial_share` of the distance).
 bool IsAxialMotion(const std::vector<BaCamera>& cams, int pivot, double min_axial_share = 0.8);
 
+// Which way the centre farthest from `pivot`'s moved along the pivot
+// camera's optical axis: +1 forward, -1 backward, 0 no move.
+int AxialDirection(const std::vector<BaCamera>& cams, int pivot);
+
+// A branch cue (occlusion order, a floor parallel to the move) tells the two
+// branches of the ambiguity apart: they move opposite ways along the axis
+// with the depth order flipped. Two solutions that move the same way share
+// the depth order and differ by a shift of the inverse depths (how much of
+// the scaling is zoom), which such a cue does not see. So of the candidates
+// the cue rules out (`ruled_out`), only those that move against the
+// best-scored candidate it keeps (`score`: its evidence, e.g. the votes' z or
+// the plane's support) stay out; `direction[c]` is AxialDirection of c.
+// Unchanged when the cue rules out none or all, or the best does not move.
+std::vector<char> RuledOutOtherBranch(const std::vector<char>& ruled_out, const std::vector<int>& direction,
+                                      const std::vector<double>& score);
+
 // Radial scale of matches (u1 -> u2, normalised coordinates about the
 // principal point) at `percentile` in [0, 1]; points closer than `min_radius`
 // to the centre are skipped (their scale is noise). 1 if none is usable.

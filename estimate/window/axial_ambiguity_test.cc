@@ -22,6 +22,44 @@ TEST(AxialAmbiguity, AxialMotionIsAlongTheOpticalAxis) {
   EXPECT_FALSE(IsAxialMotion(cams, 2));  // nothing after the pivot
 }
 
+TEST(AxialAmbiguity, AxialDirectionIsTheSignOfTheFarthestMoveInThePivotCamera) {
+  std::vector<BaCamera> cams(3);
+  cams[1].center = Eigen::Vector3d(0, 0, 0.3);
+  cams[2].center = Eigen::Vector3d(0, 0, -1.0);  // farthest: backward
+  EXPECT_EQ(AxialDirection(cams, 0), -1);
+  EXPECT_EQ(AxialDirection(cams, 1), -1);  // from the second camera, too
+  // The pivot turned half a turn about y: its forward is the world's -z.
+  cams[0].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
+  EXPECT_EQ(AxialDirection(cams, 0), 1);
+  cams[1].center = cams[2].center = Eigen::Vector3d::Zero();
+  EXPECT_EQ(AxialDirection(cams, 0), 0);  // no move
+  EXPECT_EQ(AxialDirection(cams, 2), 0);  // nothing after the pivot
+  EXPECT_EQ(AxialDirection(cams, -1), 0);
+}
+
+// debug_moves: a cue that supports the per-keyframe-focal solve had ruled
+// out the constant-focal solve moving the same way; the window's BIC must
+// decide between those two (the constant focal fitted better: a zoom was
+// invented on a fixed lens).
+TEST(AxialAmbiguity, ABranchCueRulesOutOnlyTheOtherBranch) {
+  // [0] constant focal, backward; [1] per-keyframe focal, backward (the
+  // cue's best); [2] mirrored branch, forward.
+  const std::vector<int> direction{-1, -1, 1};
+  EXPECT_EQ(RuledOutOtherBranch({1, 0, 1}, direction, {0, 71, 0}), (std::vector<char>{0, 0, 1}));
+  // The cue supports the forward branch: both backward solves stay out.
+  EXPECT_EQ(RuledOutOtherBranch({1, 1, 0}, direction, {0, 3, 60}), (std::vector<char>{1, 1, 0}));
+  // Occlusion z-scores may be negative: the best kept candidate decides.
+  EXPECT_EQ(RuledOutOtherBranch({1, 0, 0}, direction, {-2.5, 0.5, 2.2}), (std::vector<char>{1, 0, 0}));
+  EXPECT_EQ(RuledOutOtherBranch({0, 1, 1}, direction, {2.5, -2.1, -3.0}), (std::vector<char>{0, 0, 1}));
+  // No evidence, or everything out: the verdict is kept.
+  EXPECT_EQ(RuledOutOtherBranch({0, 0, 0}, direction, {0, 0, 0}), (std::vector<char>{0, 0, 0}));
+  EXPECT_EQ(RuledOutOtherBranch({1, 1, 1}, direction, {1, 2, 3}), (std::vector<char>{1, 1, 1}));
+  // The best kept candidate does not move: no branch to keep.
+  EXPECT_EQ(RuledOutOtherBranch({1, 0}, {-1, 0}, {0, 30}), (std::vector<char>{1, 0}));
+  // Mismatched sizes: only the common prefix is judged, the rest kept.
+  EXPECT_EQ(RuledOutOtherBranch({1, 0, 1}, {-1, -1}, {0, 5}), (std::vector<char>{0, 0, 1}));
+}
+
 TEST(AxialAmbiguity, RadialScalePercentileSkipsTheCentre) {
   std::vector<Match> m;
   for (int i = 1; i <= 10; ++i) {

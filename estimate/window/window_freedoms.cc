@@ -168,6 +168,17 @@ int ChooseFocalCandidate(const std::vector<double>& e_constant,
   return ScoreFocalCandidates(e_constant, e_candidates, ruled_out, extra_parameters, noise_floor).best;
 }
 
+BicComparison CompareByBic(const std::vector<double>& e_general, const std::vector<double>& e_simpler,
+                           int extra_parameters, double noise_floor, const std::vector<double>& blur_sigma) {
+  const Chi2Pair c = CappedChi2Pair(e_general, e_simpler, noise_floor, blur_sigma);
+  BicComparison b;
+  b.sigma = c.sigma;
+  b.chi2_general = c.general;
+  b.chi2_simpler = c.simpler;
+  b.penalty = BicPenalty(extra_parameters, e_general.size());
+  return b;
+}
+
 bool FitsAsWell(const std::vector<double>& e_reference, const std::vector<double>& e_candidate, double noise_floor) {
   const Chi2Pair c = CappedChi2Pair(e_reference, e_candidate, noise_floor, {});
   return c.simpler <= c.general + BicPenalty(1, e_reference.size());

@@ -118,6 +118,16 @@ FocalCandidateScores ScoreFocalCandidates(const std::vector<double>& e_constant,
                                           const std::vector<char>& ruled_out, int extra_parameters,
                                           double noise_floor);
 
+// Two fits of the same observations by BIC, as above: capped chi2 of each
+// with one sigma from the more general fit's errors (`e_general`), and the
+// penalty of its `extra_parameters`.
+struct BicComparison {
+  double sigma = 0, chi2_general = 0, chi2_simpler = 0, penalty = 0;
+  bool GeneralPaysOff() const { return chi2_simpler - chi2_general > penalty; }
+};
+BicComparison CompareByBic(const std::vector<double>& e_general, const std::vector<double>& e_simpler,
+                           int extra_parameters, double noise_floor, const std::vector<double>& blur_sigma = {});
+
 // A candidate that moved along a direction the images leave open (a prior
 // chose it) must fit about as well as the solve it came from: its capped
 // chi2 (sigma from the reference's errors) at most one parameter's BIC

@@ -18,6 +18,7 @@
 #include "core/rotation.h"
 #include "core/statistics.h"
 #include "estimate/window/axial_ambiguity.h"
+#include "estimate/window/dolly_or_zoom.h"
 #include "estimate/window/focal_search.h"
 #include "estimate/window/occlusion_order.h"
 #include "estimate/window/plane_prior.h"
@@ -307,6 +308,59 @@ std::vector<MotionModel> PromotionPaysOff(const WindowProblem& p, const Candidat
   return labels;
 }
 
+// A window labelled without translation whose intervals zoom, solved again
+// as a dolly at a fixed lens (dolly_or_zoom.h): a slow push-in reads as a
+// zoom between two keyframes, its parallax adds up over the window. The
+// dolly is solved from the zoom solution turned into forward moves.
+Candidate SolveAsDolly(const WindowProblem& p, const Candidate& zoom, const std::vector<MotionModel>& labels) {
+  BaOptions ba = p.ba;
+  ba.use_depth = true;
+  ba.scale_a = ba.scale_b = -1;
+  // Half the iterations, as the focal starts: the test needs the basin,
+  // and a dolly taken is solved in full from there.
+  ba.max_iterations = std::max(1, ba.max_iterations / 2);
+  Candidate c;
+  c.cams = DollyStart(CamerasOf(p, false, &labels), zoom.cams, p.held, p.in->scene_depth);
+  for (int i = p.held + 1; i < p.n; ++i) {
+    const double d = (c.cams[i].center - c.cams[i - 1].center).norm();
+    if (!HasTranslation(labels[i]) || !(d > 1e-9)) continue;
+    ba.scale_a = i - 1;  // the scale gauge, as in a translating window's first solve
+    ba.scale_b = i;
+    ba.scale_distance = d;
+    break;
+  }
+  if (ba.scale_a < 0) return c;  // nothing moves: no dolly to fit
+  InitWindowPoints(c.cams, p.window_tracks, p.tracks_at, true, 0.2 / p.in->scene_depth, &c.pts, &c.ob);
+  c.summary = SolveDroppingOutliers(ba, &c.cams, &c.pts, &c.ob);
+  return c;
+}
+
+// The dolly-or-zoom test: the dolly's labels and solve when the dolly pays
+// for itself by BIC, else nothing (the zoom stays).
+std::optional<std::pair<std::vector<MotionModel>, Candidate>> DollyPaysOff(const WindowProblem& p,
+                                                                         const Candidate& zoom,
+                                                                         WindowReport* report) {
+  std::vector<MotionModel> labels = DollyLabels(p.keyframes);
+  if (labels.empty()) return std::nullopt;
+  Candidate dolly = SolveAsDolly(p, zoom, labels);
+  if (!dolly.summary.success) return std::nullopt;
+  std::vector<MotionModel> zoom_labels;
+  for (const auto& k : p.keyframes) zoom_labels.push_back(k.model);
+  const BicComparison b = CompareByBic(ObservationErrors(dolly.cams, dolly.pts, p.obs, true),
+                                       ObservationErrors(zoom.cams, zoom.pts, p.obs, false),
+                                       DollyExtraParameters(zoom_labels, labels, p.obs), p.opt->noise_floor,
+                                       BlurSigmasOf(p));
+  const std::vector<char> every_point(dolly.pts.size(), 1);
+  const double relief = DepthRelief(InverseDepthsIn(dolly.cams[p.held], dolly.pts, every_point));
+  const bool is_dolly = b.GeneralPaysOff() && relief >= kMinDollyRelief;
+  report->candidates.push_back(CandidateReport("dolly_or_zoom", "zoom", zoom.summary, b.chi2_simpler, !is_dolly));
+  report->candidates.push_back(
+      CandidateReport("dolly_or_zoom", "dolly", dolly.summary, b.chi2_general + b.penalty, is_dolly));
+  report->candidates.back().depth_relief = relief;
+  if (!is_dolly) return std::nullopt;
+  return std::make_pair(std::move(labels), std::move(dolly));
+}
+
 // Occlusion-order votes (occlusion_order.h) of candidate reconstructions:
 // the window's frames give the events, each candidate's cameras the depths.
 std::vector<OcclusionVotes> OcclusionVotesOf(const WindowProblem& p,
@@ -372,14 +426,20 @@ std::vector<int> PlaneSupportOf(const WindowProblem& p, const std::vector<const 
 // Along the optical axis the fit cannot tell the dolly/zoom branches apart:
 // the occlusion order can (occlusion_order.h), or without occlusion events
 // the floor (plane_prior.h: on the wrong branch it cannot be parallel to the
-// move). [0]: the constant-focal solve, [c + 1]: zoomed[c]. Returns whether
-// the occlusion order decided.
+// move). Either rules out a branch, never a candidate on the branch it
+// supports (RuledOutOtherBranch): there the window's BIC decides whether the
+// focal changes. [0]: the constant-focal solve, [c + 1]: zoomed[c]. Returns
+// whether the occlusion order decided.
 bool RuleOutBranches(const WindowProblem& p, const Candidate& constant, const std::vector<Candidate>& zoomed,
                      std::vector<char>* ruled_out, std::vector<WindowCandidate>* reports) {
   std::vector<const std::vector<BaCamera>*> candidate_cams{&constant.cams};
   for (const Candidate& c : zoomed) candidate_cams.push_back(&c.cams);
   const std::vector<OcclusionVotes> votes = OcclusionVotesOf(p, candidate_cams);
-  *ruled_out = ContradictedByOcclusion(votes);
+  std::vector<int> direction;
+  for (const auto* c : candidate_cams) direction.push_back(AxialDirection(*c, p.held));
+  std::vector<double> z;
+  for (const auto& v : votes) z.push_back(v.Z());
+  *ruled_out = RuledOutOtherBranch(ContradictedByOcclusion(votes), direction, z);
   bool by_occlusion = false;
   for (char r : *ruled_out) by_occlusion |= r;
   for (size_t c = 0; c < reports->size() && c < votes.size(); ++c) {
@@ -388,7 +448,8 @@ bool RuleOutBranches(const WindowProblem& p, const Candidate& constant, const st
   }
   if (!by_occlusion && p.opt->motion_plane_prior) {
     const std::vector<int> support = PlaneSupportOf(p, candidate_cams);
-    *ruled_out = ContradictedByPlane(support);
+    *ruled_out = RuledOutOtherBranch(ContradictedByPlane(support), direction,
+                                     std::vector<double>(support.begin(), support.end()));
     for (size_t c = 0; c < reports->size() && c < support.size(); ++c) (*reports)[c].plane_support = support[c];
   }
   return by_occlusion;
@@ -567,6 +628,18 @@ WindowOutcome Revised(const WindowProblem& p, std::vector<MotionModel> labels, W
   return out;
 }
 
+// The same, the second solve starting from `start`'s keyframes.
+WindowOutcome RevisedFrom(const WindowProblem& p, std::vector<MotionModel> labels, const Candidate& start,
+                          WindowReport&& report) {
+  WindowOutcome out = Revised(p, std::move(labels), std::move(report));
+  for (int i = 0; i < p.n; ++i) {
+    out.keyframe_cams[i].world_from_cam = start.cams[i].world_from_cam;
+    out.keyframe_cams[i].center = start.cams[i].center;
+    out.keyframe_cams[i].log_focal = start.cams[i].log_focal;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<MotionModel> PromoteShortRuns(const std::vector<WindowKeyframe>& keyframes) {
@@ -705,6 +778,11 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   if (without_freedoms.valid() && !FreedomsPayOff(p, chosen, without_freedoms.get(), plan, &report)) {
     if (zoom_from_chain.valid()) zoom_from_chain.get();  // wait, discard
     return Revised(p, plan.labels, std::move(report));
+  }
+  if (test_labels && !p.has_translation && chosen.summary.success) {
+    auto dolly = DollyPaysOff(p, chosen, &report);
+    report.timings_s.emplace_back("dolly_or_zoom", clock.Lap());
+    if (dolly) return RevisedFrom(p, std::move(dolly->first), dolly->second, std::move(report));
   }
   if (test_labels && p.has_translation && chosen.summary.success) {
     std::vector<MotionModel> promoted = PromotionPaysOff(p, chosen, &report);

@@ -92,6 +92,7 @@ struct WindowCandidate {
   int occlusion_agree = -1, occlusion_disagree = -1;  // votes (-1: not counted)
   int plane_support = -1;       // points on a plane parallel to the move (-1: not counted)
   double focal_first_px = 0, focal_last_px = 0;  // its first and last keyframe's focal (focal; 0: not recorded)
+  double depth_relief = -1;     // the dolly's depth relief (dolly_or_zoom.h; -1: not measured)
   BaSummary ba;
 };
 
