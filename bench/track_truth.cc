@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
   int klt_anchor_frames = 0;
-  double klt_anchor_min = 1.0;
+  double klt_anchor_min = 0.5;
   int klt_window = 0, points = 0, per_frame = 0, layers = 0, stills = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];

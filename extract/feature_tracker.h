@@ -42,7 +42,7 @@ struct TrackerOptions {
   // The anchor moves to the current frame after klt_anchor_frames frames
   // (the patch's appearance changes as the view turns). 0: off.
   int klt_anchor_frames = 0;
-  double klt_anchor_min_px = 1.0;
+  double klt_anchor_min_px = 0.5;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
   // SIFT linking where KLT cannot bridge (descriptor_linker.h): tried when
   // fewer than 70 % of the tracks survive KLT, taken when KLT's survivors
