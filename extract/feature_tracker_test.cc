@@ -860,6 +860,12 @@ TEST(FeatureTrackerTest, RejectsBadInputAndOptions) {
   EXPECT_THROW(FeatureTracker{o}, UsageError);
   o.klt_coarse_step_px = std::nan("");
   EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o = {};
+  o.klt_anchor_frames = -1;
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
+  o = {};
+  o.klt_anchor_min_px = std::nan("");
+  EXPECT_THROW(FeatureTracker{o}, UsageError);
 }
 
 }  // namespace
