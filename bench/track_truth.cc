@@ -2,7 +2,7 @@
 // synthetic clip (docs/estimate.md, "Where the rotation error comes from").
 //
 //   hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad] [--cut PX]
-//                       [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]
+//                       [--noise PX] [--klt-window PX] [--klt-anchor-frames N] [--klt-anchor-min PX] [--points N] [--per-frame 1]
 //                       [--est-out FILE] [--errors-out FILE] [--layers 1] [--stills 1]
 //
 // Tracks the clip with the real FeatureTracker, then casts the ray of every
@@ -80,13 +80,15 @@ Eigen::Vector2d PrincipalPointShift(const CameraPath& gt, int w, int h) {
 int main(int argc, char** argv) {
   if (argc < 3) {
     std::cerr << "usage: hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad]"
-                 " [--cut PX] [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]"
+                 " [--cut PX] [--noise PX] [--klt-window PX] [--klt-anchor-frames N] [--klt-anchor-min PX] [--points N] [--per-frame 1]"
                  " [--est-out FILE] [--errors-out FILE]\n";
     return 2;
   }
   const std::string preset = argv[1], dir = argv[2];
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
+  int klt_anchor_frames = 0;
+  double klt_anchor_min = 0.5;
   int klt_window = 0, points = 0, per_frame = 0, layers = 0, stills = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
@@ -94,6 +96,8 @@ int main(int argc, char** argv) {
     else if (a == "--noise") noise = std::stod(argv[i + 1]);
     else if (a == "--cut") cut = std::stod(argv[i + 1]);
     else if (a == "--klt-window") klt_window = std::stoi(argv[i + 1]);
+    else if (a == "--klt-anchor-frames") klt_anchor_frames = std::stoi(argv[i + 1]);
+    else if (a == "--klt-anchor-min") klt_anchor_min = std::stod(argv[i + 1]);
     else if (a == "--points") points = std::stoi(argv[i + 1]);
     else if (a == "--per-frame") per_frame = std::stoi(argv[i + 1]);
     else if (a == "--est-out") est_out = argv[i + 1];
@@ -116,6 +120,8 @@ int main(int argc, char** argv) {
   TrackerOptions to;
   if (klt_window > 0) to.klt_window = klt_window;
   to.stills = stills != 0;
+  to.klt_anchor_frames = klt_anchor_frames;
+  to.klt_anchor_min_px = klt_anchor_min;
   FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
   Frame frame;

@@ -157,6 +157,11 @@ int RunEstimate(int argc, char** argv) {
   app.add_option("--klt-window", opt.tracker.klt_window, "KLT window side, working pixels (odd)")
       ->capture_default_str()
       ->check(FiniteRange(5, 101));
+  app.add_option("--klt-anchor-frames", opt.tracker.klt_anchor_frames,
+                 "bound KLT drift: track each point from the frame where it was detected too, moving "
+                 "that anchor on every N frames; a track whose correction is an outlier ends (0 = off)")
+      ->capture_default_str()
+      ->check(FiniteRange(0, 10000));
   bool no_klt_predict = false;
   app.add_flag("--no-klt-predict", no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
@@ -191,7 +196,7 @@ int RunEstimate(int argc, char** argv) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--klt-anchor-frames", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations"})
     app.get_option(name)->group("Tuning");
 

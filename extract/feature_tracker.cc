@@ -42,6 +42,9 @@ void TrackerOptions::Check() const {
     throw UsageError("klt_window must be odd, 5..101");
   if (pyramid_levels < 1 || pyramid_levels > 8) throw UsageError("pyramid_levels must be 1..8");
   if (!(fb_threshold_px > 0)) throw UsageError("fb_threshold_px must be > 0");
+  if (klt_anchor_frames < 0 || klt_anchor_frames > 10000)
+    throw UsageError("klt_anchor_frames must be 0..10000");
+  if (!(klt_anchor_min_px > 0)) throw UsageError("klt_anchor_min_px must be > 0");
   if (klt_coarse_iterations < 1 || klt_coarse_iterations > 100)
     throw UsageError("klt_coarse_iterations must be 1..100");
   if (!(klt_coarse_step_px > 0 && klt_coarse_step_px <= 1))
@@ -142,6 +145,16 @@ struct FeatureTracker::Impl {
   // Where the run's tracks were on the frame before it (by id): the chain is
   // checked against them, since per-frame fits hide a slow parallax drift.
   std::unordered_map<long, cv::Point2f> run_start_points;
+  // KLT drift bound (klt_anchor_frames): each live track's anchor, and the
+  // finest pyramid level {image, derivatives} of every frame still an
+  // anchor, by frame index.
+  struct TrackAnchor {
+    cv::Point2f point;
+    int frame = 0;
+  };
+  std::unordered_map<long, TrackAnchor> anchors;
+  std::unordered_map<int, std::vector<cv::Mat>> anchor_levels;
+  int prev_tracked_index = -1;  // the last tracked frame's index
 
   void DropTracks() {
     prev_pyramid.clear();
@@ -150,6 +163,8 @@ struct FeatureTracker::Impl {
     prev_velocity.clear();
     motion_last = motion_before = {kNoMotion, kNoMotion};
     relinker.Clear();
+    anchors.clear();
+    anchor_levels.clear();
     last_described = good_described = {};
     last_link = {};
     descriptor_mode = options.stills;
@@ -491,6 +506,107 @@ struct FeatureTracker::Impl {
     std::vector<float> klt_disp;                  // for the transition-run statistics
   };
 
+  // KLT of each track from its anchor frame to this one at the finest level
+  // only, started at its frame-to-frame position (the drift to correct is a
+  // pixel or two, within one level's reach), with a forward-backward check.
+  // refined[i] is NaN where that failed or the track has no older anchor.
+  std::vector<cv::Point2f> TrackFromAnchors(const FrameWork& w) const {
+    const cv::Point2f none(kNoMotion, kNoMotion);
+    std::vector<cv::Point2f> refined(w.points.size(), none);
+    std::unordered_map<int, std::vector<size_t>> by_anchor;
+    for (size_t i = 0; i < w.points.size(); ++i) {
+      const auto it = anchors.find(w.ids[i]);
+      if (it != anchors.end() && it->second.frame != prev_tracked_index) by_anchor[it->second.frame].push_back(i);
+    }
+    PyramidLkOptions lk = LkOptions();
+    lk.max_level = 0;
+    const std::vector<cv::Mat> level0(w.pyramid.begin(), w.pyramid.begin() + 2);
+    const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
+    for (const auto& [frame, tracks] : by_anchor) {
+      const std::vector<cv::Mat>& anchor_level = anchor_levels.at(frame);
+      std::vector<cv::Point2f> from, to;
+      for (size_t i : tracks) {
+        from.push_back(anchors.at(w.ids[i]).point);
+        to.push_back(w.points[i]);
+      }
+      std::vector<cv::Point2f> back = from;
+      std::vector<unsigned char> ok_f, ok_b;
+      PyramidLk(anchor_level, level0, from, &to, &ok_f, lk, true);
+      PyramidLk(level0, anchor_level, to, &back, &ok_b, lk, true);
+      for (size_t k = 0; k < tracks.size(); ++k) {
+        const cv::Point2f e = back[k] - from[k];
+        const cv::Point2f& p = to[k];
+        if (ok_f[k] && ok_b[k] && e.x * e.x + e.y * e.y <= fb2 && p.x >= 0 && p.y >= 0 &&
+            p.x <= w.size.width - 1 && p.y <= w.size.height - 1)
+          refined[tracks[k]] = p;
+      }
+    }
+    return refined;
+  }
+
+  // The drift bound: tracks move to their anchored positions; a correction
+  // beyond median + 3 robust sigmas of this frame's corrections (and
+  // klt_anchor_min_px) marks a track that slipped onto another point: it
+  // ends here. A track whose anchor no longer matches (the check failed)
+  // keeps its KLT position and is re-anchored on this frame.
+  void BoundDrift(FrameWork* w) {
+    if (options.klt_anchor_frames <= 0 || w->points.empty()) return;
+    const std::vector<cv::Point2f> refined = TrackFromAnchors(*w);
+    std::vector<float> correction(w->points.size(), -1.f), measured;
+    for (size_t i = 0; i < w->points.size(); ++i) {
+      if (!std::isfinite(refined[i].x)) continue;
+      correction[i] = static_cast<float>(cv::norm(refined[i] - w->points[i]));
+      measured.push_back(correction[i]);
+    }
+    if (measured.empty()) return;
+    const float median = Quantile(measured, 0.5);
+    for (float& c : measured) c = std::abs(c - median);
+    const float mad = Quantile(std::move(measured), 0.5);
+    const float bound = std::max(static_cast<float>(options.klt_anchor_min_px), median + 3 * 1.4826f * mad);
+    size_t kept = 0;
+    for (size_t i = 0; i < w->points.size(); ++i) {
+      if (correction[i] > bound) {
+        anchors.erase(w->ids[i]);
+        continue;
+      }
+      if (correction[i] >= 0) w->points[i] = refined[i];
+      else anchors.erase(w->ids[i]);  // re-anchored on this frame (UpdateAnchors)
+      w->points[kept] = w->points[i];
+      w->ids[kept] = w->ids[i];
+      w->from[kept] = w->from[i];
+      ++kept;
+    }
+    w->points.resize(kept);
+    w->ids.resize(kept);
+    w->from.resize(kept);
+  }
+
+  // After the frame's tracks are final: new, re-linked and re-anchored
+  // tracks, and those whose anchor is klt_anchor_frames old, are anchored
+  // on this frame; anchors of ended tracks and unused anchor frames go.
+  void UpdateAnchors(int frame_index, const FrameWork& w) {
+    if (options.klt_anchor_frames <= 0) return;
+    std::unordered_map<long, TrackAnchor> next;
+    next.reserve(w.ids.size());
+    bool anchored_here = false;
+    for (size_t i = 0; i < w.ids.size(); ++i) {
+      const auto it = anchors.find(w.ids[i]);
+      if (it != anchors.end() && frame_index - it->second.frame < options.klt_anchor_frames) {
+        next.emplace(w.ids[i], it->second);
+      } else {
+        next.emplace(w.ids[i], TrackAnchor{w.points[i], frame_index});
+        anchored_here = true;
+      }
+    }
+    anchors = std::move(next);
+    std::unordered_set<int> used;
+    for (const auto& [id, a] : anchors) used.insert(a.frame);
+    for (auto it = anchor_levels.begin(); it != anchor_levels.end();)
+      it = used.count(it->first) ? std::next(it) : anchor_levels.erase(it);
+    if (anchored_here && w.pyramid.size() >= 2)
+      anchor_levels[frame_index] = {w.pyramid[0], w.pyramid[1]};
+  }
+
   // Whether one homography moves the picture as the tracks moved: most of
   // them within a pixel (KLT's own precision). A move with parallax (a
   // crane, a traveling) is not one homography, and chained over a long run
@@ -599,6 +715,8 @@ struct FeatureTracker::Impl {
     prev_velocity.clear();
     motion_last = motion_before = {kNoMotion, kNoMotion};
     prev_ids.clear();
+    anchors.clear();
+    anchor_levels.clear();
     after_blank = true;
   }
 
@@ -611,6 +729,7 @@ struct FeatureTracker::Impl {
     w->had_tracks = !prev_points.empty();
     w->before = prev_points.size();
     Track(w->pyramid, w->size, &w->points, &w->ids, &w->from);
+    BoundDrift(w);
     if (options.klt_predict)  // per frame (x 1 exactly when no frame was skipped)
       for (size_t i = 0; i < w->points.size(); ++i)
         w->moved.emplace(w->ids[i], (w->points[i] - w->from[i]) * (1.0f / step));
@@ -728,6 +847,11 @@ struct FeatureTracker::Impl {
   // This frame becomes the previous one for the next.
   void KeepForNextFrame(FrameWork* w) {
     spare_pyramid = std::move(prev_pyramid);
+    // An anchor frame's finest level is kept: the next pyramid must not reuse it.
+    if (spare_pyramid.size() >= 2 && anchor_levels.count(prev_tracked_index)) {
+      spare_pyramid[0] = cv::Mat();
+      spare_pyramid[1] = cv::Mat();
+    }
     prev_pyramid = std::move(w->pyramid);
     prev_size = w->size;
     if (options.klt_predict) {
@@ -942,7 +1066,9 @@ struct FeatureTracker::Impl {
     if (healthy || (out.recovered && w.relinked >= kMinTracksForCollapse))
       relinker.SetKeyframe(frame.gray, w.points, w.ids);
     WriteTracks(frame, w, &out);
+    UpdateAnchors(frame.index, w);
     KeepForNextFrame(&w);
+    prev_tracked_index = frame.index;
     last_layout = shots.layout();
     return out;
   }

@@ -33,6 +33,16 @@ struct TrackerOptions {
   // velocity; the median displacement for new tracks) instead of at zero
   // motion: fast pans stay within the pyramid's reach.
   bool klt_predict = true;
+  // KLT drift bound: frame-to-frame KLT adds a small error every frame, so
+  // a track's error grows with its age. Every track is also tracked from
+  // the frame where it was detected (its anchor), at the finest pyramid
+  // level, starting at its frame-to-frame position, and takes that answer;
+  // a track whose correction is an outlier among this frame's (median +
+  // 3 robust sigmas, at least klt_anchor_min_px) slipped and is dropped.
+  // The anchor moves to the current frame after klt_anchor_frames frames
+  // (the patch's appearance changes as the view turns). 0: off.
+  int klt_anchor_frames = 0;
+  double klt_anchor_min_px = 0.5;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
   // SIFT linking where KLT cannot bridge (descriptor_linker.h): tried when
   // fewer than 70 % of the tracks survive KLT, taken when KLT's survivors
