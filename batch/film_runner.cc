@@ -59,7 +59,8 @@ void AddReviewSteps(const BatchOptions& options, const std::string& exe, const F
   const std::string key = TrackStepKey(options, first.model, layout);
   if (!layout.preview.empty()) {
     steps->push_back({"preview", key, {layout.preview},
-                      {exe, "preview", film.path, "--track", (out / first.haptic).string(), "-o",
+                      {exe, "preview", film.path, "--track", (out / first.haptic).string(),
+                       "--camera", (out / layout.camera).string(), "-o",
                        (tmp / layout.preview).string()}});
   }
   // plot writes PREFIX.png: the prefix is the name without ".png".

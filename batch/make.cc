@@ -161,9 +161,18 @@ std::string StepFailureReason(const std::string& reason, const std::string& film
   return step.empty() ? text : text + " (" + step + " step)";
 }
 
-MakeResult RunMake(const MakeOptions& options, FilmObserver* observer) {
-  if (options.preview && IsImageSequenceInput(options.film))
+void CheckMakeOptions(const MakeOptions& options) {
+  const bool sequence = IsImageSequenceInput(options.film);
+  if (options.preview && sequence)
     throw UsageError("--preview needs a video file; an image sequence has no film to draw on");
+  for (const std::string& a : options.estimate_args) {
+    if (!sequence && (a == "--fps" || a.rfind("--fps=", 0) == 0))
+      throw UsageError("--fps is for image folders and patterns; a video's times come from its timestamps");
+  }
+}
+
+MakeResult RunMake(const MakeOptions& options, FilmObserver* observer) {
+  CheckMakeOptions(options);
   const FilmPlan film = MakeFilmPlan(options.film);
   MakeResult result;
   result.layout = MakeLayout(options, film);

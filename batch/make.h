@@ -52,6 +52,11 @@ BatchOptions MakeBatchOptions(const MakeOptions& options);
 // True for an image folder or a printf pattern ("plates/plate.%04d.exr").
 bool IsImageSequenceInput(const std::string& film);
 
+// Throws UsageError for options that do not apply to this film: --preview of
+// an image sequence (no film to draw on), --fps among the estimate options of
+// a video (its times come from its timestamps).
+void CheckMakeOptions(const MakeOptions& options);
+
 // The film's plan: absolute path, id, stem, sampled content hash. Throws
 // Error(film, reason) for a missing, unreadable, non-regular or empty file.
 // An image folder or pattern (docs/extract.md) is a film too: its stem is

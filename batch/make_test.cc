@@ -10,6 +10,7 @@
 #include "batch/content_hash.h"
 #include "batch/fake_step_for_test.h"
 #include "batch/job_progress.h"
+#include "core/error.h"
 
 namespace hapcine::batch {
 namespace {
@@ -25,6 +26,23 @@ TEST(MakeTest, StepFailureReasonKeepsTheStepsOwnReason) {
   // A folder error has no step name in front.
   EXPECT_EQ(StepFailureReason("/ro/.hapcine/f-1: cannot create folder: Permission denied", "f.mp4"),
             "/ro/.hapcine/f-1: cannot create folder: Permission denied");
+}
+
+TEST(MakeTest, FpsAppliesToImageSequencesOnly) {
+  MakeOptions opt;
+  opt.film = "film.mp4";
+  opt.estimate_args = {"--draft"};
+  EXPECT_NO_THROW(CheckMakeOptions(opt));
+  opt.estimate_args = {"--fps", "25"};
+  EXPECT_THROW(CheckMakeOptions(opt), UsageError);
+  opt.estimate_args = {"--fps=25"};
+  EXPECT_THROW(CheckMakeOptions(opt), UsageError);
+  // An option whose name starts like it is not it.
+  opt.estimate_args = {"--fpsx"};
+  EXPECT_NO_THROW(CheckMakeOptions(opt));
+  opt.film = "plates/plate.%04d.png";
+  opt.estimate_args = {"--fps", "25"};
+  EXPECT_NO_THROW(CheckMakeOptions(opt));
 }
 
 TEST(MakeTest, LayoutBesideTheFilmOrInTheOutputFolder) {

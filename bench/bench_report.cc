@@ -273,149 +273,172 @@ void TryWritePng(const hapcine::bench::ScatterChart& c, const std::string& file,
   }
 }
 
+// Sections of the report, in order.
+struct ReportArgs {
+  std::string runs, md_file, fig_dir, fig_link, loop_file, meta_file;
+};
+
+void MetaSection(std::ostream& md, const std::string& meta_file) {
+  if (meta_file.empty()) return;
+  std::ifstream in(meta_file);
+  std::string line;
+  md << "Run:\n\n";
+  while (std::getline(in, line))
+    if (!line.empty()) md << "- " << line << "\n";
+}
+
+void SummarySection(std::ostream& md, const Table& t) {
+  md << "\n### Summary: median over the clips each method ran\n";
+  SummaryTable(md, t, nullptr);
+  const std::set<std::string> sweep = SweepClips(t);
+  if (!sweep.empty() && sweep.size() < t.clips.size()) {
+    md << "\nThe same on the " << sweep.size() << " clips every hapcine setting ran (";
+    bool first = true;
+    for (const auto& c : t.clips)
+      if (sweep.count(c)) md << (first ? "" : ", ") << c, first = false;
+    md << "):\n";
+    SummaryTable(md, t, &sweep);
+  }
+  md << "\nErrors are the per-clip means of `hapcine eval --json` (rotation relative to the first frame, "
+        "horizontal FOV, zoom ratio, ATE after Sim(3) alignment as % of the ground-truth path length), "
+        "then the median over the clips where the method did not fail. † = under 90 % of the frames "
+        "estimated; ° = the clip's camera translates, which a rotation-only peer cannot represent "
+        "(its translation shows up as rotation); ATE is not given for the rotation-only peers.\n";
+  md << "\n### Per clip\n";
+  PerClipTable(md, t, "Rotation error, mean over frames (deg)", Rot);
+  PerClipTable(md, t, "Horizontal FOV error, mean (%)", Fov);
+  PerClipTable(md, t, "Zoom-ratio error, mean (%)", Zoom);
+  PerClipTable(md, t, "ATE, RMSE as % of the ground-truth path (– = camera does not move, or rotation-only peer)", Ate);
+  PerClipTable(md, t, "Wall time per video frame (ms)", Ms, false);
+  md << "\n### Where a peer wins\n";
+  PeerWins(md, t);
+}
+
+hapcine::bench::ScatterChart PerClipRotationChart(const Table& t) {
+  hapcine::bench::ScatterChart c;
+  c.title = "Rotation error per clip (an exact 0 is drawn at 1e-4)";
+  c.x_label = "clip";
+  c.y_label = "rotation err (deg, log)";
+  c.x_categories = t.clips;
+  c.log_y = true;
+  c.width_px = 1300;
+  int idx = 0;
+  for (const auto& meth : t.methods) {
+    hapcine::bench::ScatterSeries s;
+    s.name = meth;
+    s.color_index = idx;
+    s.marker = idx % 4;
+    ++idx;
+    for (size_t k = 0; k < t.clips.size(); ++k) {
+      auto it = t.cell.find({meth, t.clips[k]});
+      if (it == t.cell.end() || it->second->Failed()) continue;
+      s.x.push_back(k + 1 + 0.06 * (idx - 0.5 * t.methods.size()));
+      s.y.push_back(std::max(Rot(*it->second), 1e-4));
+    }
+    c.series.push_back(s);
+  }
+  return c;
+}
+
+void SpeedSection(std::ostream& md, const Table& t, const ReportArgs& a) {
+  md << "\n### Speed against error\n";
+  md << "\nEach point: the median over the clips of the hapcine sweep (those every hapcine setting ran) that "
+        "the method ran, failures left out (\"n/m ok\" counts those clips); time is the median wall time per frame. "
+        "The zoom chart uses only the zoom clips among them (zoom_in and vertigo in the full run), so its median "
+        "is the mean of a small and a large error; methods without a zoom clip are not drawn.\n";
+  TryWritePng(SpeedChart(t, "Rotation error against time per frame (sweep clips)", "rotation err (deg, median over clips, log)",
+                         &MethodStats::rot),
+              a.fig_dir + "/speed_rotation.png", md, a.fig_link + "/speed_rotation.png", "rotation error against time");
+  TryWritePng(SpeedChart(t, "Zoom-ratio error against time per frame (zoom clips of the sweep)",
+                         "zoom-ratio err (%, median over zoom clips, log)", &MethodStats::zoom),
+              a.fig_dir + "/speed_zoom.png", md, a.fig_link + "/speed_zoom.png", "zoom-ratio error against time");
+  TryWritePng(PerClipRotationChart(t), a.fig_dir + "/per_clip_rotation.png", md,
+              a.fig_link + "/per_clip_rotation.png", "rotation error per clip");
+}
+
+void DecodingSection(std::ostream& md, const std::vector<RunRow>& rows) {
+  md << "\n### Decoding floor\n\n| video | frames | ffmpeg decode wall (s) | ffmpeg CPU (s) | "
+        "hapcine estimate wall (s) | estimate CPU (s) | wall ratio | CPU ratio |\n|---|---|---|---|---|---|---|---|\n";
+  // ffmpeg's row is the video's ("1080p"); hapcine's settings start with
+  // it ("1080p", "1080p --draft") and are each set against it.
+  std::map<std::string, const RunRow*> decoder_of;
+  for (const auto& r : rows)
+    if (r.group == "decode" && r.tool == "ffmpeg") decoder_of[r.setting] = &r;
+  for (const auto& r : rows) {
+    if (r.group != "decode" || r.tool == "ffmpeg") continue;
+    const auto it = decoder_of.find(r.setting.substr(0, r.setting.find(' ')));
+    if (it == decoder_of.end()) continue;
+    const RunRow* f = it->second;
+    const RunRow* h = &r;
+    const double fc = f->user_s + f->sys_s, hc = h->user_s + h->sys_s;
+    md << "| " << h->setting << " (" << h->clip << ") | " << h->frames << " | " << Fmt(f->wall_s) << " | "
+       << Fmt(fc) << " | " << (h->rc ? "fail " : "") << Fmt(h->wall_s) << " | " << Fmt(hc) << " | "
+       << Fmt(h->wall_s / f->wall_s) << " | " << Fmt(hc / fc) << " |\n";
+  }
+}
+
+void MemorySection(std::ostream& md, const std::vector<RunRow>& rows, const ReportArgs& a) {
+  md << "\n### Memory against clip length\n\n| clip length (min) | frames | settings | wall (s) | "
+        "ms/frame | peak RSS (MB) | exit |\n|---|---|---|---|---|---|---|\n";
+  hapcine::bench::ScatterChart mem;
+  mem.title = "Peak RSS of hapcine estimate against clip length";
+  mem.x_label = "clip length (minutes)";
+  mem.y_label = "peak RSS (MB)";
+  hapcine::bench::ScatterSeries ms;
+  ms.name = "hapcine estimate";
+  ms.line = true;
+  for (const auto& r : rows) {
+    if (r.group != "memory") continue;
+    md << "| " << r.clip << " | " << r.frames << " | " << r.setting << " | " << Fmt(r.wall_s) << " | "
+       << Fmt(r.MsPerFrame()) << " | " << Fmt(r.maxrss_kb / 1024) << " | " << r.rc << " |\n";
+    if (r.rc == 0) {
+      ms.x.push_back(std::atof(r.clip.c_str()));
+      ms.y.push_back(r.maxrss_kb / 1024);
+      ms.labels.push_back(Fmt(r.maxrss_kb / 1024) + " MB");
+    }
+  }
+  if (ms.x.empty()) return;
+  mem.y_from_zero = true;  // a flat line should look flat
+  mem.series = {ms};
+  TryWritePng(mem, a.fig_dir + "/memory.png", md, a.fig_link + "/memory.png", "peak RSS against clip length");
+}
+
+void WriteReport(const ReportArgs& a) {
+  const std::vector<RunRow> rows = hapcine::bench::ReadRuns(a.runs);
+  const Table t = BuildTable(rows);
+  std::ostringstream md;
+  MetaSection(md, a.meta_file);
+  SummarySection(md, t);
+  SpeedSection(md, t, a);
+  DecodingSection(md, rows);
+  MemorySection(md, rows, a);
+  if (!a.loop_file.empty()) {
+    std::ifstream in(a.loop_file);
+    md << "\n### Haptic loop on the simulated HapSeat\n\n```\n" << in.rdbuf() << "```\n";
+  }
+  hapcine::AtomicFile out(a.md_file);
+  out.stream() << md.str();
+  out.Commit();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace hapcine;
-  const std::string runs = bench::ArgValue(argc, argv, "--runs", "");
-  const std::string md_file = bench::ArgValue(argc, argv, "--md", "");
-  const std::string fig_dir = bench::ArgValue(argc, argv, "--figures", "");
-  const std::string fig_link = bench::ArgValue(argc, argv, "--figure-link", fig_dir);
-  const std::string loop_file = bench::ArgValue(argc, argv, "--loop", "");
-  const std::string meta_file = bench::ArgValue(argc, argv, "--meta", "");
-  if (runs.empty() || md_file.empty() || fig_dir.empty()) {
+  ReportArgs a;
+  a.runs = bench::ArgValue(argc, argv, "--runs", "");
+  a.md_file = bench::ArgValue(argc, argv, "--md", "");
+  a.fig_dir = bench::ArgValue(argc, argv, "--figures", "");
+  a.fig_link = bench::ArgValue(argc, argv, "--figure-link", a.fig_dir);
+  a.loop_file = bench::ArgValue(argc, argv, "--loop", "");
+  a.meta_file = bench::ArgValue(argc, argv, "--meta", "");
+  if (a.runs.empty() || a.md_file.empty() || a.fig_dir.empty()) {
     std::fprintf(stderr, "usage: %s --runs runs.tsv --md out.md --figures DIR [--figure-link PREFIX] "
                          "[--loop loop.txt] [--meta meta.txt]\n", argv[0]);
     return 2;
   }
   try {
-    const std::vector<RunRow> rows = bench::ReadRuns(runs);
-    const Table t = BuildTable(rows);
-    std::ostringstream md;
-    if (!meta_file.empty()) {
-      std::ifstream in(meta_file);
-      std::string line;
-      md << "Run:\n\n";
-      while (std::getline(in, line))
-        if (!line.empty()) md << "- " << line << "\n";
-    }
-
-    md << "\n### Summary: median over the clips each method ran\n";
-    SummaryTable(md, t, nullptr);
-    const std::set<std::string> sweep = SweepClips(t);
-    if (!sweep.empty() && sweep.size() < t.clips.size()) {
-      md << "\nThe same on the " << sweep.size() << " clips every hapcine setting ran (";
-      bool first = true;
-      for (const auto& c : t.clips)
-        if (sweep.count(c)) md << (first ? "" : ", ") << c, first = false;
-      md << "):\n";
-      SummaryTable(md, t, &sweep);
-    }
-    md << "\nErrors are the per-clip means of `hapcine eval --json` (rotation relative to the first frame, "
-          "horizontal FOV, zoom ratio, ATE after Sim(3) alignment as % of the ground-truth path length), "
-          "then the median over the clips where the method did not fail. † = under 90 % of the frames "
-          "estimated; ° = the clip's camera translates, which a rotation-only peer cannot represent "
-          "(its translation shows up as rotation); ATE is not given for the rotation-only peers.\n";
-
-    md << "\n### Per clip\n";
-    PerClipTable(md, t, "Rotation error, mean over frames (deg)", Rot);
-    PerClipTable(md, t, "Horizontal FOV error, mean (%)", Fov);
-    PerClipTable(md, t, "Zoom-ratio error, mean (%)", Zoom);
-    PerClipTable(md, t, "ATE, RMSE as % of the ground-truth path (– = camera does not move, or rotation-only peer)", Ate);
-    PerClipTable(md, t, "Wall time per video frame (ms)", Ms, false);
-
-    md << "\n### Where a peer wins\n";
-    PeerWins(md, t);
-
-    md << "\n### Speed against error\n";
-    md << "\nEach point: the median over the clips of the hapcine sweep (those every hapcine setting ran) that "
-          "the method ran, failures left out (\"n/m ok\" counts those clips); time is the median wall time per frame. "
-          "The zoom chart uses only the zoom clips among them (zoom_in and vertigo in the full run), so its median "
-          "is the mean of a small and a large error; methods without a zoom clip are not drawn.\n";
-    TryWritePng(SpeedChart(t, "Rotation error against time per frame (sweep clips)", "rotation err (deg, median over clips, log)",
-                           &MethodStats::rot),
-                fig_dir + "/speed_rotation.png", md, fig_link + "/speed_rotation.png", "rotation error against time");
-    TryWritePng(SpeedChart(t, "Zoom-ratio error against time per frame (zoom clips of the sweep)",
-                           "zoom-ratio err (%, median over zoom clips, log)", &MethodStats::zoom),
-                fig_dir + "/speed_zoom.png", md, fig_link + "/speed_zoom.png", "zoom-ratio error against time");
-    {
-      bench::ScatterChart c;
-      c.title = "Rotation error per clip (an exact 0 is drawn at 1e-4)";
-      c.x_label = "clip";
-      c.y_label = "rotation err (deg, log)";
-      c.x_categories = t.clips;
-      c.log_y = true;
-      c.width_px = 1300;
-      int idx = 0;
-      for (const auto& meth : t.methods) {
-        bench::ScatterSeries s;
-        s.name = meth;
-        s.color_index = idx;
-        s.marker = idx % 4;
-        ++idx;
-        for (size_t k = 0; k < t.clips.size(); ++k) {
-          auto it = t.cell.find({meth, t.clips[k]});
-          if (it == t.cell.end() || it->second->Failed()) continue;
-          s.x.push_back(k + 1 + 0.06 * (idx - 0.5 * t.methods.size()));
-          s.y.push_back(std::max(Rot(*it->second), 1e-4));
-        }
-        c.series.push_back(s);
-      }
-      TryWritePng(c, fig_dir + "/per_clip_rotation.png", md, fig_link + "/per_clip_rotation.png",
-                  "rotation error per clip");
-    }
-
-    md << "\n### Decoding floor\n\n| video | frames | ffmpeg decode wall (s) | ffmpeg CPU (s) | "
-          "hapcine estimate wall (s) | estimate CPU (s) | wall ratio | CPU ratio |\n|---|---|---|---|---|---|---|---|\n";
-    // ffmpeg's row is the video's ("1080p"); hapcine's settings start with
-    // it ("1080p", "1080p --draft") and are each set against it.
-    std::map<std::string, const RunRow*> decoder_of;
-    for (const auto& r : rows)
-      if (r.group == "decode" && r.tool == "ffmpeg") decoder_of[r.setting] = &r;
-    for (const auto& r : rows) {
-      if (r.group != "decode" || r.tool == "ffmpeg") continue;
-      const auto it = decoder_of.find(r.setting.substr(0, r.setting.find(' ')));
-      if (it == decoder_of.end()) continue;
-      const RunRow* f = it->second;
-      const RunRow* h = &r;
-      const double fc = f->user_s + f->sys_s, hc = h->user_s + h->sys_s;
-      md << "| " << h->setting << " (" << h->clip << ") | " << h->frames << " | " << Fmt(f->wall_s) << " | "
-         << Fmt(fc) << " | " << (h->rc ? "fail " : "") << Fmt(h->wall_s) << " | " << Fmt(hc) << " | "
-         << Fmt(h->wall_s / f->wall_s) << " | " << Fmt(hc / fc) << " |\n";
-    }
-
-    md << "\n### Memory against clip length\n\n| clip length (min) | frames | settings | wall (s) | "
-          "ms/frame | peak RSS (MB) | exit |\n|---|---|---|---|---|---|---|\n";
-    bench::ScatterChart mem;
-    mem.title = "Peak RSS of hapcine estimate against clip length";
-    mem.x_label = "clip length (minutes)";
-    mem.y_label = "peak RSS (MB)";
-    bench::ScatterSeries ms;
-    ms.name = "hapcine estimate";
-    ms.line = true;
-    for (const auto& r : rows) {
-      if (r.group != "memory") continue;
-      md << "| " << r.clip << " | " << r.frames << " | " << r.setting << " | " << Fmt(r.wall_s) << " | "
-         << Fmt(r.MsPerFrame()) << " | " << Fmt(r.maxrss_kb / 1024) << " | " << r.rc << " |\n";
-      if (r.rc == 0) {
-        ms.x.push_back(std::atof(r.clip.c_str()));
-        ms.y.push_back(r.maxrss_kb / 1024);
-        ms.labels.push_back(Fmt(r.maxrss_kb / 1024) + " MB");
-      }
-    }
-    if (!ms.x.empty()) {
-      mem.y_from_zero = true;  // a flat line should look flat
-      mem.series = {ms};
-      TryWritePng(mem, fig_dir + "/memory.png", md, fig_link + "/memory.png", "peak RSS against clip length");
-    }
-
-    if (!loop_file.empty()) {
-      std::ifstream in(loop_file);
-      md << "\n### Haptic loop on the simulated HapSeat\n\n```\n" << in.rdbuf() << "```\n";
-    }
-    AtomicFile out(md_file);
-    out.stream() << md.str();
-    out.Commit();
+    WriteReport(a);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hapcine_bench_report: %s\n", e.what());
     return 1;

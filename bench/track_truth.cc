@@ -3,7 +3,7 @@
 //
 //   hapcine_track_truth PRESET CLIP_DIR [--mode klt|fit|ray|cut|dropbad] [--cut PX]
 //                       [--noise PX] [--klt-window PX] [--points N] [--per-frame 1]
-//                       [--est-out FILE] [--errors-out FILE] [--layers 1]
+//                       [--est-out FILE] [--errors-out FILE] [--layers 1] [--stills 1]
 //
 // Tracks the clip with the real FeatureTracker, then casts the ray of every
 // track's first observation into the synthetic scene (ground-truth camera) to
@@ -19,7 +19,12 @@
 //   cut      KLT, without observations off their rigid fit by > --cut px
 //   dropbad  KLT, without tracks whose rigid fit is off by > --cut px
 //   droplayers KLT, without tracks the depth-layer cue flags with GT depths
+//   split    KLT, every track cut into pieces of --cut frames (new ids)
 // (--noise adds Gaussian pixel noise to fit/ray positions).
+// PRESET "real": CLIP_DIR is a real sequence of ../shared/realgt (video.mp4,
+// gt.camera.csv, an off-centre principal point from its header): no scene,
+// so only the rigid fits (no ray, no depth edges). --stills 1 tracks as
+// image stills (descriptor linking from the first frame).
 // --layers 1 prints how well the depth-layer cue (estimate/depth_layers.h)
 // separates them, with the ground-truth depth of each track's rigid fit.
 #include <Eigen/Geometry>
@@ -61,6 +66,15 @@ synth::CameraView ViewOf(const CameraFrame& f, int w, int h) {
   return v;
 }
 
+// A real sequence's principal point (cx_px, cy_px in the header) where it is
+// off-centre: the shift that puts it at the centre the projection assumes
+// (the tracks are shifted for the rigid fits only; the estimator is fed the
+// tracks as seen).
+Eigen::Vector2d PrincipalPointShift(const CameraPath& gt, int w, int h) {
+  if (!gt.metadata.count("cx_px") || !gt.metadata.count("cy_px")) return {0, 0};
+  return {0.5 * (w - 1) - std::stod(gt.metadata.at("cx_px")), 0.5 * (h - 1) - std::stod(gt.metadata.at("cy_px"))};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,7 +87,7 @@ int main(int argc, char** argv) {
   const std::string preset = argv[1], dir = argv[2];
   std::string mode = "klt", est_out, errors_out;
   double noise = 0, cut = 1;
-  int klt_window = 0, points = 0, per_frame = 0, layers = 0;
+  int klt_window = 0, points = 0, per_frame = 0, layers = 0, stills = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--mode") mode = argv[i + 1];
@@ -85,23 +99,28 @@ int main(int argc, char** argv) {
     else if (a == "--est-out") est_out = argv[i + 1];
     else if (a == "--errors-out") errors_out = argv[i + 1];
     else if (a == "--layers") layers = std::stoi(argv[i + 1]);
+    else if (a == "--stills") stills = std::stoi(argv[i + 1]);
     else {
       std::cerr << "unknown option " << a << "\n";
       return 2;
     }
   }
-  const CameraPath gt = ReadCameraPathFile(dir + "/" + preset + ".camera.csv");
-  const synth::PresetInfo& info = synth::FindSynthPreset(preset);
-  const auto scene = SynthScene(1, info.scene, 1);
+  // PRESET "real": CLIP_DIR is a real sequence (video.mp4, gt.camera.csv;
+  // ../shared/realgt): no scene to cast rays into, only the rigid fits.
+  const bool real = preset == "real";
+  const CameraPath gt = ReadCameraPathFile(real ? dir + "/gt.camera.csv" : dir + "/" + preset + ".camera.csv");
+  const auto scene = real ? nullptr : SynthScene(1, synth::FindSynthPreset(preset).scene, 1);
 
-  auto source = OpenFrameSource(dir + "/" + preset + ".mp4", FrameSourceOptions{});
+  auto source = OpenFrameSource(real ? dir + "/video.mp4" : dir + "/" + preset + ".mp4", FrameSourceOptions{});
   const int W = source->info().width, H = source->info().height;
   TrackerOptions to;
   if (klt_window > 0) to.klt_window = klt_window;
+  to.stills = stills != 0;
   FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
   Frame frame;
   while (source->Next(&frame)) frames.push_back(tracker.Process(frame));
+  const Eigen::Vector2d pp_shift = real ? PrincipalPointShift(gt, W, H) : Eigen::Vector2d(0, 0);
 
   const int n_gt = static_cast<int>(gt.frames.size());
   std::vector<synth::CameraView> views;
@@ -122,7 +141,7 @@ int main(int argc, char** argv) {
   std::map<long, std::vector<Obs>> obs_of;
   for (const auto& ft : frames)
     if (ft.index < n_gt)
-      for (const auto& p : ft.points) obs_of[p.track_id].push_back({ft.index, p.px});
+      for (const auto& p : ft.points) obs_of[p.track_id].push_back({ft.index, p.px + pp_shift});
 
   // (a) The point a track *should* follow: the scene hit of its first
   // observation's ray (ambiguous on silhouettes: the ray may pass the edge).
@@ -136,7 +155,7 @@ int main(int argc, char** argv) {
     const Eigen::Vector3d d0 = v0.world_from_cam * synth::CameraRayDirection(
                                    obs[0].px.x() + 0.5, obs[0].px.y() + 0.5, W, H, v0.focal_px());
     synth::Hit hit;
-    if (scene->Trace(v0.center, d0, &hit)) ray_point[id] = hit.p;
+    if (scene && scene->Trace(v0.center, d0, &hit)) ray_point[id] = hit.p;
     // Linear: nearest point to all rays; then Gauss-Newton on pixels.
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -191,7 +210,7 @@ int main(int argc, char** argv) {
         const Eigen::Vector3d d = v.world_from_cam * synth::CameraRayDirection(
             o.px.x() + 0.5 + dx * r, o.px.y() + 0.5 + dy * r, W, H, v.focal_px());
         synth::Hit hit;
-        if (!scene->Trace(v.center, d, &hit)) continue;
+        if (!scene || !scene->Trace(v.center, d, &hit)) continue;
         lo = std::min(lo, hit.t);
         hi = std::max(hi, hit.t);
       }
@@ -276,6 +295,8 @@ int main(int argc, char** argv) {
       Eigen::Vector2d fit_px, ray_px(1e9, 1e9);
       if (!project(ft.index, fit_point.at(p.track_id), &fit_px)) continue;
       const bool has_ray = ray_point.count(p.track_id) && project(ft.index, ray_point.at(p.track_id), &ray_px);
+      fit_px -= pp_shift;  // back to the tracks' own pixels
+      if (has_ray) ray_px -= pp_shift;
       const double e = (p.px - fit_px).norm();
       fit_err.push_back(e);
       if (ef)
@@ -285,6 +306,9 @@ int main(int argc, char** argv) {
                      p.px.x(), p.px.y());
       TrackPoint q = p;
       if (mode == "klt") {
+      } else if (mode == "split") {  // every track cut into pieces of --cut frames (new ids)
+        const long piece = (ft.index - obs[0].frame) / std::max(1, static_cast<int>(cut));
+        q.track_id = p.track_id * 1000 + piece;
       } else if (mode == "cut") {  // KLT observations off the rigid fit by more than --cut px dropped
         if (e > cut) continue;
       } else if (mode == "dropbad") {  // whole tracks whose fit is off by more than --cut px dropped

@@ -190,6 +190,57 @@ CameraPath ImportColmap(const std::string& from_colmap, const std::string& times
   return path;
 }
 
+// The import options (everything but ExportRequest).
+struct ImportArgs {
+  std::string from_tum, from_colmap, times_from, output;
+  double fov_deg = 0;
+};
+
+// --from-tum or --from-colmap -> -o OUT.camera.csv.
+int RunImport(const ImportArgs& a, bool has_input) {
+  std::vector<NamedPath> inputs = {{a.from_tum, "--from-tum"}, {a.times_from, "--times-from"}};
+  if (!a.from_colmap.empty()) {
+    for (const char* f : {"cameras.txt", "images.txt", "points3D.txt"})
+      inputs.push_back({a.from_colmap + "/" + f, "--from-colmap"});
+  }
+  OutputSet outputs(inputs, {{a.output, "-o"}});
+  if (has_input) throw UsageError("an input camera path is only used with --to-*");
+  if (a.output.empty()) throw UsageError("imports need -o OUT.camera.csv");
+  if (!a.from_tum.empty()) {
+    if (!(a.fov_deg > 0 && a.fov_deg < 180)) throw UsageError("--fov must be in (0, 180) degrees");
+    CameraPath path = CameraPathFromTum(ReadTumTrajectoryFile(a.from_tum), a.fov_deg);
+    path.metadata["source"] = a.from_tum;
+    WriteCameraPathFile(path, a.output);
+    outputs.CommitAll();
+  } else {
+    const CameraPath path = ImportColmap(a.from_colmap, a.times_from);
+    WriteCameraPathFile(path, a.output);
+    outputs.CommitAll();
+    int registered = 0;
+    for (const auto& f : path.frames) registered += f.confidence.value_or(1) > 0;
+    std::cerr << "converted " << registered << " registered frames of " << path.frames.size()
+              << " (the others hold the previous pose, confidence 0)\n";
+  }
+  std::cerr << "wrote " << a.output << "\n";
+  return kExitOk;
+}
+
+void AddImportOptions(CLI::App& app, ImportArgs* a) {
+  app.add_option("--from-tum", a->from_tum, "read a TUM trajectory (needs --fov and -o)");
+  app.add_option("--fov", a->fov_deg,
+                 "horizontal field of view (degrees) for every frame of a TUM import "
+                 "(TUM has no intrinsics)")
+      ->check(FiniteRange(1, 179));
+  app.add_option("--from-colmap", a->from_colmap,
+                 "COLMAP text model folder (cameras.txt, images.txt, optional points3D.txt); "
+                 "export a binary model with `colmap model_converter --output_type TXT`");
+  app.add_option("--times-from", a->times_from,
+                 "frame times for the COLMAP import: a *.camera.csv (its frame/time_s columns) "
+                 "or the video (decoded once for its timestamps); frames COLMAP did not register "
+                 "hold the previous pose with confidence 0");
+  app.add_option("-o,--output", a->output, "output camera path (*.camera.csv) for the imports");
+}
+
 }  // namespace
 
 int RunConvert(int argc, char** argv) {
@@ -201,12 +252,9 @@ int RunConvert(int argc, char** argv) {
                "  hapcine convert --from-colmap DIR --times-from VIDEO|CAMERA_CSV -o OUT.camera.csv",
                argv[0]};
   ExportRequest request;
-  std::string& input = request.input;
-  std::string from_tum, from_colmap, times_from, output;
-  double fov_deg = 0;
   int shot = -1;
   double sensor_width_mm = 36;
-  app.add_option("input", input, "camera path to export (*.camera.csv), with --to-*");
+  app.add_option("input", request.input, "camera path to export (*.camera.csv), with --to-*");
   app.add_option("--to-tum", request.to_tum,
                  "write the TUM trajectory format (timestamp tx ty tz qx qy qz qw), for evo; "
                  "one file per shot (OUT.shot003.txt) when the path has several");
@@ -228,59 +276,22 @@ int RunConvert(int argc, char** argv) {
   app.add_option("--start-frame", request.start_frame,
                  "frame number of the camera path's frame 0 in Blender and .chan exports")
       ->check(FiniteRange(0, 1e6));  // Blender's frames run from 0 to about 1e6
-  app.add_option("--from-tum", from_tum, "read a TUM trajectory (needs --fov and -o)");
-  app.add_option("--fov", fov_deg,
-                 "horizontal field of view (degrees) for every frame of a TUM import "
-                 "(TUM has no intrinsics)")
-      ->check(FiniteRange(1, 179));
-  app.add_option("--from-colmap", from_colmap,
-                 "COLMAP text model folder (cameras.txt, images.txt, optional points3D.txt); "
-                 "export a binary model with `colmap model_converter --output_type TXT`");
-  app.add_option("--times-from", times_from,
-                 "frame times for the COLMAP import: a *.camera.csv (its frame/time_s columns) "
-                 "or the video (decoded once for its timestamps); frames COLMAP did not register "
-                 "hold the previous pose with confidence 0");
-  app.add_option("-o,--output", output, "output camera path (*.camera.csv) for the imports");
+  ImportArgs import;
+  AddImportOptions(app, &import);
 
   return RunApp(app, argc, argv, [&]() {
     const int exports = !request.to_tum.empty() + !request.to_kitti.empty() +
                         !request.to_chan.empty() + !request.to_blender.empty();
-    const int modes = exports + !from_tum.empty() + !from_colmap.empty();
+    const int modes = exports + !import.from_tum.empty() + !import.from_colmap.empty();
     if (modes != 1) {
       throw UsageError("choose exactly one of --to-tum, --to-kitti, --to-nuke-chan, "
                        "--to-blender, --from-tum, --from-colmap");
     }
-    if (exports == 1) {
-      if (input.empty()) throw UsageError("exports need an input camera path");
-      if (shot >= 0) request.shot = shot;
-      if (sensor_option->count() > 0) request.sensor_width_mm = sensor_width_mm;
-      return RunExport(request);
-    }
-    std::vector<NamedPath> inputs = {{from_tum, "--from-tum"}, {times_from, "--times-from"}};
-    if (!from_colmap.empty()) {
-      for (const char* f : {"cameras.txt", "images.txt", "points3D.txt"})
-        inputs.push_back({from_colmap + "/" + f, "--from-colmap"});
-    }
-    OutputSet outputs(inputs, {{output, "-o"}});
-    if (!input.empty()) throw UsageError("an input camera path is only used with --to-*");
-    if (output.empty()) throw UsageError("imports need -o OUT.camera.csv");
-    if (!from_tum.empty()) {
-      if (!(fov_deg > 0 && fov_deg < 180)) throw UsageError("--fov must be in (0, 180) degrees");
-      CameraPath path = CameraPathFromTum(ReadTumTrajectoryFile(from_tum), fov_deg);
-      path.metadata["source"] = from_tum;
-      WriteCameraPathFile(path, output);
-      outputs.CommitAll();
-    } else {
-      const CameraPath path = ImportColmap(from_colmap, times_from);
-      WriteCameraPathFile(path, output);
-      outputs.CommitAll();
-      int registered = 0;
-      for (const auto& f : path.frames) registered += f.confidence.value_or(1) > 0;
-      std::cerr << "converted " << registered << " registered frames of " << path.frames.size()
-                << " (the others hold the previous pose, confidence 0)\n";
-    }
-    std::cerr << "wrote " << output << "\n";
-    return kExitOk;
+    if (exports == 0) return RunImport(import, !request.input.empty());
+    if (request.input.empty()) throw UsageError("exports need an input camera path");
+    if (shot >= 0) request.shot = shot;
+    if (sensor_option->count() > 0) request.sensor_width_mm = sensor_width_mm;
+    return RunExport(request);
   });
 }
 

@@ -264,6 +264,7 @@ int RunMake(int argc, char** argv) {
     if (!no_edits && !opt.use_edits) std::cerr << "make: a motion platform takes no edits file\n";
     opt.estimate_args = split.estimate;
     opt.haptics_args = split.haptics;
+    batch::CheckMakeOptions(opt);  // before the progress bar: a usage error is one line
     if (!opt.out_dir.empty()) CheckOutputPaths({{opt.film, "FILM"}}, {{opt.out_dir, "-o", true}});
     const ProgressMode mode = quiet || progress == "quiet" ? ProgressMode::kQuiet
                               : progress == "bar"          ? ProgressMode::kBar

@@ -247,6 +247,88 @@ void WritePages(const PlotPages& plot, const std::string& png, const std::string
   }
 }
 
+// Every option of the three subcommands.
+struct PlotArgs {
+  std::string prefix, format = "both", title;
+  int width_px = 1200;
+  PageChoice pages;
+  std::string gt_file, est_file;
+  bool absolute = false, no_scale = false, no_effects = false;
+  std::vector<std::string> track_files, platform_files;
+  std::string confidence_file;
+};
+
+void AddCommonOptions(CLI::App* sub, PlotArgs* a) {
+  sub->add_option("-o,--output", a->prefix,
+                  "output prefix: writes PREFIX.png and/or PREFIX.svg (a trailing .png or .svg "
+                  "is the prefix's; with one --format, a device or FIFO is written as named)")
+      ->required();
+  sub->add_option("--format", a->format, "png, svg or both")
+      ->capture_default_str()->check(CLI::IsMember({"png", "svg", "both"}));
+  sub->add_option("--width", a->width_px, "figure width in pixels")
+      ->capture_default_str()
+      ->check(FiniteRange(300, 10000));
+  sub->add_option("--title", a->title, "figure title (default: the input file names)");
+  AddPageOptions(sub, &a->pages);
+}
+
+CLI::App* AddCameraCommand(CLI::App& app, PlotArgs* a) {
+  CLI::App* camera = app.add_subcommand(
+      "camera",
+      "pan/tilt/roll (deg), camera centre x/y/z and horizontal FOV over time; with a second "
+      "path, the estimate is drawn dashed over the ground truth");
+  camera->add_option("gt", a->gt_file, "camera path (*.camera.csv), e.g. the ground truth")
+      ->required();
+  camera->add_option("est", a->est_file, "optional second camera path (the estimate)");
+  camera->add_flag("--absolute", a->absolute,
+                   "plot poses as stored instead of relative to each path's first frame");
+  camera->add_flag("--no-scale", a->no_scale,
+                   "do not scale the estimate's positions onto the first path (least squares)");
+  camera->add_flag("--no-effects", a->no_effects,
+                   "no time line of the effects the classifier finds in each path");
+  AddCommonOptions(camera, a);
+  return camera;
+}
+
+CLI::App* AddHapticCommand(CLI::App& app, PlotArgs* a) {
+  CLI::App* haptic = app.add_subcommand(
+      "haptic",
+      "actuator displacements (head, left hand, right hand; x/y/z in mm) over time, with the "
+      "`effect` column as labelled bands; several tracks are overlaid (the first solid, the "
+      "others dashed), e.g. the cinematic and semantic tracks of a clip as in the paper's "
+      "Figure 4");
+  haptic->add_option("tracks", a->track_files, "haptic tracks (*.haptic.csv), one or more")
+      ->required();
+  haptic->add_option("--camera", a->confidence_file,
+                     "the camera path the tracks were made from: its `confidence` column as a "
+                     "shaded panel under the curves, its `shot` column as cut lines when the "
+                     "tracks have none");
+  AddCommonOptions(haptic, a);
+  return haptic;
+}
+
+CLI::App* AddPlatformCommand(CLI::App& app, PlotArgs* a) {
+  CLI::App* platform = app.add_subcommand(
+      "platform",
+      "motion platform poses (sway/heave/surge in mm, pitch/yaw/roll in degrees) and Stewart "
+      "leg extensions over time; several tracks overlaid (the first solid, the others dashed)");
+  platform->add_option("tracks", a->platform_files, "platform tracks (*.platform.csv), one or more")
+      ->required();
+  AddCommonOptions(platform, a);
+  return platform;
+}
+
+PlotPages CameraPlot(const PlotArgs& a, std::vector<NamedPath>* inputs) {
+  *inputs = {{a.gt_file, "GT"}, {a.est_file, "EST"}};
+  CameraPlotOptions opt;
+  opt.relative_to_first = !a.absolute;
+  opt.scale_estimate = !a.absolute && !a.no_scale;
+  opt.effect_labels = !a.no_effects;
+  opt.title =
+      a.title.empty() ? a.gt_file + (a.est_file.empty() ? "" : "  vs  " + a.est_file) : a.title;
+  return CameraPages(a.gt_file, a.est_file, opt, a.pages);
+}
+
 }  // namespace
 
 int RunPlot(int argc, char** argv) {
@@ -254,88 +336,27 @@ int RunPlot(int argc, char** argv) {
                "OUT_PREFIX.svg).",
                argv[0]};
   app.require_subcommand(1);
-  std::string prefix, format = "both", title;
-  int width_px = 1200;
-  PageChoice pages;
-  auto add_common = [&](CLI::App* sub) {
-    sub->add_option("-o,--output", prefix,
-                    "output prefix: writes PREFIX.png and/or PREFIX.svg (a trailing .png or .svg "
-                    "is the prefix's; with one --format, a device or FIFO is written as named)")
-        ->required();
-    sub->add_option("--format", format, "png, svg or both")
-        ->capture_default_str()->check(CLI::IsMember({"png", "svg", "both"}));
-    sub->add_option("--width", width_px, "figure width in pixels")
-        ->capture_default_str()
-        ->check(FiniteRange(300, 10000));
-    sub->add_option("--title", title, "figure title (default: the input file names)");
-    AddPageOptions(sub, &pages);
-  };
-
-  std::string gt_file, est_file;
-  bool absolute = false, no_scale = false, no_effects = false;
-  CLI::App* camera = app.add_subcommand(
-      "camera",
-      "pan/tilt/roll (deg), camera centre x/y/z and horizontal FOV over time; with a second "
-      "path, the estimate is drawn dashed over the ground truth");
-  camera->add_option("gt", gt_file, "camera path (*.camera.csv), e.g. the ground truth")
-      ->required();
-  camera->add_option("est", est_file, "optional second camera path (the estimate)");
-  camera->add_flag("--absolute", absolute,
-                   "plot poses as stored instead of relative to each path's first frame");
-  camera->add_flag("--no-scale", no_scale,
-                   "do not scale the estimate's positions onto the first path (least squares)");
-  camera->add_flag("--no-effects", no_effects,
-                   "no time line of the effects the classifier finds in each path");
-  add_common(camera);
-
-  std::vector<std::string> track_files;
-  CLI::App* haptic = app.add_subcommand(
-      "haptic",
-      "actuator displacements (head, left hand, right hand; x/y/z in mm) over time, with the "
-      "`effect` column as labelled bands; several tracks are overlaid (the first solid, the "
-      "others dashed), e.g. the cinematic and semantic tracks of a clip as in the paper's "
-      "Figure 4");
-  haptic->add_option("tracks", track_files, "haptic tracks (*.haptic.csv), one or more")
-      ->required();
-  std::string confidence_file;
-  haptic->add_option("--camera", confidence_file,
-                     "the camera path the tracks were made from: its `confidence` column as a "
-                     "shaded panel under the curves, its `shot` column as cut lines when the "
-                     "tracks have none");
-  add_common(haptic);
-
-  std::vector<std::string> platform_files;
-  CLI::App* platform = app.add_subcommand(
-      "platform",
-      "motion platform poses (sway/heave/surge in mm, pitch/yaw/roll in degrees) and Stewart "
-      "leg extensions over time; several tracks overlaid (the first solid, the others dashed)");
-  platform->add_option("tracks", platform_files, "platform tracks (*.platform.csv), one or more")
-      ->required();
-  add_common(platform);
-
+  PlotArgs a;
+  CLI::App* camera = AddCameraCommand(app, &a);
+  AddHapticCommand(app, &a);
+  CLI::App* platform = AddPlatformCommand(app, &a);
   return RunApp(app, argc, argv, [&]() {
-    const bool single = format != "both";
-    const std::string png = format != "svg" ? PlotOutputPath(prefix, "png", single) : "";
-    const std::string svg = format != "png" ? PlotOutputPath(prefix, "svg", single) : "";
+    const bool single = a.format != "both";
+    const std::string png = a.format != "svg" ? PlotOutputPath(a.prefix, "png", single) : "";
+    const std::string svg = a.format != "png" ? PlotOutputPath(a.prefix, "svg", single) : "";
     std::vector<NamedPath> inputs;
     PlotPages plot;
     if (camera->parsed()) {
-      inputs = {{gt_file, "GT"}, {est_file, "EST"}};
-      CameraPlotOptions opt;
-      opt.relative_to_first = !absolute;
-      opt.scale_estimate = !absolute && !no_scale;
-      opt.effect_labels = !no_effects;
-      opt.title = title.empty() ? gt_file + (est_file.empty() ? "" : "  vs  " + est_file) : title;
-      plot = CameraPages(gt_file, est_file, opt, pages);
+      plot = CameraPlot(a, &inputs);
     } else if (platform->parsed()) {
-      for (const std::string& f : platform_files) inputs.push_back({f, "TRACK"});
-      plot = PlatformPages(platform_files, title, pages);
+      for (const std::string& f : a.platform_files) inputs.push_back({f, "TRACK"});
+      plot = PlatformPages(a.platform_files, a.title, a.pages);
     } else {
-      for (const std::string& f : track_files) inputs.push_back({f, "TRACK"});
-      inputs.push_back({confidence_file, "--camera"});
-      plot = HapticPages(track_files, confidence_file, title, pages);
+      for (const std::string& f : a.track_files) inputs.push_back({f, "TRACK"});
+      inputs.push_back({a.confidence_file, "--camera"});
+      plot = HapticPages(a.track_files, a.confidence_file, a.title, a.pages);
     }
-    WritePages(plot, png, svg, inputs, width_px);
+    WritePages(plot, png, svg, inputs, a.width_px);
     return kExitOk;
   });
 }

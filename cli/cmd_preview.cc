@@ -18,13 +18,26 @@ int RunPreview(int argc, char** argv) {
       "Render VIDEO with an inset showing the HapSeat's three actuators following the haptic "
       "track\n"
       "(top view of each 0.10 m workspace with a 1 s trail, and a gauge for height): the target\n"
-      "as a dot and, unless --no-sim, the simulated grip (sim device, Eq. 7 loop) as a ring.",
+      "as a dot and, unless --no-sim, the simulated grip (sim device, Eq. 7 loop) as a ring.\n"
+      "The film's sound is kept (copied, or AAC where MP4 cannot hold it) and the timecode,\n"
+      "shot, camera model and semantic effect are burnt in top-left. --from/--to render a\n"
+      "range (seconds or HH:MM:SS:FF), sound included. Details: docs/haptics.md \"Preview\".",
       "hapcine preview"};
   PreviewOptions o;
   app.add_option("video", o.video, "The video file")->required();
   app.add_option("--track", o.track,
                  "Haptic track (*.haptic.csv). Default: <video stem>.haptic.csv beside the video");
   app.add_option("-o,--output", o.output, "Output MP4 (H.264), written atomically")->required();
+  app.add_option("--camera", o.camera,
+                 "Camera path (*.camera.csv) for the burnt-in shot, camera model and (for a track\n"
+                 "without an effect column) the classifier's effects. Default: <video stem>.camera.csv\n"
+                 "beside the video when it exists");
+  app.add_option("--from", o.from,
+                 "Start of the range: seconds (62.5) or timecode HH:MM:SS:FF at the film's rate");
+  app.add_option("--to", o.to, "End of the range (excluded), as --from. Default: the end");
+  bool no_burn_in = false, no_audio = false;
+  app.add_flag("--no-burn-in", no_burn_in, "No timecode, shot, camera model or effect text");
+  app.add_flag("--no-audio", no_audio, "A silent preview, even of a film with sound");
   app.add_option("--platform", o.platform_track,
                  "Draw a motion platform track (*.platform.csv, from `hapcine haptics --seat\n"
                  "platform.json`) instead of the HapSeat: a seat that moves, seen from behind,\n"
@@ -51,6 +64,8 @@ int RunPreview(int argc, char** argv) {
       ->check(FiniteRange(0, 50));
   return RunApp(app, argc, argv, [&] {
     o.simulate_platform = !no_sim && !o.platform_track.empty();
+    o.burn_in = !no_burn_in;
+    o.audio = !no_audio;
     if (!no_sim) {
       loop.Check();
       o.simulate = [&loop](const HapticTrack& t) { return SimulateSeat(t, loop); };
@@ -61,7 +76,7 @@ int RunPreview(int argc, char** argv) {
                                   ? (v.parent_path() / (v.stem().string() + ".haptic.csv")).string()
                                   : o.track;
     OutputSet outputs({{o.video, "VIDEO"}, {o.platform_track.empty() ? track : o.track, "--track"},
-                       {o.platform_track, "--platform"}},
+                       {o.platform_track, "--platform"}, {o.camera, "--camera"}},
                       {{o.output, "-o"}});
     Progress progress(std::cerr, ProgressModeFor(false), "preview", "frames");
     const int n = RenderPreview(o, [&](int done, int total) { progress.Update(done, total); });

@@ -40,125 +40,133 @@ std::string Progress(const study::RunSummary& s) {
   return text;
 }
 
-}  // namespace
-
-int RunStudy(int argc, char** argv) {
-  CLI::App app{
-      "Plan, run and analyse the pairwise user study of the paper (section 5): every pair of "
-      "haptic conditions of every clip, in both orders, in a random order per participant; the "
-      "participant picks the preferred of each pair. See docs/study.md.",
-      "hapcine study"};
-  app.require_subcommand(1);
-
-  // ---- plan
-  study::PlanOptions plan_opt;
-  std::string plan_out;
+// One struct per subcommand: its options, how they are declared, and what it
+// does once parsed.
+struct PlanCommand {
+  study::PlanOptions options;
+  std::string output;
   std::string conditions_csv = "cinematic,semantic,none,random";
-  CLI::App* plan = app.add_subcommand(
-      "plan",
-      "Make a study plan. Each CLIP is a video `dir/<stem>.<ext>` with sibling tracks "
-      "`dir/<stem>.<condition>.haptic.csv`, or a directory holding one video and "
-      "`<condition>.haptic.csv`. Conditions with identical tracks (within the tolerance) are "
-      "tested "
-      "once (the paper's Vertigo: cinematic == none).");
-  plan->add_option("clips", plan_opt.clips, "Video files or clip directories")->required();
-  plan->add_option("-o,--output", plan_out, "Plan file to write (JSON)")->required();
-  plan->add_option("--participants", plan_opt.participants,
-                   "Number of participants to draw orders for (ids P01, P02, ...)")
-      ->capture_default_str()
-      ->check(FiniteRange(1, 100000));
-  plan->add_option("--seed", plan_opt.seed,
-                   "Random seed; recorded in the plan, same seed and inputs -> same plan")
-      ->capture_default_str()
-      ->check(FiniteRange(0, 4294967295));
-  plan->add_option("--conditions", conditions_csv,
-                   "Comma-separated haptic conditions (track names)")
-      ->capture_default_str();
-  plan->add_option("--identical-tolerance-m", plan_opt.identical_tolerance_m,
-                   "Tracks whose samples all agree within this many metres are the same stimulus")
-      ->capture_default_str()
-      ->check(FiniteRange(0, 1));
   std::string questionnaire;
-  plan->add_option("--questionnaire", questionnaire,
-                   "Post-test questionnaire asked after the last trial: `paper` (the questions "
-                   "built from the paper's section 6) or a JSON file of questions (see "
-                   "docs/study.md). Default: none");
+  CLI::App* app = nullptr;
 
-  // ---- run
-  study::RunOptions run_opt;
-  CLI::App* run = app.add_subcommand(
-      "run",
-      "Run one participant's session: training (each clip once with one random condition), then "
-      "each pair (stimulus 1 then 2) and the answer: one key press (1 or 2, r replays, q stops) "
-      "on a terminal, one line per answer from a pipe, or --responses FILE; then the plan's "
-      "questionnaire, if any, one typed line per answer. Every answer is "
-      "journalled at once "
-      "(fsync): stop at any time (q, Ctrl-C) and run the same command again to resume. Exit 0 when "
-      "complete (results file written), 1 if stopped early or on failure.");
-  run->add_option("plan", run_opt.plan_path, "Plan file from `hapcine study plan`")->required();
-  run->add_option("--participant", run_opt.participant, "Participant id (P07) or number (7)")
-      ->required();
-  run->add_option("--device", run_opt.device,
-                  "Haptic device passed to the player: sim, none or falcon")
-      ->capture_default_str();
-  run->add_option("--player-cmd", run_opt.player_cmd,
-                  std::string("Player command template; {exe} {video} {track} {device} {clip} "
-                              "{condition} are replaced, no shell. Default: \"") +
-                      study::kDefaultPlayerTemplate + "\" ({exe} = this program)");
-  run->add_option("--responses", run_opt.responses_path,
-                  "Scripted answers, one 1 or 2 per line from the first unanswered trial, then "
-                  "one line per questionnaire answer (default: ask on stdin)");
-  run->add_option("-o,--results", run_opt.results_path,
-                  "Results file (default <plan dir>/<id>.results.json; journal beside it as "
-                  "<id>.journal.jsonl)");
+  void Add(CLI::App& parent) {
+    app = parent.add_subcommand(
+        "plan",
+        "Make a study plan. Each CLIP is a video `dir/<stem>.<ext>` with sibling tracks "
+        "`dir/<stem>.<condition>.haptic.csv`, or a directory holding one video and "
+        "`<condition>.haptic.csv`. Conditions with identical tracks (within the tolerance) are "
+        "tested once (the paper's Vertigo: cinematic == none).");
+    app->add_option("clips", options.clips, "Video files or clip directories")->required();
+    app->add_option("-o,--output", output, "Plan file to write (JSON)")->required();
+    app->add_option("--participants", options.participants,
+                    "Number of participants to draw orders for (ids P01, P02, ...)")
+        ->capture_default_str()
+        ->check(FiniteRange(1, 100000));
+    app->add_option("--seed", options.seed,
+                    "Random seed; recorded in the plan, same seed and inputs -> same plan")
+        ->capture_default_str()
+        ->check(FiniteRange(0, 4294967295));
+    app->add_option("--conditions", conditions_csv,
+                    "Comma-separated haptic conditions (track names)")
+        ->capture_default_str();
+    app->add_option("--identical-tolerance-m", options.identical_tolerance_m,
+                    "Tracks whose samples all agree within this many metres are the same "
+                    "stimulus")
+        ->capture_default_str()
+        ->check(FiniteRange(0, 1));
+    app->add_option("--questionnaire", questionnaire,
+                    "Post-test questionnaire asked after the last trial: `paper` (the questions "
+                    "built from the paper's section 6) or a JSON file of questions (see "
+                    "docs/study.md). Default: none");
+  }
+
+  int Run() {
+    options.conditions.clear();
+    std::stringstream ss(conditions_csv);
+    for (std::string c; std::getline(ss, c, ',');) options.conditions.push_back(c);
+    std::vector<NamedPath> clips;
+    for (const std::string& c : options.clips) clips.push_back({c, "CLIP"});
+    if (questionnaire != "paper") clips.push_back({questionnaire, "--questionnaire"});
+    options.questionnaire = LoadQuestionnaire(questionnaire);
+    OutputSet outputs(clips, {{output, "-o"}});
+    const study::StudyPlan p = study::MakePlan(options, &std::cerr);
+    study::WritePlanFile(p, output);
+    outputs.CommitAll();
+    std::cerr << "plan " << p.plan_id << ": " << p.clips.size() << " clips, "
+              << study::TrialsPerParticipant(p.clips) << " trials per participant, "
+              << p.participants.size() << " participants -> " << output << "\n";
+    return kExitOk;
+  }
+};
+
+struct RunCommand {
+  study::RunOptions options;
   bool no_verify = false;
-  run->add_flag("--no-verify", no_verify,
-                "Skip re-hashing the videos and tracks against the plan (default: verify)");
+  CLI::App* app = nullptr;
 
-  // ---- analyze
+  void Add(CLI::App& parent) {
+    app = parent.add_subcommand(
+        "run",
+        "Run one participant's session: training (each clip once with one random condition), "
+        "then each pair (stimulus 1 then 2) and the answer: one key press (1 or 2, r replays, q "
+        "stops) on a terminal, one line per answer from a pipe, or --responses FILE; then the "
+        "plan's questionnaire, if any, one typed line per answer. Every answer is journalled at "
+        "once (fsync): stop at any time (q, Ctrl-C) and run the same command again to resume. "
+        "Exit 0 when complete (results file written), 1 if stopped early or on failure.");
+    app->add_option("plan", options.plan_path, "Plan file from `hapcine study plan`")->required();
+    app->add_option("--participant", options.participant, "Participant id (P07) or number (7)")
+        ->required();
+    app->add_option("--device", options.device,
+                    "Haptic device passed to the player: sim, none or falcon")
+        ->capture_default_str();
+    app->add_option("--player-cmd", options.player_cmd,
+                    std::string("Player command template; {exe} {video} {track} {device} {clip} "
+                                "{condition} are replaced, no shell. Default: \"") +
+                        study::kDefaultPlayerTemplate + "\" ({exe} = this program)");
+    app->add_option("--responses", options.responses_path,
+                    "Scripted answers, one 1 or 2 per line from the first unanswered trial, then "
+                    "one line per questionnaire answer (default: ask on stdin)");
+    app->add_option("-o,--results", options.results_path,
+                    "Results file (default <plan dir>/<id>.results.json; journal beside it as "
+                    "<id>.journal.jsonl)");
+    app->add_flag("--no-verify", no_verify,
+                  "Skip re-hashing the videos and tracks against the plan (default: verify)");
+  }
+
+  int Run() {
+    options.verify_hashes = !no_verify;
+    // Answers are journalled as they come; only the names are checked.
+    CheckOutputPaths({{options.plan_path, "PLAN"}, {options.responses_path, "--responses"}},
+                     {{options.results_path, "-o"}});
+    const study::RunSummary s = study::RunSession(options, std::cin, std::cout);
+    if (!s.complete) {
+      std::cerr << "hapcine study run: " << s.journal_path << ": session incomplete ("
+                << Progress(s) << "); run again to resume\n";
+      return kExitFailure;
+    }
+    return kExitOk;
+  }
+};
+
+struct AnalyzeCommand {
   std::vector<std::string> result_files;
   std::string prefix;
-  CLI::App* analyze = app.add_subcommand(
-      "analyze",
-      "Score and test the results of one plan: per-condition and per-sequence normalised scores, "
-      "Shapiro-Wilk, Friedman (participants as blocks), pairwise Wilcoxon signed-rank with "
-      "Holm-Bonferroni. Prints a table; with -o also writes PREFIX.txt, PREFIX.json, "
-      "PREFIX.overall.svg (Fig. 6) and PREFIX.sequences.svg (Fig. 7).");
-  analyze->add_option("results", result_files, "Results files (*.results.json) of the same plan")
-      ->required();
-  analyze->add_option("-o,--output", prefix, "Report prefix (default: print only)");
+  CLI::App* app = nullptr;
 
-  return RunApp(app, argc, argv, [&]() -> int {
-    if (plan->parsed()) {
-      plan_opt.conditions.clear();
-      std::stringstream ss(conditions_csv);
-      for (std::string c; std::getline(ss, c, ',');) plan_opt.conditions.push_back(c);
-      std::vector<NamedPath> clips;
-      for (const std::string& c : plan_opt.clips) clips.push_back({c, "CLIP"});
-      if (questionnaire != "paper") clips.push_back({questionnaire, "--questionnaire"});
-      plan_opt.questionnaire = LoadQuestionnaire(questionnaire);
-      OutputSet outputs(clips, {{plan_out, "-o"}});
-      const study::StudyPlan p = study::MakePlan(plan_opt, &std::cerr);
-      study::WritePlanFile(p, plan_out);
-      outputs.CommitAll();
-      std::cerr << "plan " << p.plan_id << ": " << p.clips.size() << " clips, "
-                << study::TrialsPerParticipant(p.clips) << " trials per participant, "
-                << p.participants.size() << " participants -> " << plan_out << "\n";
-      return kExitOk;
-    }
-    if (run->parsed()) {
-      run_opt.verify_hashes = !no_verify;
-      // Answers are journalled as they come; only the names are checked.
-      CheckOutputPaths({{run_opt.plan_path, "PLAN"}, {run_opt.responses_path, "--responses"}},
-                       {{run_opt.results_path, "-o"}});
-      const study::RunSummary s = study::RunSession(run_opt, std::cin, std::cout);
-      if (!s.complete) {
-        std::cerr << "hapcine study run: " << s.journal_path << ": session incomplete ("
-                  << Progress(s) << "); run again to resume\n";
-        return kExitFailure;
-      }
-      return kExitOk;
-    }
+  void Add(CLI::App& parent) {
+    app = parent.add_subcommand(
+        "analyze",
+        "Score and test the results of one plan: per-condition and per-sequence normalised "
+        "scores, Shapiro-Wilk, Friedman (participants as blocks), pairwise Wilcoxon signed-rank "
+        "with Holm-Bonferroni. Prints a table; with -o also writes PREFIX.txt, PREFIX.json, "
+        "PREFIX.overall.svg (Fig. 6) and PREFIX.sequences.svg (Fig. 7).");
+    app->add_option("results", result_files,
+                    "Results files (*.results.json) of the same plan")
+        ->required();
+    app->add_option("-o,--output", prefix, "Report prefix (default: print only)");
+  }
+
+  int Run() {
     std::vector<NamedPath> inputs, outputs;
     for (const auto& f : result_files) inputs.push_back({f, "RESULTS"});
     if (!prefix.empty()) {
@@ -176,6 +184,28 @@ int RunStudy(int argc, char** argv) {
       for (const auto& path : written) std::cerr << "wrote " << path << "\n";
     }
     return kExitOk;
+  }
+};
+
+}  // namespace
+
+int RunStudy(int argc, char** argv) {
+  CLI::App app{
+      "Plan, run and analyse the pairwise user study of the paper (section 5): every pair of "
+      "haptic conditions of every clip, in both orders, in a random order per participant; the "
+      "participant picks the preferred of each pair. See docs/study.md.",
+      "hapcine study"};
+  app.require_subcommand(1);
+  PlanCommand plan;
+  RunCommand run;
+  AnalyzeCommand analyze;
+  plan.Add(app);
+  run.Add(app);
+  analyze.Add(app);
+  return RunApp(app, argc, argv, [&]() -> int {
+    if (plan.app->parsed()) return plan.Run();
+    if (run.app->parsed()) return run.Run();
+    return analyze.Run();
   });
 }
 

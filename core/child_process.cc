@@ -35,6 +35,72 @@ bool WaitUntil(pid_t pid, const Clock::time_point* deadline, int* status) {
   }
 }
 
+// The child's side of fork: only async-signal-safe calls until exec. On
+// exec failure, errno goes through `exec_error_fd` and the log says why.
+[[noreturn]] void ExecInChild(char* const* cargv, pid_t parent, int null_fd, int log_fd,
+                              int exec_error_fd) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(127);  // parent died before prctl
+  // Default SIGINT/SIGTERM (exec resets caught signals; this unblocks them).
+  sigset_t none;
+  sigemptyset(&none);
+  ::sigprocmask(SIG_SETMASK, &none, nullptr);
+  if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);
+  ::dup2(log_fd, STDOUT_FILENO);
+  ::dup2(log_fd, STDERR_FILENO);
+  ::execvp(cargv[0], cargv);
+  const int err = errno;
+  if (exec_error_fd >= 0) (void)!::write(exec_error_fd, &err, sizeof(err));
+  const char* msg = "cannot execute step program: ";
+  (void)!::write(STDERR_FILENO, msg, std::strlen(msg));
+  (void)!::write(STDERR_FILENO, cargv[0], std::strlen(cargv[0]));
+  (void)!::write(STDERR_FILENO, "\n", 1);
+  ::_exit(127);
+}
+
+// The parent's side of the exec pipe: the child's errno if exec failed
+// (a successful exec closes the pipe with nothing written).
+void ReadExecError(int exec_pipe[2], ChildResult* result) {
+  if (exec_pipe[1] < 0) return;
+  ::close(exec_pipe[1]);
+  int err = 0;
+  ssize_t n;
+  while ((n = ::read(exec_pipe[0], &err, sizeof(err))) < 0 && errno == EINTR) {
+  }
+  ::close(exec_pipe[0]);
+  if (n == static_cast<ssize_t>(sizeof(err))) {
+    result->started = false;
+    result->start_errno = err;
+  }
+}
+
+// Waits for the child; on a stop request, SIGTERM, then SIGKILL after the
+// grace period.
+int WaitOrStop(pid_t pid, const ChildOptions& options, ChildResult* result) {
+  int status = 0;
+  if (!options.stop_on_request) {
+    WaitUntil(pid, nullptr, &status);
+    return status;
+  }
+  for (;;) {
+    const Clock::time_point next = Clock::now() + kPoll;
+    if (WaitUntil(pid, &next, &status)) break;
+    if (!StopRequested()) continue;
+    result->stopped = true;
+    ::kill(pid, SIGTERM);
+    const Clock::time_point grace =
+        Clock::now() + std::chrono::milliseconds(static_cast<long>(options.grace_s * 1000));
+    if (!WaitUntil(pid, &grace, &status)) {
+      ::kill(pid, SIGKILL);
+      WaitUntil(pid, nullptr, &status);
+    }
+    break;
+  }
+  // A child that a terminal's Ctrl-C ended together with us counts as stopped.
+  if (StopRequested()) result->stopped = true;
+  return status;
+}
+
 }  // namespace
 
 ChildResult RunChild(const std::vector<std::string>& argv, const std::string& log_path,
@@ -52,8 +118,6 @@ ChildResult RunChild(const std::vector<std::string>& argv, const std::string& lo
   // exec failure is reported through this pipe (closed by a successful exec).
   int exec_pipe[2] = {-1, -1};
   if (::pipe2(exec_pipe, O_CLOEXEC) != 0) exec_pipe[0] = exec_pipe[1] = -1;
-  sigset_t none;
-  sigemptyset(&none);
   const pid_t parent = ::getpid();
   const auto t0 = Clock::now();
 
@@ -64,62 +128,14 @@ ChildResult RunChild(const std::vector<std::string>& argv, const std::string& lo
       if (fd >= 0) ::close(fd);
     throw Error(argv[0], std::string("cannot fork: ") + std::strerror(err));
   }
-  if (pid == 0) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(127);  // parent died before prctl
-    // Default SIGINT/SIGTERM (exec resets caught signals; this unblocks them).
-    ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);
-    ::dup2(log_fd, STDOUT_FILENO);
-    ::dup2(log_fd, STDERR_FILENO);
-    ::execvp(cargv[0], cargv.data());
-    const int err = errno;
-    if (exec_pipe[1] >= 0) (void)!::write(exec_pipe[1], &err, sizeof(err));
-    const char* msg = "cannot execute step program: ";
-    (void)!::write(STDERR_FILENO, msg, std::strlen(msg));
-    (void)!::write(STDERR_FILENO, cargv[0], std::strlen(cargv[0]));
-    (void)!::write(STDERR_FILENO, "\n", 1);
-    ::_exit(127);
-  }
+  if (pid == 0) ExecInChild(cargv.data(), parent, null_fd, log_fd, exec_pipe[1]);
   ::close(log_fd);
   if (null_fd >= 0) ::close(null_fd);
 
   ChildResult result;
   result.started = true;
-  if (exec_pipe[1] >= 0) {
-    ::close(exec_pipe[1]);
-    int err = 0;
-    ssize_t n;
-    while ((n = ::read(exec_pipe[0], &err, sizeof(err))) < 0 && errno == EINTR) {
-    }
-    ::close(exec_pipe[0]);
-    if (n == static_cast<ssize_t>(sizeof(err))) {
-      result.started = false;
-      result.start_errno = err;
-    }
-  }
-
-  int status = 0;
-  if (!options.stop_on_request) {
-    WaitUntil(pid, nullptr, &status);
-  } else {
-    for (;;) {
-      const Clock::time_point next = Clock::now() + kPoll;
-      if (WaitUntil(pid, &next, &status)) break;
-      if (!StopRequested()) continue;
-      result.stopped = true;
-      ::kill(pid, SIGTERM);
-      const Clock::time_point grace =
-          Clock::now() + std::chrono::milliseconds(static_cast<long>(options.grace_s * 1000));
-      if (!WaitUntil(pid, &grace, &status)) {
-        ::kill(pid, SIGKILL);
-        WaitUntil(pid, nullptr, &status);
-      }
-      break;
-    }
-    // A child that a terminal's Ctrl-C ended together with us counts as stopped.
-    if (StopRequested()) result.stopped = true;
-  }
+  ReadExecError(exec_pipe, &result);
+  const int status = WaitOrStop(pid, options, &result);
   result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) result.term_signal = WTERMSIG(status);

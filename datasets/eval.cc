@@ -121,6 +121,40 @@ struct SegmentResult {
   int model_equal = 0;
 };
 
+// The errors of one estimated frame `e` against its ground truth `g`, both
+// relative to their segment's first frames; `c_est_aligned` is e's centre
+// after the trajectory alignment.
+FrameError FrameErrorAgainst(const CameraFrame& gt0, const CameraFrame& est0,
+                             const CameraFrame& g, const CameraFrame& e,
+                             const Eigen::Vector3d& c_gt, const Eigen::Vector3d& c_est_aligned) {
+  FrameError fe;
+  fe.gt_frame = g.frame;
+  fe.est_frame = e.frame;
+  fe.time_s = g.time_s;
+  const Eigen::Quaterniond gt_rel = gt0.world_from_cam.conjugate() * g.world_from_cam;
+  const Eigen::Quaterniond est_rel = est0.world_from_cam.conjugate() * e.world_from_cam;
+  fe.rotation_deg = AngleBetweenDeg(gt_rel, est_rel);
+  fe.fov_deg = std::abs(e.fov_deg - g.fov_deg);
+  fe.fov_percent = 100.0 * fe.fov_deg / g.fov_deg;
+  fe.zoom_ratio_percent = 100.0 * std::abs(FocalRatio(est0, e) / FocalRatio(gt0, g) - 1.0);
+  fe.ate = (c_gt - c_est_aligned).norm();
+  return fe;
+}
+
+// evo's RPE: E = (Q_i^-1 Q_j)^-1 (P_i^-1 P_j) with the estimate P aligned.
+// The alignment rotation cancels in both parts; only its scale remains in
+// the translation. `gt_step`/`est_step`: centre j minus centre i.
+void AddRelativePoseError(const CameraFrame& g, const CameraFrame& e, const CameraFrame& g2,
+                          const CameraFrame& e2, const Eigen::Vector3d& gt_step,
+                          const Eigen::Vector3d& est_step, double scale, FrameError* fe) {
+  const Eigen::Quaterniond gt_rot = g.world_from_cam.conjugate() * g2.world_from_cam;
+  const Eigen::Quaterniond est_rot = e.world_from_cam.conjugate() * e2.world_from_cam;
+  const Eigen::Vector3d t_gt = g.world_from_cam.conjugate() * gt_step;
+  const Eigen::Vector3d t_est = scale * (e.world_from_cam.conjugate() * est_step);
+  fe->rpe_rotation_deg = AngleBetweenDeg(gt_rot, est_rot);
+  fe->rpe_translation = (t_est - t_gt).norm();
+}
+
 SegmentResult EvaluateSegment(const CameraPath& gt, const CameraPath& est,
                               const std::vector<MatchedPair>& pairs,
                               const EvalOptions& opt, std::optional<int> shot) {
@@ -149,34 +183,12 @@ SegmentResult EvaluateSegment(const CameraPath& gt, const CameraPath& est,
   for (size_t k = 0; k < pairs.size(); ++k) {
     const CameraFrame& g = gt.frames[pairs[k].gt];
     const CameraFrame& e = est.frames[pairs[k].est];
-    FrameError fe;
-    fe.gt_frame = g.frame;
-    fe.est_frame = e.frame;
-    fe.time_s = g.time_s;
+    FrameError fe = FrameErrorAgainst(gt0, est0, g, e, c_gt[k], align.Apply(c_est[k]));
     fe.shot = pairs[k].shot;
-    const Eigen::Quaterniond gt_rel = gt0.world_from_cam.conjugate() * g.world_from_cam;
-    const Eigen::Quaterniond est_rel = est0.world_from_cam.conjugate() * e.world_from_cam;
-    fe.rotation_deg = AngleBetweenDeg(gt_rel, est_rel);
-    fe.fov_deg = std::abs(e.fov_deg - g.fov_deg);
-    fe.fov_percent = 100.0 * fe.fov_deg / g.fov_deg;
-    fe.zoom_ratio_percent =
-        100.0 * std::abs(FocalRatio(est0, e) / FocalRatio(gt0, g) - 1.0);
-    fe.ate = (c_gt[k] - align.Apply(c_est[k])).norm();
-
     if (k + opt.rpe_delta < pairs.size()) {
-      // evo's RPE: E = (Q_i^-1 Q_j)^-1 (P_i^-1 P_j) with the estimate P
-      // aligned. The alignment rotation cancels in both parts; only its scale
-      // remains in the translation.
       const size_t k2 = k + opt.rpe_delta;
-      const CameraFrame& g2 = gt.frames[pairs[k2].gt];
-      const CameraFrame& e2 = est.frames[pairs[k2].est];
-      const Eigen::Quaterniond gt_step = g.world_from_cam.conjugate() * g2.world_from_cam;
-      const Eigen::Quaterniond est_step = e.world_from_cam.conjugate() * e2.world_from_cam;
-      const Eigen::Vector3d t_gt = g.world_from_cam.conjugate() * (c_gt[k2] - c_gt[k]);
-      const Eigen::Vector3d t_est =
-          align.scale * (e.world_from_cam.conjugate() * (c_est[k2] - c_est[k]));
-      fe.rpe_rotation_deg = AngleBetweenDeg(gt_step, est_step);
-      fe.rpe_translation = (t_est - t_gt).norm();
+      AddRelativePoseError(g, e, gt.frames[pairs[k2].gt], est.frames[pairs[k2].est],
+                           c_gt[k2] - c_gt[k], c_est[k2] - c_est[k], align.scale, &fe);
       rpe_rot.push_back(*fe.rpe_rotation_deg);
       rpe_trans.push_back(*fe.rpe_translation);
     }
@@ -399,6 +411,78 @@ ErrorStats ComputeErrorStats(std::vector<double> v) {
   return s;
 }
 
+namespace {
+
+// Pairs of frames by the matching the options ask for; auto pairs by frame
+// index unless under half the frames share an index or indices are not times.
+std::vector<MatchedPair> MatchFrames(const CameraPath& gt, const CameraPath& est,
+                                     FrameMatching matching, FrameMatching* used) {
+  if (matching == FrameMatching::kTime) {
+    *used = FrameMatching::kTime;
+    return MatchByTime(gt, est);
+  }
+  std::vector<MatchedPair> pairs = MatchByIndex(gt, est);
+  *used = FrameMatching::kFrameIndex;
+  if (matching == FrameMatching::kFrameIndex) return pairs;
+  const size_t shorter = std::min(gt.frames.size(), est.frames.size());
+  if (2 * pairs.size() < shorter || IndexIsNotTime(gt, est, pairs)) {
+    *used = FrameMatching::kTime;
+    return MatchByTime(gt, est);
+  }
+  return pairs;
+}
+
+bool HasShots(const CameraPath& path) {
+  for (const auto& f : path.frames)
+    if (f.shot.has_value()) return true;
+  return false;
+}
+
+ShotBoundaryScore ScoreBoundaries(const CameraPath& gt, const CameraPath& est,
+                                    const std::vector<MatchedPair>& pairs,
+                                    int tolerance_frames) {
+  std::vector<ShotSample> samples;
+  for (const auto& p : pairs)
+    samples.push_back({gt.frames[p.gt].frame, gt.frames[p.gt].shot.value_or(-1),
+                       est.frames[p.est].shot.value_or(-1)});
+  std::stable_sort(samples.begin(), samples.end(),
+                   [](const ShotSample& a, const ShotSample& b) { return a.frame < b.frame; });
+  return ScoreShotBoundaries(samples, tolerance_frames);
+}
+
+// The matched pairs per shot (one group -1 when not per shot), without the
+// estimate's lost frames, which are counted per group instead.
+struct PairGroups {
+  std::map<int, std::vector<MatchedPair>> pairs;
+  std::map<int, int> lost;
+  int lost_total = 0;
+};
+
+PairGroups GroupPairs(const CameraPath& gt, const CameraPath& est,
+                      std::vector<MatchedPair> pairs, bool by_shot, bool gt_shots) {
+  PairGroups g;
+  for (auto& p : pairs) {
+    if (by_shot) {
+      const auto& s = gt_shots ? gt.frames[p.gt].shot : est.frames[p.est].shot;
+      p.shot = s.value_or(-1);
+    }
+    if (IsLost(est.frames[p.est])) {
+      ++g.lost[p.shot];
+      ++g.lost_total;
+      g.pairs[p.shot];  // a shot lost entirely is still listed
+      continue;
+    }
+    g.pairs[p.shot].push_back(p);
+  }
+  if (g.lost_total == static_cast<int>(pairs.size())) {
+    throw Error("eval", "every one of the " + std::to_string(g.lost_total) +
+                            " matched frames of the estimate is lost: nothing to compare");
+  }
+  return g;
+}
+
+}  // namespace
+
 EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
                                const EvalOptions& options) {
   options.Check();
@@ -406,28 +490,8 @@ EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
   report.options = options;
   report.gt_frames = static_cast<int>(gt.frames.size());
   report.est_frames = static_cast<int>(est.frames.size());
-
-  std::vector<MatchedPair> pairs;
-  switch (options.matching) {
-    case FrameMatching::kFrameIndex:
-      pairs = MatchByIndex(gt, est);
-      report.matching_used = FrameMatching::kFrameIndex;
-      break;
-    case FrameMatching::kTime:
-      pairs = MatchByTime(gt, est);
-      report.matching_used = FrameMatching::kTime;
-      break;
-    case FrameMatching::kAuto: {
-      pairs = MatchByIndex(gt, est);
-      report.matching_used = FrameMatching::kFrameIndex;
-      const size_t shorter = std::min(gt.frames.size(), est.frames.size());
-      if (2 * pairs.size() < shorter || IndexIsNotTime(gt, est, pairs)) {
-        pairs = MatchByTime(gt, est);
-        report.matching_used = FrameMatching::kTime;
-      }
-      break;
-    }
-  }
+  const std::vector<MatchedPair> pairs =
+      MatchFrames(gt, est, options.matching, &report.matching_used);
   report.matched = static_cast<int>(pairs.size());
   report.unmatched_gt = report.gt_frames - report.matched;
   report.unmatched_est = report.est_frames - report.matched;
@@ -435,47 +499,18 @@ EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
     throw Error("eval", std::string("no frames in common between ground truth and estimate (by ") +
                             FrameMatchingName(report.matching_used) + ")");
   }
-
   // Shots: the ground truth's column if it has one, else the estimate's.
-  bool gt_shots = false, est_shots = false;
-  for (const auto& f : gt.frames) gt_shots |= f.shot.has_value();
-  for (const auto& f : est.frames) est_shots |= f.shot.has_value();
+  const bool gt_shots = HasShots(gt), est_shots = HasShots(est);
   const bool by_shot = options.per_shot && (gt_shots || est_shots);
-  if (gt_shots && est_shots) {
-    std::vector<ShotSample> samples;
-    for (const auto& p : pairs)
-      samples.push_back({gt.frames[p.gt].frame, gt.frames[p.gt].shot.value_or(-1),
-                         est.frames[p.est].shot.value_or(-1)});
-    std::stable_sort(samples.begin(), samples.end(),
-                     [](const ShotSample& a, const ShotSample& b) { return a.frame < b.frame; });
-    report.shot_boundaries = ScoreShotBoundaries(samples, options.shot_tolerance_frames);
-  }
-  std::map<int, std::vector<MatchedPair>> groups;
-  std::map<int, int> lost;  // per group
-  int lost_total = 0;
-  for (auto& p : pairs) {
-    if (by_shot) {
-      const auto& s = gt_shots ? gt.frames[p.gt].shot : est.frames[p.est].shot;
-      p.shot = s.value_or(-1);
-    }
-    if (IsLost(est.frames[p.est])) {
-      ++lost[p.shot];
-      ++lost_total;
-      groups[p.shot];  // a shot lost entirely is still listed
-      continue;
-    }
-    groups[p.shot].push_back(p);
-  }
-  if (lost_total == static_cast<int>(pairs.size())) {
-    throw Error("eval", "every one of the " + std::to_string(lost_total) +
-                            " matched frames of the estimate is lost: nothing to compare");
-  }
+  if (gt_shots && est_shots)
+    report.shot_boundaries = ScoreBoundaries(gt, est, pairs, options.shot_tolerance_frames);
+  PairGroups groups = GroupPairs(gt, est, pairs, by_shot, gt_shots);
 
   std::vector<SegmentResult> segs;
-  for (const auto& [shot, group] : groups) {
+  for (const auto& [shot, group] : groups.pairs) {
     segs.push_back(EvaluateSegment(gt, est, group, options,
                                    by_shot ? std::optional<int>(shot) : std::nullopt));
-    segs.back().report.lost_frames = lost[shot];
+    segs.back().report.lost_frames = groups.lost[shot];
   }
   if (by_shot) {
     std::vector<SegmentResult> compared;  // shots with frames to compare
@@ -486,7 +521,7 @@ EvalReport EvaluateCameraPaths(const CameraPath& gt, const CameraPath& est,
   } else {
     report.overall = segs[0].report;
   }
-  report.overall.lost_frames = lost_total;
+  report.overall.lost_frames = groups.lost_total;
   for (const auto& s : segs) {
     report.per_frame.insert(report.per_frame.end(), s.frames.begin(), s.frames.end());
   }

@@ -3,13 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <sstream>
 #include <opencv2/imgproc.hpp>
 
+#include "core/camera_path.h"
 #include "core/error.h"
 #include "core/haptic_track.h"
+#include "core/output_files.h"
+#include "datasets/preview_audio.h"
+#include "datasets/preview_burn_in.h"
 #include "datasets/preview_platform.h"
 #include "datasets/video_writer.h"
 #include "extract/frame_source.h"
+#include "haptics/effect_classifier.h"
 #include "platform/sim_platform.h"
 
 namespace hapcine {
@@ -92,63 +99,161 @@ void PreviewOptions::Check() const {
   if (crf < 0 || crf > 51) throw UsageError("--crf must be in [0, 51]");
 }
 
+namespace {
+
+// Everything drawn over the film, read before the first frame.
+struct PreviewInputs {
+  HapticTrack track, response;
+  PlatformTrack platform, platform_sim;
+  CameraPath camera;
+  std::vector<EffectSegment> effects;
+};
+
+std::string Sibling(const std::string& video, const std::string& suffix) {
+  const std::filesystem::path v(video);
+  return (v.parent_path() / (v.stem().string() + suffix)).string();
+}
+
+PreviewInputs LoadInputs(const PreviewOptions& o) {
+  PreviewInputs in;
+  if (!o.platform_track.empty()) in.platform = ReadPlatformTrackFile(o.platform_track);
+  if (o.simulate_platform) in.platform_sim = SimulatePlatform(in.platform);
+  if (o.platform_track.empty()) {
+    std::string track_path = o.track;
+    if (track_path.empty()) {
+      track_path = Sibling(o.video, ".haptic.csv");
+      if (!std::filesystem::exists(track_path))
+        throw Error(o.video, "no --track given and no " + track_path + " beside the video");
+    }
+    in.track = ReadHapticTrackFile(track_path);
+    if (o.simulate) in.response = o.simulate(in.track);
+  }
+  if (!o.burn_in) return in;
+  std::string camera = o.camera;
+  if (camera.empty() && std::filesystem::exists(Sibling(o.video, ".camera.csv")))
+    camera = Sibling(o.video, ".camera.csv");
+  if (!camera.empty()) in.camera = ReadCameraPathFile(camera);
+  const bool track_has_effects =
+      std::any_of(in.track.samples.begin(), in.track.samples.end(),
+                  [](const HapticSample& s) { return s.effect.has_value(); });
+  if (!track_has_effects && in.camera.frames.size() > 1)
+    in.effects = ClassifyEffects(in.camera, ClassifierOptions{});
+  return in;
+}
+
+struct FrameRange {
+  double from_s = 0;
+  double to_s = std::numeric_limits<double>::infinity();
+  bool Holds(double t) const { return t >= from_s - 1e-6 && t < to_s - 1e-6; }
+};
+
+FrameRange ResolveRange(const PreviewOptions& o, const VideoInfo& info) {
+  const double fps = info.fps > 0 ? info.fps : 25.0;
+  FrameRange r;
+  if (!o.from.empty()) r.from_s = ParsePreviewTime(o.from, fps, "--from");
+  if (!o.to.empty()) r.to_s = ParsePreviewTime(o.to, fps, "--to");
+  if (!(r.from_s < r.to_s))
+    throw UsageError("--from (" + o.from + ") must be before --to (" + o.to + ")");
+  if (info.duration_s > 0 && r.from_s >= info.duration_s) {
+    std::ostringstream msg;
+    msg << "--from " << o.from << " is past the film's end (" << info.duration_s << " s)";
+    throw UsageError(msg.str());
+  }
+  return r;
+}
+
+void DrawInsets(cv::Mat& img, const PreviewOptions& o, const PreviewInputs& in, double t) {
+  const int w = img.cols, h = img.rows;
+  const int inset_w = std::max(48, static_cast<int>(w * o.inset_fraction)) / 3 * 3;
+  if (!o.platform_track.empty()) {
+    const int inset_h = std::min(h, std::max(40, inset_w * 2 / 5));
+    DrawPlatformInset(img, cv::Rect(w - inset_w, h - inset_h, inset_w, inset_h), in.platform, t,
+                      o.simulate_platform ? &in.platform_sim : nullptr);
+    return;
+  }
+  const int panel_w = inset_w / 3;
+  const int panel_h = std::min(h, std::max(32, panel_w * 5 / 4));
+  const int x0 = w - inset_w, y0 = h - panel_h;
+  const char* names[kNumActuators] = {"head", "left", "right"};
+  for (int a = 0; a < kNumActuators; ++a)
+    DrawPanel(img, cv::Rect(x0 + a * panel_w, y0, panel_w, panel_h), names[a], in.track,
+              o.simulate ? &in.response : nullptr, t, o.trail_s);
+}
+
+// The frame as an even-sized BGR image.
+cv::Mat EvenBgr(const Frame& frame, const std::string& video) {
+  cv::Mat img = frame.bgr;
+  if (img.empty()) cv::cvtColor(frame.gray, img, cv::COLOR_GRAY2BGR);
+  const int w = img.cols & ~1, h = img.rows & ~1;
+  if (w < 16 || h < 16) throw Error(video, "frames too small for a preview");
+  if (w != img.cols || h != img.rows) img = img(cv::Rect(0, 0, w, h)).clone();
+  return img;
+}
+
+// What RenderFrames wrote: how many frames and the film times they span.
+struct Rendered {
+  int frames = 0;
+  double first_s = 0, end_s = 0;  // end: the last frame's time plus one frame
+};
+
+Rendered RenderFrames(const PreviewOptions& o, const PreviewInputs& in, FrameSource& source,
+                      const FrameRange& range, const std::string& path, bool atomic,
+                      const std::function<void(int, int)>& progress) {
+  const VideoInfo& info = source.info();
+  const double fps = info.fps > 0 ? info.fps : 25.0;
+  const BurnInLabels labels(in.camera, in.track, in.effects);
+  long total = info.frame_count;  // 0: unknown (no ETA)
+  if (std::isfinite(range.to_s)) {
+    const long to_frames = std::lround(range.to_s * fps);
+    total = total > 0 ? std::min(total, to_frames) : to_frames;
+  }
+  VideoWriter writer;
+  VideoWriterOptions vo;
+  vo.crf = o.crf;
+  vo.atomic = atomic;
+  Rendered r;
+  Frame frame;
+  for (int decoded = 1; source.Next(&frame); ++decoded) {
+    if (progress && decoded % 10 == 0) progress(decoded, static_cast<int>(total));
+    if (frame.time_s >= range.to_s - 1e-6) break;
+    if (!range.Holds(frame.time_s)) continue;
+    cv::Mat img = EvenBgr(frame, o.video);
+    if (!writer.is_open()) writer.Open(path, img.cols, img.rows, fps, vo);
+    DrawInsets(img, o, in, frame.time_s);
+    if (o.burn_in) DrawBurnIn(img, labels.At(frame.time_s, fps));
+    writer.Write(img);
+    if (r.frames++ == 0) r.first_s = frame.time_s;
+    r.end_s = frame.time_s + 1 / fps;
+  }
+  if (r.frames == 0) {
+    if (o.from.empty() && o.to.empty()) throw Error(o.video, "no frames decoded");
+    throw UsageError("no frame of " + o.video + " in --from " + o.from + " --to " + o.to);
+  }
+  writer.Close();
+  return r;
+}
+
+}  // namespace
+
 int RenderPreview(const PreviewOptions& o, const std::function<void(int, int)>& progress) {
   o.Check();
-  std::string track_path = o.track;
-  PlatformTrack platform, platform_sim;
-  if (!o.platform_track.empty()) platform = ReadPlatformTrackFile(o.platform_track);
-  if (o.simulate_platform) platform_sim = SimulatePlatform(platform);
-  if (track_path.empty() && o.platform_track.empty()) {
-    const std::filesystem::path v(o.video);
-    track_path = (v.parent_path() / (v.stem().string() + ".haptic.csv")).string();
-    if (!std::filesystem::exists(track_path))
-      throw Error(o.video, "no --track given and no " + track_path + " beside the video");
-  }
-  const HapticTrack track = o.platform_track.empty() ? ReadHapticTrackFile(track_path) : HapticTrack();
-  HapticTrack response;
-  if (o.simulate && o.platform_track.empty()) response = o.simulate(track);
+  const PreviewInputs inputs = LoadInputs(o);
   FrameSourceOptions fo;
   fo.max_working_side = o.max_side;
   fo.want_color = true;
   auto source = OpenFrameSource(o.video, fo);
-  const VideoInfo& info = source->info();
-  VideoWriter writer;
-  VideoWriterOptions vo;
-  vo.crf = o.crf;
-  Frame frame;
-  int n = 0;
-  const int total = static_cast<int>(info.frame_count);
-  while (source->Next(&frame)) {
-    cv::Mat img = frame.bgr.empty() ? cv::Mat() : frame.bgr;
-    if (img.empty()) cv::cvtColor(frame.gray, img, cv::COLOR_GRAY2BGR);
-    const int w = img.cols & ~1, h = img.rows & ~1;
-    if (w < 16 || h < 16) throw Error(o.video, "frames too small for a preview");
-    if (w != img.cols || h != img.rows) img = img(cv::Rect(0, 0, w, h)).clone();
-    if (!writer.is_open()) writer.Open(o.output, w, h, info.fps > 0 ? info.fps : 25.0, vo);
-    const int inset_w = std::max(48, static_cast<int>(w * o.inset_fraction)) / 3 * 3;
-    if (!o.platform_track.empty()) {
-      const int inset_h = std::min(h, std::max(40, inset_w * 2 / 5));
-      DrawPlatformInset(img, cv::Rect(w - inset_w, h - inset_h, inset_w, inset_h), platform,
-                        frame.time_s, o.simulate_platform ? &platform_sim : nullptr);
-      writer.Write(img);
-      ++n;
-      if (progress && n % 10 == 0) progress(n, total);
-      continue;
-    }
-    const int panel_w = inset_w / 3;
-    const int panel_h = std::min(h, std::max(32, panel_w * 5 / 4));
-    const int x0 = w - inset_w, y0 = h - panel_h;
-    const char* names[kNumActuators] = {"head", "left", "right"};
-    for (int a = 0; a < kNumActuators; ++a)
-      DrawPanel(img, cv::Rect(x0 + a * panel_w, y0, panel_w, panel_h), names[a], track,
-                o.simulate ? &response : nullptr, frame.time_s, o.trail_s);
-    writer.Write(img);
-    ++n;
-    if (progress && n % 10 == 0) progress(n, total);
-  }
-  if (n == 0) throw Error(o.video, "no frames decoded");
-  writer.Close();
-  return n;
+  const FrameRange range = ResolveRange(o, source->info());
+  if (!o.audio || !FilmHasAudio(o.video))
+    return RenderFrames(o, inputs, *source, range, o.output, true, progress).frames;
+  // Frames first into a temporary of our own, then muxed with the sound of
+  // exactly the frames drawn into the output's temporary.
+  TempOutput video_only(o.output), output(o.output);
+  const Rendered r =
+      RenderFrames(o, inputs, *source, range, video_only.write_path(), false, progress);
+  MuxFilmAudio(video_only.write_path(), o.video, {r.first_s, r.end_s}, output.write_path(),
+               o.output);
+  output.Commit();
+  return r.frames;
 }
 
 }  // namespace hapcine

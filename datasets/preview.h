@@ -29,6 +29,17 @@ struct PreviewOptions {
   // (platform/sim_platform.h: drives with lag and overshoot).
   bool simulate_platform = false;
   std::string output;            // output .mp4
+  // The camera path giving the burnt-in shot and camera model and, when the
+  // track has no effect column, the classifier's effects. Default: <video
+  // stem>.camera.csv beside the video when it exists (else those lines are left out).
+  std::string camera;
+  bool burn_in = true;           // timecode, shot, camera model, effect label
+  bool audio = true;             // keep the film's sound (none: a silent preview)
+  // Only this range of the film: seconds ("62.5") or a timecode
+  // ("00:01:02:12", frames at the film's rate); empty: the start / the end.
+  // The sound is cut to the same frames. A range outside the film, or
+  // from >= to, is a UsageError.
+  std::string from, to;
   int max_side = 1280;           // longest side of the output, pixels (0: as decoded)
   double inset_fraction = 0.45;  // inset width as a fraction of the frame width
   double trail_s = 1.0;          // length of the trail
@@ -38,7 +49,8 @@ struct PreviewOptions {
   void Check() const;  // throws UsageError
 };
 
-// Renders; `progress(done, total_estimate)` is called every few frames.
+// Renders; `progress(done, total_estimate)` is called every few frames
+// (frames decoded, including those before `from`, of those up to `to`).
 // Returns the number of frames written. Throws hapcine::Error naming the
 // file on bad input; never leaves a partial output.
 int RenderPreview(const PreviewOptions& options,

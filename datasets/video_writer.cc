@@ -62,8 +62,8 @@ void VideoWriter::Open(const std::string& path, int width, int height, double fp
   // terminal for our own progress unless the user asked FFmpeg for more.
   if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_WARNING);
   path_ = path;
-  output_ = TempOutput(path);
-  const std::string& temp_path = output_.write_path();
+  if (options.atomic) output_ = TempOutput(path);
+  const std::string temp_path = options.atomic ? output_.write_path() : path;
   width_ = width;
   height_ = height;
   frames_ = 0;
@@ -176,7 +176,7 @@ void VideoWriter::Close() {
   // Release everything but keep the temporary file, then rename it.
   avformat_free_context(format_);
   format_ = nullptr;
-  output_.Commit();  // if this throws, the destructor releases the rest
+  output_.Commit();  // no-op unless atomic; if this throws, the destructor releases the rest
   Abort();
 }
 

@@ -31,6 +31,9 @@ struct VideoWriterOptions {
   std::string preset = "fast";   // x264 speed preset (ultrafast .. veryslow)
   int gop = 48;                  // max frames between keyframes
   int threads = 0;               // encoder threads (0 = x264's automatic choice)
+  // false: write `path` itself, for a caller whose own temporary it is (the
+  // preview muxes the film's audio in afterwards).
+  bool atomic = true;
 };
 
 class VideoWriter {

@@ -90,6 +90,112 @@ std::vector<double> SampleTimes(const CameraPath& path, double rate, const std::
   return time_s;
 }
 
+// The rate the player's loop runs at: a semantic track stored below it gets
+// this rate's rows wherever its stored rows cannot follow it (below).
+constexpr double kDenseRateHz = 1000;
+// A kink: the velocity changes by K at one instant, and the monotone cubic
+// rounds it off by about K * h / 8 (h: the row spacing). A smooth pattern's
+// velocity changes by about the same from one row to the next (its
+// acceleration times h), a kink's by K at one or two rows and not at their
+// neighbours; a change of those changes above kKinkSpeedMS / 2 finds every
+// kink of K > kKinkSpeedMS. 0.02 m/s: 0.025 mm at 100 Hz, a quarter of the
+// 0.1 mm the stored rate may cost; the patterns' jerk (a dutch angle of
+// 0.045 m at 0.7 s cycles: 0.003 m/s per row) stays far under it.
+constexpr double kKinkSpeedMS = 0.02;
+
+// The intervals (rows i to i+1) that stored rows cannot follow, each with
+// its neighbours: around a kink (a pattern starting or stopping while it
+// moves, a fast release), and where the speed limit acts or may act at
+// 1 kHz, since its ramp starts at the first row that exceeds the limit and
+// runs from there. Away from kinks the velocity inside an interval is within
+// kKinkSpeedMS of its secant, so a secant that slow under the limit cannot reach it.
+std::vector<char> DenseIntervals(const std::vector<HapticSample>& s,
+                                 const std::vector<char>& limited_rows, double max_speed_m_s) {
+  const size_t n = s.size();
+  std::vector<char> dense(n > 1 ? n - 1 : 0, 0);
+  auto mark = [&](size_t first, size_t last) {
+    for (size_t j = first; j <= last && j < dense.size(); ++j) dense[j] = 1;
+  };
+  Eigen::Vector3d v_before[kNumActuators], dv_before[kNumActuators];
+  for (size_t i = 0; i + 1 < n; ++i) {
+    const double h = s[i + 1].time_s - s[i].time_s;
+    bool fast = limited_rows[i + 1] != 0;
+    for (int a = 0; a < kNumActuators; ++a) {
+      const Eigen::Vector3d v = (s[i + 1].pos_m[a] - s[i].pos_m[a]) / h;
+      fast |= v.cwiseAbs().maxCoeff() > max_speed_m_s - kKinkSpeedMS;
+      const Eigen::Vector3d dv = i > 0 ? Eigen::Vector3d(v - v_before[a]) : Eigen::Vector3d::Zero();
+      if (i > 1 && (dv - dv_before[a]).cwiseAbs().maxCoeff() > kKinkSpeedMS / 2)
+        mark(i - 2, i);  // the intervals around rows i - 1 and i
+      v_before[a] = v;
+      dv_before[a] = dv;
+    }
+    if (fast) mark(i > 0 ? i - 1 : 0, i + 1);
+  }
+  return dense;
+}
+
+// time_s with the kDenseRateHz rows (on the grid from time_s's first row,
+// the rows a 1 kHz track has) inside each dense interval.
+std::vector<double> AddDenseRows(const std::vector<double>& time_s, const std::vector<char>& dense) {
+  const double t0 = time_s.front();
+  std::vector<double> out;
+  out.reserve(time_s.size());
+  for (size_t i = 0; i < time_s.size(); ++i) {
+    out.push_back(time_s[i]);
+    if (i >= dense.size() || !dense[i]) continue;
+    const long first = static_cast<long>(std::floor((time_s[i] - t0) * kDenseRateHz + 1e-6)) + 1;
+    const long last = static_cast<long>(std::ceil((time_s[i + 1] - t0) * kDenseRateHz - 1e-6)) - 1;
+    for (long j = first; j <= last; ++j) out.push_back(t0 + static_cast<double>(j) / kDenseRateHz);
+  }
+  return out;
+}
+
+// The semantic track's rows below kDenseRateHz: the stored rate's, plus the
+// 1 kHz rows of every interval they cannot follow, found on the track as
+// made (cut crossfades and speed limit included) and again after adding
+// rows until none are added. Inside those intervals the track is the 1 kHz
+// track row for row; elsewhere it is smooth enough for the player's cubic.
+std::vector<double> SemanticSampleTimes(std::vector<double> time_s,
+                                        const std::vector<EffectSegment>& segs,
+                                        const std::vector<double>& cut_times,
+                                        const HapticOptions& o) {
+  if (o.OutputRateHz() >= kDenseRateHz || time_s.size() < 2) return time_s;
+  for (int pass = 0; pass < 4; ++pass) {
+    std::vector<HapticSample> s(time_s.size());
+    for (size_t i = 0; i < s.size(); ++i) s[i].time_s = time_s[i];
+    CopyPositions(SemanticFrames(time_s, segs, o.seat, o.semantic), &s);
+    ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &s);
+    std::vector<char> limited_rows;
+    LimitSpeed(o.washout.max_speed_m_s, o.OutputRateHz(), &s, &limited_rows);
+    std::vector<double> refined =
+        AddDenseRows(time_s, DenseIntervals(s, limited_rows, o.washout.max_speed_m_s));
+    if (refined.size() == time_s.size()) break;
+    time_s = std::move(refined);
+  }
+  return time_s;
+}
+
+std::vector<double> CutTimes(const CameraPath& path, const std::vector<ShotRange>& shots) {
+  std::vector<double> cut_times;
+  for (size_t k = 1; k < shots.size(); ++k) cut_times.push_back(path.frames[shots[k].first].time_s);
+  return cut_times;
+}
+
+// The semantic segments of a path already joined across lost frames.
+std::vector<EffectSegment> EffectSegmentsOfJoinedPath(const CameraPath& path,
+                                                      const HapticOptions& o) {
+  if (o.edits.keyframes) return *o.edits.keyframes;
+  if (!o.keyframes_file.empty()) return ReadKeyframesFile(o.keyframes_file);
+  return ClassifyEffects(path, o.classifier);
+}
+
+// The semantic model's effects: the edits' keyframes, else the keyframes
+// file's, else the classifier's (none for the other models).
+std::vector<EffectSegment> SemanticSegments(const CameraPath& path, const HapticOptions& o) {
+  if (o.model != HapticModel::kSemantic) return {};
+  return EffectSegmentsOfJoinedPath(path, o);
+}
+
 std::string JoinScales(const CinematicScaling& s, bool rotation) {
   std::ostringstream out;
   for (size_t i = 0; i < s.per_shot.size(); ++i) {
@@ -137,14 +243,6 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
 }
 
 
-// The semantic segments of a path already joined across lost frames.
-std::vector<EffectSegment> EffectSegmentsOfJoinedPath(const CameraPath& path,
-                                                      const HapticOptions& o) {
-  if (o.edits.keyframes) return *o.edits.keyframes;
-  if (!o.keyframes_file.empty()) return ReadKeyframesFile(o.keyframes_file);
-  return ClassifyEffects(path, o.classifier);
-}
-
 std::string EffectsFrom(const HapticOptions& o) {
   if (o.edits.keyframes) return "edits";
   return o.keyframes_file.empty() ? "classifier" : o.keyframes_file;
@@ -156,8 +254,11 @@ uint64_t RandomSeed(const CameraPath& read_path, const HapticOptions& o) {
 
 // The film's model over the whole path: positions into track->samples
 // (their times already set), its metadata, and the semantic effect per sample.
+// `segs`: the semantic model's segments (SemanticSegments); rows past
+// `regular_rows` are its dense rows (SemanticSampleTimes).
 void RunFilmModel(const CameraPath& path, const CameraPath& read_path,
                   const std::vector<ShotRange>& shots, const std::vector<double>& time_s,
+                  const std::vector<EffectSegment>& segs, size_t regular_rows,
                   const HapticOptions& o, HapticTrack* track, std::vector<CameraEffect>* effects) {
   switch (o.model) {
     case HapticModel::kNone:
@@ -166,10 +267,12 @@ void RunFilmModel(const CameraPath& path, const CameraPath& read_path,
       MakeCinematicSamples(path, shots, o, track);
       break;
     case HapticModel::kSemantic: {
-      const std::vector<EffectSegment> segs = EffectSegmentsOfJoinedPath(path, o);
       CopyPositions(SemanticFrames(time_s, segs, o.seat, o.semantic, effects), &track->samples);
       track->metadata["effects_from"] = EffectsFrom(o);
       track->metadata["effect_segments"] = std::to_string(segs.size());
+      if (time_s.size() > regular_rows) {
+        track->metadata["dense_rows"] = std::to_string(time_s.size() - regular_rows);
+      }
       break;
     }
     case HapticModel::kRandom: {
@@ -422,12 +525,15 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
     return track;
   }
   const double rate = o.OutputRateHz();
-  const std::vector<double> time_s = SampleTimes(path, rate, source);
-  const size_t n = time_s.size();
+  std::vector<double> time_s = SampleTimes(path, rate, source);
+  const size_t regular_rows = time_s.size();
 
   const std::vector<ShotRange> shots = SplitShots(path);
-  std::vector<double> cut_times;
-  for (size_t k = 1; k < shots.size(); ++k) cut_times.push_back(path.frames[shots[k].first].time_s);
+  const std::vector<double> cut_times = CutTimes(path, shots);
+  const std::vector<EffectSegment> segs = SemanticSegments(path, o);
+  if (o.model == HapticModel::kSemantic)
+    time_s = SemanticSampleTimes(std::move(time_s), segs, cut_times, o);
+  const size_t n = time_s.size();
 
   HapticTrack track;
   track.rate_hz = rate;
@@ -439,10 +545,10 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   track.samples.resize(n);
   for (size_t i = 0; i < n; ++i) track.samples[i].time_s = time_s[i];
   std::vector<CameraEffect> effects;
-  RunFilmModel(path, read_path, shots, time_s, o, &track, &effects);
+  RunFilmModel(path, read_path, shots, time_s, segs, regular_rows, o, &track, &effects);
   if (!o.edits.empty()) ApplyEdits(path, read_path, shots, time_s, o, &track, &effects);
   ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &track.samples);
-  const int limited = LimitVelocity(o.washout.max_speed_m_s / rate, &track.samples);
+  const int limited = LimitSpeed(o.washout.max_speed_m_s, rate, &track.samples);
   const int clamped = ClampToWorkspace(o.seat.clamp_half_m, &track.samples);
   // The washout acts on camera motion, i.e. on the cinematic model only.
   const WashoutMode washout =

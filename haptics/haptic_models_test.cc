@@ -76,7 +76,10 @@ TEST(HapticModels, EveryModelMakesAValidTrack) {
     o.model = m;
     o.rate_hz = 200;
     const HapticTrack t = MakeHapticTrack(MakeEffectPath(CameraEffect::kDutchAngle), o);
-    EXPECT_EQ(t.samples.size(), 1401u);
+    // The rows at 200 Hz, and a semantic track's 1 kHz rows where it has kinks.
+    const auto dense = t.metadata.find("dense_rows");
+    EXPECT_EQ(m == HapticModel::kSemantic, dense != t.metadata.end()) << HapticModelName(m);
+    EXPECT_EQ(t.samples.size() - (dense == t.metadata.end() ? 0 : std::stoul(dense->second)), 1401u);
     EXPECT_LE(MaxCoord(t), o.seat.usable_half_m + 1e-12) << HapticModelName(m);
     EXPECT_EQ(t.metadata.at("clamped_samples"), "0");
     std::stringstream ss;
@@ -99,6 +102,56 @@ TEST(HapticModels, SemanticFromClassifierLabelsTheEffectColumn) {
   EXPECT_EQ(*t.samples[3500].effect, "zoom_in");
   EXPECT_EQ(*t.samples[100].effect, "none");
   EXPECT_LT(t.samples[3250].pos_m[2].z(), -0.01);  // walking forward
+}
+
+// Largest distance between what a player renders from `stored` and from
+// `reference` (a 1 kHz track): at every reference row and half-way between.
+double RenderedDistanceM(const HapticTrack& reference, const HapticTrack& stored) {
+  double worst = 0;
+  Eigen::Vector3d a[kNumActuators], b[kNumActuators];
+  const auto& r = reference.samples;
+  for (size_t i = 0; i + 1 < r.size(); ++i) {
+    for (const double t : {r[i].time_s, 0.5 * (r[i].time_s + r[i + 1].time_s)}) {
+      reference.Sample(t, a);
+      stored.Sample(t, b);
+      for (int k = 0; k < kNumActuators; ++k) worst = std::max(worst, (a[k] - b[k]).norm());
+    }
+  }
+  return worst;
+}
+
+TEST(HapticModels, SemanticAtTheStoredRateRendersWithinATenthOfAMillimetreOfOneKilohertz) {
+  const std::string file = std::string(HAPCINE_BINARY_DIR) + "/haptic_models_test_rate.csv";
+  {
+    // A dutch angle stops at the centre while it moves (a kink); the tilt's
+    // release is cut to 40 ms by the next effect, faster than the speed
+    // limit, whose ramp then starts at the first row past the limit.
+    std::ofstream out(file);
+    out << "start_s,end_s,effect,intensity\n0.5,2.3,dutch_angle,1\n2.5,4.46,tilting,1\n"
+           "4.5,6.5,traveling,1\n";
+  }
+  HapticOptions o;
+  o.model = HapticModel::kSemantic;
+  o.keyframes_file = file;
+  const CameraPath path = MakeEffectPath(CameraEffect::kTraveling);
+  o.rate_hz = 1000;
+  const HapticTrack reference = MakeHapticTrack(path, o);
+  EXPECT_EQ(reference.metadata.count("dense_rows"), 0u);  // 1 kHz: every row already
+  EXPECT_GT(std::stoi(reference.metadata.at("rate_limited_samples")), 0);
+  o.rate_hz = 0;  // the stored default, 100 Hz
+  const HapticTrack stored = MakeHapticTrack(path, o);
+  std::remove(file.c_str());
+  EXPECT_LT(RenderedDistanceM(reference, stored), 0.1e-3);
+  // 1 kHz rows around the kinks and the limited ramp only: far from the
+  // 7001 rows of a 1 kHz track.
+  const size_t dense = std::stoul(stored.metadata.at("dense_rows"));
+  EXPECT_GT(dense, 0u);
+  EXPECT_LT(stored.samples.size(), 2 * 701u);
+  EXPECT_EQ(stored.samples.size(), 701u + dense);
+  // The rows read back as written, times included.
+  std::stringstream ss;
+  WriteHapticTrack(stored, ss);
+  EXPECT_LT(RenderedDistanceM(reference, ReadHapticTrack(ss, "x")), 0.1e-3);
 }
 
 TEST(HapticModels, SemanticFromKeyframesFile) {
@@ -460,17 +513,26 @@ std::string TrackText(const HapticTrack& t) {
   return ss.str();
 }
 
-// Largest |a - b| of any coordinate over the samples with from <= t < to.
+// Largest |a - b| of any coordinate over the rows both tracks have (same
+// time: a semantic track adds dense rows between the regular ones) with
+// from <= t < to.
 double MaxDifference(const HapticTrack& a, const HapticTrack& b, double from, double to) {
-  EXPECT_EQ(a.samples.size(), b.samples.size());
   double m = 0;
-  for (size_t i = 0; i < a.samples.size() && i < b.samples.size(); ++i) {
-    const double t = a.samples[i].time_s;
-    if (t < from - 1e-9 || t >= to - 1e-9) continue;
-    for (int k = 0; k < kNumActuators; ++k) {
-      m = std::max(m, (a.samples[i].pos_m[k] - b.samples[i].pos_m[k]).cwiseAbs().maxCoeff());
+  size_t common = 0;
+  for (size_t i = 0, j = 0; i < a.samples.size() && j < b.samples.size();) {
+    const double ta = a.samples[i].time_s, tb = b.samples[j].time_s;
+    if (ta < tb - 1e-9) { ++i; continue; }
+    if (tb < ta - 1e-9) { ++j; continue; }
+    if (ta >= from - 1e-9 && ta < to - 1e-9) {
+      ++common;
+      for (int k = 0; k < kNumActuators; ++k) {
+        m = std::max(m, (a.samples[i].pos_m[k] - b.samples[j].pos_m[k]).cwiseAbs().maxCoeff());
+      }
     }
+    ++i;
+    ++j;
   }
+  EXPECT_GT(common, 0u);
   return m;
 }
 

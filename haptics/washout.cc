@@ -224,6 +224,33 @@ int LimitVelocity(double max_step_m, std::vector<HapticSample>* samples) {
   return LimitVelocityOf(max_step_m, samples);
 }
 
+int LimitSpeed(double max_speed_m_s, double rate_hz, std::vector<HapticSample>* samples,
+               std::vector<char>* limited_rows) {
+  auto& v = *samples;
+  if (limited_rows) limited_rows->assign(v.size(), 0);
+  const double regular_step = max_speed_m_s / rate_hz;
+  int limited = 0;
+  for (size_t i = 1; i < v.size(); ++i) {
+    const double dt = v[i].time_s - v[i - 1].time_s;
+    // Rows at the stored rate take the very step LimitVelocity does.
+    const double max_step =
+        std::abs(dt * rate_hz - 1) < 1e-6 ? regular_step : max_speed_m_s * dt;
+    bool hit = false;
+    for (int a = 0; a < kNumActuators; ++a) {
+      for (int k = 0; k < 3; ++k) {
+        const double d = v[i].pos_m[a][k] - v[i - 1].pos_m[a][k];
+        if (std::abs(d) > max_step) {
+          v[i].pos_m[a][k] = v[i - 1].pos_m[a][k] + std::copysign(max_step, d);
+          hit = true;
+        }
+      }
+    }
+    limited += hit;
+    if (limited_rows) (*limited_rows)[i] = hit;
+  }
+  return limited;
+}
+
 int ClampToWorkspace(double clamp_half_m, std::vector<ActuatorFrame>* frames) {
   return ClampToWorkspaceOf(clamp_half_m, frames);
 }

@@ -109,6 +109,13 @@ void ApplyCutTransitions(const std::vector<double>& time_s, const std::vector<do
 // Step 3; returns the number of samples that were limited.
 int LimitVelocity(double max_step_m, std::vector<ActuatorFrame>* frames);
 int LimitVelocity(double max_step_m, std::vector<HapticSample>* samples);
+// Step 3 on rows that need not be evenly spaced (a semantic track's 1 kHz
+// rows between its stored-rate rows): no coordinate moves faster than
+// max_speed_m_s from one row to the next; a row 1/rate_hz after the previous
+// one moves at most max_speed_m_s / rate_hz, exactly as LimitVelocity.
+// `limited_rows` (optional) gets one flag per row.
+int LimitSpeed(double max_speed_m_s, double rate_hz, std::vector<HapticSample>* samples,
+               std::vector<char>* limited_rows = nullptr);
 
 // Step 4; returns the number of samples with at least one clamped coordinate.
 int ClampToWorkspace(double clamp_half_m, std::vector<ActuatorFrame>* frames);

@@ -78,6 +78,44 @@ TEST(Washout, VelocityLimitBoundsEveryStep) {
   EXPECT_NEAR(v.back()[1].y(), 0.04, 1e-12);  // reaches the target eventually
 }
 
+TEST(Washout, SpeedLimitOnUnevenRowsScalesTheStepWithTheirSpacing) {
+  // 100 Hz rows with 1 kHz rows between 0.10 and 0.12 s; a step to 0.04 m at 0.105 s.
+  std::vector<HapticSample> s;
+  for (int ms = 0; ms <= 300; ms += (ms >= 100 && ms < 120) ? 1 : 10) {
+    HapticSample x;
+    x.time_s = ms / 1000.0;
+    for (auto& a : x.pos_m) a = Eigen::Vector3d::Constant(ms < 105 ? 0.0 : 0.04);
+    s.push_back(x);
+  }
+  std::vector<char> limited;
+  EXPECT_GT(LimitSpeed(0.5, 100, &s, &limited), 0);
+  EXPECT_EQ(limited.size(), s.size());
+  for (size_t i = 1; i < s.size(); ++i) {
+    const double dt = s[i].time_s - s[i - 1].time_s;
+    EXPECT_LE((s[i].pos_m[1] - s[i - 1].pos_m[1]).cwiseAbs().maxCoeff(), 0.5 * dt + 1e-12) << i;
+    // Limited from the step until the ramp reaches 0.04 m (8 mm at 0.12 s,
+    // then 5 mm per 10 ms row: 38 mm at 0.18 s).
+    EXPECT_EQ(limited[i] != 0, s[i].time_s > 0.1045 && s[i].time_s < 0.1805)
+        << i;
+  }
+  // The ramp starts at the first 1 kHz row after the step, as at 1 kHz:
+  // 0.5 mm per millisecond from 0.105 s.
+  EXPECT_NEAR(s[15].time_s, 0.105, 1e-12);
+  EXPECT_NEAR(s[15].pos_m[0].x(), 0.0005, 1e-12);
+  EXPECT_NEAR(s[30].pos_m[0].x(), 0.008, 1e-12);  // 0.12 s
+  // Even rows take LimitVelocity's very step.
+  std::vector<HapticSample> even;
+  for (int i = 0; i <= 20; ++i) {
+    HapticSample x;
+    x.time_s = i / 100.0;
+    x.pos_m[2].x() = i < 10 ? 0.0 : 0.04;
+    even.push_back(x);
+  }
+  std::vector<HapticSample> copy = even;
+  EXPECT_EQ(LimitSpeed(0.5, 100, &even), LimitVelocity(0.5 / 100, &copy));
+  for (size_t i = 0; i < even.size(); ++i) EXPECT_EQ(even[i].pos_m[2].x(), copy[i].pos_m[2].x());
+}
+
 TEST(Washout, ClampCatchesOutliersAndNaN) {
   std::vector<ActuatorFrame> v(3);
   for (auto& f : v)

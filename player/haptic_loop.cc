@@ -66,57 +66,143 @@ bool HapticLoop::Fail(const char* why) {
   return false;
 }
 
+double HapticLoop::RecordTiming(double now_s) {
+  double dt = 0;
+  if (have_last_tick_) {
+    dt = now_s - last_tick_s_;
+    stats_.period.Add(dt);
+    const double periods = dt * o_.rate_hz;
+    if (periods > 1.5) stats_.missed_ticks += static_cast<int64_t>(std::lround(periods)) - 1;
+  } else {
+    stats_.first_tick_s = now_s;
+  }
+  have_last_tick_ = true;
+  last_tick_s_ = now_s;
+  stats_.last_tick_s = now_s;
+  ++stats_.ticks;
+  return dt;
+}
+
+// A new reading whose seek serial changed, or whose time jumps away from the
+// previous reading's extrapolation, is a seek.
+bool HapticLoop::ReadClockSeek(ClockReading* reading) {
+  const ClockReading& r = *reading = clock_.Read();
+  if (!r.valid || r.serial == prev_reading_.serial) return false;
+  bool seek = false;
+  if (prev_reading_.valid) {
+    const double predicted = Extrapolate(prev_reading_, r.wall_s);
+    const double jump = r.media_s - predicted;
+    double truth = 0;
+    if (r.seek_serial != prev_reading_.seek_serial || std::abs(jump) > o_.seek_jump_s) {
+      seek = true;
+      ++stats_.seeks;
+    } else if (!prev_reading_.paused && !r.paused && !clock_.TrueMediaTime(r.wall_s, &truth)) {
+      // A clock without ground truth (mpv): the sync error is how far
+      // our extrapolated time was from the time the player reports.
+      stats_.extrapolation_error.Add(jump);
+    }
+  }
+  prev_reading_ = r;
+  return seek;
+}
+
+void HapticLoop::StartEndOrSeekRamps(const ClockReading& r, double t, bool seek, double now_s) {
+  const double track_end = track_.samples.empty() ? 0.0 : track_.samples.back().time_s;
+  const bool at_end = r.valid && (r.eof || t > track_end);
+  if (seek && ending_ && !at_end) ending_ = false;
+  if (at_end && !ending_) {
+    ending_ = true;
+    end_start_s_ = now_s;
+    for (int a = 0; a < kNumActuators; ++a) StartRamp(a, now_s, o_.end_ramp_s);
+  } else if (seek) {
+    for (int a = 0; a < kNumActuators; ++a) StartRamp(a, now_s, o_.seek_ramp_s);
+  }
+}
+
+TickRecord& HapticLoop::NextRecord(double now_s, double media_s, double gain) {
+  TickRecord& rec = ring_[ring_next_];
+  ring_next_ = (ring_next_ + 1) % ring_.size();
+  if (ring_next_ == 0) ring_wrapped_ = true;
+  rec.wall_s = now_s;
+  rec.media_s = media_s;
+  rec.flags = 0;
+  rec.gain = static_cast<float>(gain);
+  return rec;
+}
+
+// The track's target, raised-cosine blended from where a start, seek or end
+// ramp began.
+Eigen::Vector3d HapticLoop::RampedGoal(int a, const Eigen::Vector3d& track_m, double now_s) {
+  if (ramp_len_s_[a] <= 0) return track_m;
+  const double u = (now_s - ramp_start_s_[a]) / ramp_len_s_[a];
+  if (u >= 1) {
+    ramp_len_s_[a] = 0;
+    return track_m;
+  }
+  const double w = 0.5 - 0.5 * std::cos(M_PI * std::max(0.0, u));
+  return ramp_from_m_[a] + w * (track_m - ramp_from_m_[a]);
+}
+
+bool HapticLoop::DriveActuator(int a, const Eigen::Vector3d& track_m, double now_s, double gain,
+                               TickRecord* rec, bool* homed) {
+  Device* dev = seat_.devices[a].get();
+  if (!dev) return true;
+  ActuatorSafety& safe = safety_[a];
+  safe.ClearTickFaults();
+  DeviceState& s = state_[a];
+  if (!started_[a] && s.homed) {
+    // First homed tick: start where the grip is, ramp to the track.
+    started_[a] = true;
+    safe.ResetTarget(s.pos_m);
+    target_m_[a] = s.pos_m;
+    StartRamp(a, now_s, o_.start_ramp_s);
+  }
+  const Eigen::Vector3d goal = RampedGoal(a, track_m, now_s);
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  if (s.homed && started_[a]) {
+    target_m_[a] = safe.FilterTarget(goal);
+    force = o_.k_n_m * (target_m_[a] - s.pos_m) - o_.d_n_s_m * s.vel_m_s;  // Eq. 7
+  }
+  force_n_[a] = safe.FilterForce(force, gain);
+  s = dev->Exchange(force_n_[a]);
+  rec->flags |= safe.tick_faults();
+  for (int k = 0; k < 3; ++k) {
+    rec->target_m[a][k] = static_cast<float>(target_m_[a][k]);
+    rec->pos_m[a][k] = static_cast<float>(s.pos_m[k]);
+    rec->force_n[a][k] = static_cast<float>(force_n_[a][k]);
+  }
+  if (s.fault != DeviceFault::kNone) return false;
+  *homed = *homed && s.homed;
+  return true;
+}
+
+void HapticLoop::RecordSync(const ClockReading& r, double t, double now_s) {
+  if (!r.valid || r.paused || ending_) return;
+  const double after = now_fn_ ? now_fn_() : now_s;
+  double truth = 0;
+  if (clock_.TrueMediaTime(after, &truth)) stats_.sync_error.Add(truth - t);
+  if (now_fn_) stats_.tick_work.Add(after - now_s);
+}
+
 bool HapticLoop::Tick(double now_s) {
   if (status_ != LoopStatus::kRunning) {
     ZeroAll();
     return false;
   }
   try {
-    // --- timing, watchdog inputs ---
-    double dt = 0;
-    if (have_last_tick_) {
-      dt = now_s - last_tick_s_;
-      stats_.period.Add(dt);
-      const double periods = dt * o_.rate_hz;
-      if (periods > 1.5) stats_.missed_ticks += static_cast<int64_t>(std::lround(periods)) - 1;
-    } else {
-      stats_.first_tick_s = now_s;
-    }
-    have_last_tick_ = true;
-    last_tick_s_ = now_s;
-    stats_.last_tick_s = now_s;
-    ++stats_.ticks;
+    const double dt = RecordTiming(now_s);
     if (!std::isfinite(now_s)) return Fail("non-finite wall time");
-
     if (o_.stop_on_request && StopRequested()) {
       ZeroAll();
       status_ = LoopStatus::kStopped;
       return false;
     }
-
-    // --- media clock ---
-    const ClockReading r = clock_.Read();
+    ClockReading r;
+    const bool seek = ReadClockSeek(&r);
     if (r.finished) {
       ZeroAll();
       status_ = LoopStatus::kFinished;
       return false;
-    }
-    bool seek = false;
-    double truth = 0;
-    if (r.valid && r.serial != prev_reading_.serial) {
-      if (prev_reading_.valid) {
-        const double predicted = Extrapolate(prev_reading_, r.wall_s);
-        const double jump = r.media_s - predicted;
-        if (r.seek_serial != prev_reading_.seek_serial || std::abs(jump) > o_.seek_jump_s) {
-          seek = true;
-          ++stats_.seeks;
-        } else if (!prev_reading_.paused && !r.paused && !clock_.TrueMediaTime(r.wall_s, &truth)) {
-          // A clock without ground truth (mpv): the sync error is how far
-          // our extrapolated time was from the time the player reports.
-          stats_.extrapolation_error.Add(jump);
-        }
-      }
-      prev_reading_ = r;
     }
     const bool stalled =
         r.valid && !r.paused && !r.eof && now_s - r.wall_s > o_.safety.clock_stall_s;
@@ -127,78 +213,21 @@ bool HapticLoop::Tick(double now_s) {
 
     const double t = Extrapolate(r, now_s);
     last_media_s_.store(t, std::memory_order_relaxed);
-    const double track_end = track_.samples.empty() ? 0.0 : track_.samples.back().time_s;
-    const bool at_end = r.valid && (r.eof || t > track_end);
-    if (seek && ending_ && !at_end) ending_ = false;
-    if (at_end && !ending_) {
-      ending_ = true;
-      end_start_s_ = now_s;
-      for (int a = 0; a < kNumActuators; ++a) StartRamp(a, now_s, o_.end_ramp_s);
-    } else if (seek) {
-      for (int a = 0; a < kNumActuators; ++a) StartRamp(a, now_s, o_.seek_ramp_s);
-    }
-
+    StartEndOrSeekRamps(r, t, seek, now_s);
     Eigen::Vector3d raw[kNumActuators];
     if (r.valid && !ending_) {
       track_.Sample(t, raw, &hint_);
     } else {
       for (auto& v : raw) v.setZero();  // centre
     }
-
-    TickRecord& rec = ring_[ring_next_];
-    ring_next_ = (ring_next_ + 1) % ring_.size();
-    if (ring_next_ == 0) ring_wrapped_ = true;
-    rec.wall_s = now_s;
-    rec.media_s = t;
-    rec.flags = 0;
-    rec.gain = static_cast<float>(gain);
+    TickRecord& rec = NextRecord(now_s, t, gain);
     bool all_homed = true;
     for (int a = 0; a < kNumActuators; ++a) {
-      Device* dev = seat_.devices[a].get();
-      if (!dev) continue;
-      ActuatorSafety& safe = safety_[a];
-      safe.ClearTickFaults();
-      DeviceState& s = state_[a];
-      Eigen::Vector3d goal = raw[a];
-      if (!started_[a] && s.homed) {
-        // First homed tick: start where the grip is, ramp to the track.
-        started_[a] = true;
-        safe.ResetTarget(s.pos_m);
-        target_m_[a] = s.pos_m;
-        StartRamp(a, now_s, o_.start_ramp_s);
-      }
-      if (ramp_len_s_[a] > 0) {
-        const double u = (now_s - ramp_start_s_[a]) / ramp_len_s_[a];
-        if (u >= 1) {
-          ramp_len_s_[a] = 0;
-        } else {
-          const double w = 0.5 - 0.5 * std::cos(M_PI * std::max(0.0, u));
-          goal = ramp_from_m_[a] + w * (goal - ramp_from_m_[a]);
-        }
-      }
-      Eigen::Vector3d force = Eigen::Vector3d::Zero();
-      if (s.homed && started_[a]) {
-        target_m_[a] = safe.FilterTarget(goal);
-        force = o_.k_n_m * (target_m_[a] - s.pos_m) - o_.d_n_s_m * s.vel_m_s;  // Eq. 7
-      }
-      force_n_[a] = safe.FilterForce(force, gain);
-      s = dev->Exchange(force_n_[a]);
-      rec.flags |= safe.tick_faults();
-      for (int k = 0; k < 3; ++k) {
-        rec.target_m[a][k] = static_cast<float>(target_m_[a][k]);
-        rec.pos_m[a][k] = static_cast<float>(s.pos_m[k]);
-        rec.force_n[a][k] = static_cast<float>(force_n_[a][k]);
-      }
-      if (s.fault != DeviceFault::kNone) return Fail(DeviceFaultName(s.fault));
-      all_homed = all_homed && s.homed;
+      if (!DriveActuator(a, raw[a], now_s, gain, &rec, &all_homed))
+        return Fail(DeviceFaultName(state_[a].fault));
     }
     all_homed_.store(all_homed, std::memory_order_relaxed);
-
-    if (r.valid && !r.paused && !ending_) {
-      const double after = now_fn_ ? now_fn_() : now_s;
-      if (clock_.TrueMediaTime(after, &truth)) stats_.sync_error.Add(truth - t);
-      if (now_fn_) stats_.tick_work.Add(after - now_s);
-    }
+    RecordSync(r, t, now_s);
     // Back at the centre and the film is over (a track shorter than the
     // film holds the centre until the film ends): stop.
     if (ending_ && o_.finish_at_end && r.eof && now_s - end_start_s_ >= o_.end_ramp_s) {

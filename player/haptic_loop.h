@@ -94,6 +94,16 @@ class HapticLoop {
  private:
   void StartRamp(int a, double now_s, double len_s);
   bool Fail(const char* why);
+  // The steps of one tick, in order (Tick runs them).
+  double RecordTiming(double now_s);                        // -> seconds since the last tick
+  bool ReadClockSeek(ClockReading* reading);                // -> a seek happened
+  void StartEndOrSeekRamps(const ClockReading& r, double t, bool seek, double now_s);
+  TickRecord& NextRecord(double now_s, double media_s, double gain);
+  Eigen::Vector3d RampedGoal(int a, const Eigen::Vector3d& track_m, double now_s);
+  // Commands actuator `a` (Eq. 7 through the safety layer); false on a device fault.
+  bool DriveActuator(int a, const Eigen::Vector3d& track_m, double now_s, double gain,
+                     TickRecord* rec, bool* homed);
+  void RecordSync(const ClockReading& r, double t, double now_s);
 
   const HapticTrack& track_;
   HapSeat& seat_;

@@ -140,6 +140,98 @@ void CheckDuration(const PlayOptions& o, const std::string& track_path, double t
   result->warnings.push_back(s.str());
 }
 
+// Opens every device; false when a stop was requested meanwhile.
+bool OpenDevices(HapSeat& seat, std::ostream& log) {
+  for (auto& d : seat.devices) {
+    if (!d) continue;
+    log << "opening " << d->Name() << "...\n";
+    try {
+      d->Open();
+    } catch (const Error&) {
+      if (StopRequested()) return false;  // e.g. firmware loading cancelled
+      throw;
+    }
+    if (StopRequested()) return false;
+  }
+  return true;
+}
+
+// The clock the loop follows: mpv playing the film, or a wall clock.
+struct PlaybackClock {
+  std::unique_ptr<MediaClock> clock;
+  MpvClock* mpv = nullptr;
+  WallClock* wall = nullptr;
+  double film_s = 0;  // how long playback lasts
+};
+
+PlaybackClock MakePlaybackClock(const PlayOptions& o, const std::string& track_path,
+                                double track_end_s, bool start_paused, PlayResult* result) {
+  PlaybackClock pc;
+  pc.film_s = track_end_s;
+  if (o.wall_clock) {
+    auto w = std::make_unique<WallClock>(track_end_s, 0.0, start_paused);
+    pc.wall = w.get();
+    pc.clock = std::move(w);
+    if (!o.video.empty())
+      result->warnings.push_back(
+          "--no-video: the video's duration was not checked against the track");
+    return pc;
+  }
+  MpvOptions mo;
+  mo.headless = o.headless;
+  mo.fullscreen = o.fullscreen;
+  mo.start_paused = start_paused;
+  auto m = std::make_unique<MpvClock>(o.video, mo);
+  m->WaitLoaded(20.0);
+  pc.mpv = m.get();
+  pc.clock = std::move(m);
+  double video_s = -1;
+  for (int i = 0; i < 100 && (video_s = pc.mpv->duration_s()) < 0; ++i) usleep(10000);
+  CheckDuration(o, track_path, track_end_s, video_s, result);
+  if (video_s > 0) pc.film_s = video_s;
+  return pc;
+}
+
+// Zeroes and closes, then reads back what each device was last sent: the
+// proof that the exit left no force.
+void ZeroCloseAndReport(HapSeat& seat, PlayResult* result, std::ostream& log) {
+  ZeroAndClose(seat);
+  if (seat.count() == 0) return;
+  log << "last force sent on exit:";
+  for (int a = 0; a < kNumActuators; ++a) {
+    if (!seat.devices[a]) continue;
+    result->last_sent_force_n[a] = seat.devices[a]->LastSentForceN();
+    log << " " << ActuatorName(static_cast<Actuator>(a)) << " " << std::fixed
+        << std::setprecision(3) << result->last_sent_force_n[a] << " N";
+  }
+  log << "\n";
+}
+
+// After a fault: the last ticks go to the fault log, then the error is thrown.
+[[noreturn]] void ReportFault(const PlayOptions& o, const HapticLoop& loop,
+                              const std::exception_ptr& error, std::ostream& log) {
+  try {
+    AtomicFile f(o.fault_log);
+    loop.DumpRecent(f.stream());
+    f.Commit();
+    log << "last " << 2048 << " ticks written to " << o.fault_log << "\n";
+  } catch (const std::exception& e) {
+    log << "could not write the fault log: " << e.what() << "\n";
+  }
+  if (error) std::rethrow_exception(error);
+  throw Error("haptic loop", "stopped with zero force: " + loop.fault_message());
+}
+
+void LogLoopSummary(const PlayOptions& o, const HapticLoop& loop, std::ostream& log) {
+  const LoopStats& st = loop.stats();
+  if (o.print_stats) {
+    log << st.Summary();
+  } else {
+    log << "played to " << std::fixed << std::setprecision(2) << loop.last_media_s()
+        << " s: " << st.ticks << " ticks, " << st.missed_ticks << " missed (--stats for details)\n";
+  }
+}
+
 }  // namespace
 
 PlayResult Play(const PlayOptions& o, std::ostream& log) {
@@ -169,46 +261,11 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
     log << "stopped by signal before playback; forces zeroed\n";
     return result;
   };
-  for (auto& d : seat.devices) {
-    if (!d) continue;
-    log << "opening " << d->Name() << "...\n";
-    try {
-      d->Open();
-    } catch (const Error&) {
-      if (StopRequested()) return stopped_early();  // e.g. firmware loading cancelled
-      throw;
-    }
-    if (StopRequested()) return stopped_early();
-  }
+  if (!OpenDevices(seat, log)) return stopped_early();
   // Falcons must be homed before the film starts: the clock is held paused
   // (the loop already runs, homing, with zero force) until they are.
   const bool wait_for_homing = o.device == "falcon";
-
-  std::unique_ptr<MediaClock> clock;
-  MpvClock* mpv = nullptr;
-  WallClock* wall = nullptr;
-  double film_s = track_end_s;
-  if (o.wall_clock) {
-    auto w = std::make_unique<WallClock>(track_end_s, 0.0, wait_for_homing);
-    wall = w.get();
-    clock = std::move(w);
-    if (!o.video.empty())
-      result.warnings.push_back(
-          "--no-video: the video's duration was not checked against the track");
-  } else {
-    MpvOptions mo;
-    mo.headless = o.headless;
-    mo.fullscreen = o.fullscreen;
-    mo.start_paused = wait_for_homing;
-    auto m = std::make_unique<MpvClock>(o.video, mo);
-    m->WaitLoaded(20.0);
-    mpv = m.get();
-    clock = std::move(m);
-    double video_s = -1;
-    for (int i = 0; i < 100 && (video_s = mpv->duration_s()) < 0; ++i) usleep(10000);
-    CheckDuration(o, track_path, track_end_s, video_s, &result);
-    if (video_s > 0) film_s = video_s;
-  }
+  PlaybackClock pc = MakePlaybackClock(o, track_path, track_end_s, wait_for_homing, &result);
   for (const auto& w : result.warnings) log << "warning: " << w << "\n";
   if (StopRequested()) return stopped_early();
 
@@ -217,7 +274,7 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
   // and wall-clock playback end once the film is over and the actuators are
   // back at the centre.
   lo.finish_at_end = o.headless || o.wall_clock;
-  HapticLoop loop(track, seat, *clock, lo);
+  HapticLoop loop(track, seat, *pc.clock, lo);
 
   RunnerOptions ro;
   ro.realtime = o.realtime;
@@ -232,10 +289,10 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
       if (!loop.all_homed()) return;
       holding = false;
       log << "all Falcons homed: playing\n";
-      if (mpv) mpv->SetPause(false);
-      if (wall) wall->Start(now);
+      if (pc.mpv) pc.mpv->SetPause(false);
+      if (pc.wall) pc.wall->Start(now);
     }
-    playing.Update(loop.last_media_s(), film_s);
+    playing.Update(loop.last_media_s(), pc.film_s);
   };
   log << "playing " << track_path << " with " << (o.device == "none" ? "no device" : o.device)
       << " (k=" << lo.k_n_m << " N/m, d=" << lo.d_n_s_m << " N s/m)\n";
@@ -246,41 +303,12 @@ PlayResult Play(const PlayOptions& o, std::ostream& log) {
   result.status = loop.status();
   result.stats = loop.stats();
   result.stop_signal = StopSignal();
-  if (mpv) mpv->Quit();
+  if (pc.mpv) pc.mpv->Quit();
 
-  // Zero and close now (the guard repeats it harmlessly), then read back
-  // what each device was last sent: the proof that the exit left no force.
-  ZeroAndClose(seat);
-  if (seat.count() > 0) {
-    log << "last force sent on exit:";
-    for (int a = 0; a < kNumActuators; ++a) {
-      if (!seat.devices[a]) continue;
-      result.last_sent_force_n[a] = seat.devices[a]->LastSentForceN();
-      log << " " << ActuatorName(static_cast<Actuator>(a)) << " " << std::fixed
-          << std::setprecision(3) << result.last_sent_force_n[a] << " N";
-    }
-    log << "\n";
-  }
-
-  const LoopStats& st = loop.stats();
-  if (o.print_stats) {
-    log << st.Summary();
-  } else {
-    log << "played to " << std::fixed << std::setprecision(2) << loop.last_media_s()
-        << " s: " << st.ticks << " ticks, " << st.missed_ticks << " missed (--stats for details)\n";
-  }
-  if (loop.status() == LoopStatus::kFaulted || report.error) {
-    try {
-      AtomicFile f(o.fault_log);
-      loop.DumpRecent(f.stream());
-      f.Commit();
-      log << "last " << 2048 << " ticks written to " << o.fault_log << "\n";
-    } catch (const std::exception& e) {
-      log << "could not write the fault log: " << e.what() << "\n";
-    }
-    if (report.error) std::rethrow_exception(report.error);
-    throw Error("haptic loop", "stopped with zero force: " + loop.fault_message());
-  }
+  ZeroCloseAndReport(seat, &result, log);  // the guard repeats it harmlessly
+  LogLoopSummary(o, loop, log);
+  if (loop.status() == LoopStatus::kFaulted || report.error)
+    ReportFault(o, loop, report.error, log);
   if (loop.status() == LoopStatus::kStopped) log << "stopped by signal; forces zeroed\n";
   return result;
 }

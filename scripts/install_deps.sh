@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config git
   libeigen3-dev libopencv-dev libceres-dev
-  libavformat-dev libavcodec-dev libavutil-dev libswscale-dev ffmpeg
+  libavformat-dev libavcodec-dev libavutil-dev libswscale-dev libswresample-dev ffmpeg
   libusb-1.0-0-dev libmpv-dev
   # Opened at run time (dlopen), not linked, so that start-up loads neither
   # unless used: libmpv by `hapcine play` (player/mpv_library.h), OpenCV's

@@ -237,132 +237,115 @@ bool AskQuestionnaire(const StudyPlan& plan, AnswerSource& answers, Journal& jou
   return true;
 }
 
-}  // namespace
-
-RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream& out) {
-  options.Check();
-  const StudyPlan plan = ReadPlanFile(options.plan_path);
-  const ParticipantPlan& who = plan.Participant(options.participant);
-
-  RunSummary summary;
-  summary.total = static_cast<int>(who.trials.size());
-  summary.results_path = options.results_path;
-  if (summary.results_path.empty()) {
-    fs::path dir = fs::path(options.plan_path).parent_path();
-    summary.results_path = (dir / (who.id + ".results.json")).string();
-  }
-  summary.journal_path = JournalPathFor(summary.results_path);
-
-  // Every file the session plays, before the first clip: a track that is a
-  // FIFO or a device would hang or fail the player in the middle of a sitting.
+// Every file the session plays, before the first clip: a track that is a
+// FIFO or a device would hang or fail the player in the middle of a sitting.
+void CheckSessionFiles(const StudyPlan& plan, bool verify_hashes) {
   for (const auto& c : plan.clips) {
     CheckRegularFile(c.video);
     for (const auto& [cond, t] : c.tracks) CheckRegularFile(t.path);
   }
-  if (options.verify_hashes) {
-    for (const auto& c : plan.clips) {
-      if (HashFile(c.video) != c.video_hash)
-        throw Error(c.video, "video changed since the plan was made (hash differs)");
-      for (const auto& [cond, t] : c.tracks)
-        if (HashFile(t.path) != t.hash)
-          throw Error(t.path, "haptic track changed since the plan was made (hash differs)");
-    }
+  if (!verify_hashes) return;
+  for (const auto& c : plan.clips) {
+    if (HashFile(c.video) != c.video_hash)
+      throw Error(c.video, "video changed since the plan was made (hash differs)");
+    for (const auto& [cond, t] : c.tracks)
+      if (HashFile(t.path) != t.hash)
+        throw Error(t.path, "haptic track changed since the plan was made (hash differs)");
   }
+}
 
-  AnswerSource answers(options.responses_path, in, out);
-  if (const fs::path dir = fs::path(summary.results_path).parent_path(); !dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw Error(dir.string(), "cannot create the results folder: " + ec.message());
-  }
-  Journal journal(summary.journal_path, plan.plan_id, who.id);
+// Plays one clip with one condition's track through the player command.
+class ClipPlayer {
+ public:
+  ClipPlayer(const StudyPlan& plan, const RunOptions& options)
+      : plan_(plan),
+        device_(options.device),
+        words_(SplitCommand(options.player_cmd.empty() ? kDefaultPlayerTemplate
+                                                       : options.player_cmd)),
+        exe_(SelfExecutable()) {}
 
-  JournalState state = ReadJournalState(journal, plan, who);
-  const bool training_done = state.training_done;
-  std::map<int, json>& answered = state.trials;
-  summary.questions = static_cast<int>(plan.questionnaire.size());
-  summary.answered_before = static_cast<int>(answered.size());
-  if (summary.answered_before > 0 || training_done)
-    out << "Resuming " << who.id << ": " << summary.answered_before << " of " << summary.total
-        << " trials already answered"
-        << (state.question_answers.empty()
-                ? ""
-                : ", " + std::to_string(state.question_answers.size()) + " of " +
-                      std::to_string(summary.questions) + " questions")
-        << " (" << journal.path() << ")\n";
-  journal.Append({{"type", "started"}, {"utc", UtcNow()}, {"device", options.device}});
-
-  const auto words =
-      SplitCommand(options.player_cmd.empty() ? kDefaultPlayerTemplate : options.player_cmd);
-  const std::string exe = SelfExecutable();
-  auto play = [&](const std::string& clip_name, const std::string& condition) {
-    const StudyClip& clip = plan.Clip(clip_name);
-    const auto argv = SubstituteCommand(words, {{"exe", exe},
-                                                {"video", clip.video},
-                                                {"track", clip.tracks.at(condition).path},
-                                                {"device", options.device},
-                                                {"clip", clip_name},
-                                                {"condition", condition}});
+  void Play(const std::string& clip_name, const std::string& condition) const {
+    const StudyClip& clip = plan_.Clip(clip_name);
+    const std::string& track = clip.tracks.at(condition).path;
+    const auto argv = SubstituteCommand(words_, {{"exe", exe_},
+                                                 {"video", clip.video},
+                                                 {"track", track},
+                                                 {"device", device_},
+                                                 {"clip", clip_name},
+                                                 {"condition", condition}});
     const int rc = RunChild(argv);
     if (rc != 0)
-      throw Error(clip.tracks.at(condition).path,
-                  "player exited with status " + std::to_string(rc) + " (" + argv[0] + ")");
-  };
-
-  if (!training_done) {
-    out << "Training: " << who.training.size() << " clips with one kind of haptic feedback.\n";
-    for (size_t i = 0; i < who.training.size(); ++i) {
-      out << "  training " << i + 1 << "/" << who.training.size() << ": " << who.training[i].clip
-          << "\n"
-          << std::flush;
-      play(who.training[i].clip, who.training[i].condition);
-    }
-    journal.Append({{"type", "training_done"}, {"utc", UtcNow()}});
+      throw Error(track, "player exited with status " + std::to_string(rc) + " (" + argv[0] + ")");
   }
 
+ private:
+  const StudyPlan& plan_;
+  std::string device_;
+  std::vector<std::string> words_;
+  std::string exe_;
+};
+
+void RunTraining(const ParticipantPlan& who, const ClipPlayer& player, Journal& journal,
+                 std::ostream& out) {
+  out << "Training: " << who.training.size() << " clips with one kind of haptic feedback.\n";
+  for (size_t i = 0; i < who.training.size(); ++i) {
+    out << "  training " << i + 1 << "/" << who.training.size() << ": " << who.training[i].clip
+        << "\n"
+        << std::flush;
+    player.Play(who.training[i].clip, who.training[i].condition);
+  }
+  journal.Append({{"type", "training_done"}, {"utc", UtcNow()}});
+}
+
+// Plays each pair until the participant answers (0 = replay); nullopt when
+// they stopped. Sets *rt_s to the time from the end of the pair to the answer.
+std::optional<int> AskTrial(const Trial& t, int total, const ClipPlayer& player,
+                            AnswerSource& answers, std::ostream& out, double* rt_s) {
+  std::optional<int> choice;
+  for (;;) {
+    if (answers.Exhausted()) return std::nullopt;
+    out << "Trial " << t.index + 1 << "/" << total << " (" << t.clip << "): sequence 1...\n"
+        << std::flush;
+    player.Play(t.clip, t.first.front());
+    out << "  sequence 2...\n" << std::flush;
+    player.Play(t.clip, t.second.front());
+    const auto asked = std::chrono::steady_clock::now();
+    choice = answers.Next();
+    *rt_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+    if (!choice || *choice != 0) return choice;
+  }
+}
+
+// Every trial not yet answered; false if the participant stopped.
+bool RunTrials(const ParticipantPlan& who, const ClipPlayer& player, AnswerSource& answers,
+               Journal& journal, std::map<int, json>* answered, RunSummary* summary,
+               std::ostream& out) {
   for (const Trial& t : who.trials) {
-    if (answered.count(t.index)) continue;
-    std::optional<int> choice;
+    if (answered->count(t.index)) continue;
     double rt_s = 0;
-    for (;;) {
-      if (answers.Exhausted()) break;
-      out << "Trial " << t.index + 1 << "/" << summary.total << " (" << t.clip
-          << "): sequence 1...\n"
-          << std::flush;
-      play(t.clip, t.first.front());
-      out << "  sequence 2...\n" << std::flush;
-      play(t.clip, t.second.front());
-      const auto asked = std::chrono::steady_clock::now();
-      choice = answers.Next();
-      rt_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
-      if (!choice || *choice != 0) break;  // 0 = replay the pair
-    }
+    const std::optional<int> choice = AskTrial(t, summary->total, player, answers, out, &rt_s);
     if (!choice) {
-      out << "Stopped after " << answered.size() << " of " << summary.total
+      out << "Stopped after " << answered->size() << " of " << summary->total
           << " trials; answers are saved in " << journal.path()
           << ". Run the same command again to resume.\n";
-      return summary;
+      return false;
     }
     const json rec = {
         {"type", "trial"},         {"index", t.index},         {"clip", t.clip},
         {"first", t.first},        {"second", t.second},       {"choice", *choice},
         {"response_time_s", rt_s}, {"answered_utc", UtcNow()}, {"scripted", answers.scripted()}};
     journal.Append(rec);
-    answered.emplace(t.index, rec);
-    ++summary.answered_now;
+    answered->emplace(t.index, rec);
+    ++summary->answered_now;
   }
+  return true;
+}
 
-  const bool questionnaire_done =
-      AskQuestionnaire(plan, answers, journal, &state.question_answers, out);
-  summary.questions_answered = static_cast<int>(state.question_answers.size());
-  if (!questionnaire_done) {
-    out << "Stopped at the questionnaire after " << summary.questions_answered << " of "
-        << summary.questions << " questions; answers are saved in " << journal.path()
-        << ". Run the same command again to resume.\n";
-    return summary;
-  }
-
-  // Complete: assemble the results from the journal (the single source of truth).
+// The results of a complete session, assembled from the journal (the single
+// source of truth).
+ParticipantResults AssembleResults(const StudyPlan& plan, const ParticipantPlan& who,
+                                   const RunOptions& options, const Journal& journal,
+                                   const JournalState& state) {
   ParticipantResults res;
   res.plan_id = plan.plan_id;
   res.participant = who.id;
@@ -375,7 +358,7 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
       res.started_utc = r.value("utc", "");
   }
   res.completed_utc = UtcNow();
-  for (const auto& [idx, r] : answered) {
+  for (const auto& [idx, r] : state.trials) {
     TrialResult tr;
     tr.index = idx;
     tr.clip = r["clip"].get<std::string>();
@@ -390,6 +373,71 @@ RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream&
     const json& r = state.question_answers.at(q.id);
     res.questionnaire.push_back({q, r["answer"], r["answered_utc"].get<std::string>()});
   }
+  return res;
+}
+
+std::string DefaultResultsPath(const RunOptions& options, const ParticipantPlan& who) {
+  if (!options.results_path.empty()) return options.results_path;
+  const fs::path dir = fs::path(options.plan_path).parent_path();
+  return (dir / (who.id + ".results.json")).string();
+}
+
+void CreateParentFolder(const std::string& file) {
+  const fs::path dir = fs::path(file).parent_path();
+  if (dir.empty()) return;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(dir.string(), "cannot create the results folder: " + ec.message());
+}
+
+void PrintResuming(const ParticipantPlan& who, const RunSummary& summary,
+                   const JournalState& state, const Journal& journal, std::ostream& out) {
+  out << "Resuming " << who.id << ": " << summary.answered_before << " of " << summary.total
+      << " trials already answered"
+      << (state.question_answers.empty()
+              ? ""
+              : ", " + std::to_string(state.question_answers.size()) + " of " +
+                    std::to_string(summary.questions) + " questions")
+      << " (" << journal.path() << ")\n";
+}
+
+}  // namespace
+
+RunSummary RunSession(const RunOptions& options, std::istream& in, std::ostream& out) {
+  options.Check();
+  const StudyPlan plan = ReadPlanFile(options.plan_path);
+  const ParticipantPlan& who = plan.Participant(options.participant);
+
+  RunSummary summary;
+  summary.total = static_cast<int>(who.trials.size());
+  summary.results_path = DefaultResultsPath(options, who);
+  summary.journal_path = JournalPathFor(summary.results_path);
+  CheckSessionFiles(plan, options.verify_hashes);
+
+  AnswerSource answers(options.responses_path, in, out);
+  CreateParentFolder(summary.results_path);
+  Journal journal(summary.journal_path, plan.plan_id, who.id);
+  JournalState state = ReadJournalState(journal, plan, who);
+  summary.questions = static_cast<int>(plan.questionnaire.size());
+  summary.answered_before = static_cast<int>(state.trials.size());
+  if (summary.answered_before > 0 || state.training_done)
+    PrintResuming(who, summary, state, journal, out);
+  journal.Append({{"type", "started"}, {"utc", UtcNow()}, {"device", options.device}});
+
+  const ClipPlayer player(plan, options);
+  if (!state.training_done) RunTraining(who, player, journal, out);
+  if (!RunTrials(who, player, answers, journal, &state.trials, &summary, out)) return summary;
+
+  const bool questionnaire_done =
+      AskQuestionnaire(plan, answers, journal, &state.question_answers, out);
+  summary.questions_answered = static_cast<int>(state.question_answers.size());
+  if (!questionnaire_done) {
+    out << "Stopped at the questionnaire after " << summary.questions_answered << " of "
+        << summary.questions << " questions; answers are saved in " << journal.path()
+        << ". Run the same command again to resume.\n";
+    return summary;
+  }
+  const ParticipantResults res = AssembleResults(plan, who, options, journal, state);
   ResultsFromJson(ResultsToJson(res), summary.results_path);  // self-check before writing
   WriteResultsFile(res, summary.results_path);
   summary.complete = true;

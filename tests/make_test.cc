@@ -199,6 +199,12 @@ TEST_F(MakeTest, BadInputIsOneLineAndLeavesNothing) {
   EXPECT_EQ(range.exit_code, 2);
   EXPECT_NE(range.err.find("--tracks: 1 is outside [10, 100000]"), std::string::npos) << range.err;
   EXPECT_FALSE(fs::exists(film_dir_ / ".hapcine"));
+  // --fps applies to image sequences only: a usage error for a video, one line.
+  const RunResult fps = Make("--fps 25");
+  EXPECT_EQ(fps.exit_code, 2) << fps.err;
+  EXPECT_EQ(fps.err, "hapcine make: --fps is for image folders and patterns; a video's times come "
+                     "from its timestamps\n");
+  EXPECT_FALSE(fs::exists(film_dir_ / ".hapcine"));
 
   const fs::path bad = film_dir_ / "notes.mp4";
   { std::ofstream(bad) << "not a film\n"; }
