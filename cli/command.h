@@ -48,5 +48,6 @@ int RunBatch(int argc, char** argv);
 int RunStudy(int argc, char** argv);
 int RunConvert(int argc, char** argv);
 int RunMake(int argc, char** argv);
+int RunStudio(int argc, char** argv);
 
 }  // namespace hapcine::cli

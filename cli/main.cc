@@ -31,6 +31,8 @@ const Subcommand kSubcommands[] = {
     {"make", "film in, camera path and haptic track out, in one command (reuses the camera path)",
      hapcine::cli::RunMake},
     {"batch", "process a whole video library, locally or on Slurm", hapcine::cli::RunBatch},
+    {"studio", "review and edit a film's haptics in the browser (local web server)",
+     hapcine::cli::RunStudio},
     {"study", "plan, run and analyse a pairwise user study", hapcine::cli::RunStudy},
     {"convert",
      "convert camera paths to and from TUM and COLMAP; export to KITTI, Nuke .chan, Blender",

@@ -181,20 +181,6 @@ std::vector<double> CutTimes(const CameraPath& path, const std::vector<ShotRange
   return cut_times;
 }
 
-// The semantic segments of a path already joined across lost frames.
-std::vector<EffectSegment> EffectSegmentsOfJoinedPath(const CameraPath& path,
-                                                      const HapticOptions& o) {
-  if (o.edits.keyframes) return *o.edits.keyframes;
-  if (!o.keyframes_file.empty()) return ReadKeyframesFile(o.keyframes_file);
-  return ClassifyEffects(path, o.classifier);
-}
-
-// The semantic model's effects: the edits' keyframes, else the keyframes
-// file's, else the classifier's (none for the other models).
-std::vector<EffectSegment> SemanticSegments(const CameraPath& path, const HapticOptions& o) {
-  if (o.model != HapticModel::kSemantic) return {};
-  return EffectSegmentsOfJoinedPath(path, o);
-}
 
 std::string JoinScales(const CinematicScaling& s, bool rotation) {
   std::ostringstream out;
@@ -243,6 +229,14 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
 }
 
 
+// The semantic segments of a path already joined across lost frames.
+std::vector<EffectSegment> EffectSegmentsOfJoinedPath(const CameraPath& path,
+                                                      const HapticOptions& o) {
+  if (o.edits.keyframes) return *o.edits.keyframes;
+  if (!o.keyframes_file.empty()) return ReadKeyframesFile(o.keyframes_file);
+  return ClassifyEffects(path, o.classifier);
+}
+
 std::string EffectsFrom(const HapticOptions& o) {
   if (o.edits.keyframes) return "edits";
   return o.keyframes_file.empty() ? "classifier" : o.keyframes_file;
@@ -252,14 +246,26 @@ uint64_t RandomSeed(const CameraPath& read_path, const HapticOptions& o) {
   return o.seed ? *o.seed : DefaultRandomSeed(read_path);
 }
 
+// Whether the film's model, or an edit of one of its shots, is semantic.
+bool UsesSemantic(const HapticOptions& o) {
+  if (o.model == HapticModel::kSemantic) return true;
+  return std::any_of(o.edits.shots.begin(), o.edits.shots.end(),
+                     [](const ShotEdit& e) { return e.model == HapticModel::kSemantic; });
+}
+
+// The semantic model's effects (the edits', the keyframes file's, else the
+// classifier's) when any shot uses it; none otherwise.
+std::vector<EffectSegment> SemanticSegments(const CameraPath& path, const HapticOptions& o) {
+  if (!UsesSemantic(o)) return {};
+  return EffectSegmentsOfJoinedPath(path, o);
+}
+
 // The film's model over the whole path: positions into track->samples
 // (their times already set), its metadata, and the semantic effect per sample.
-// `segs`: the semantic model's segments (SemanticSegments); rows past
-// `regular_rows` are its dense rows (SemanticSampleTimes).
 void RunFilmModel(const CameraPath& path, const CameraPath& read_path,
                   const std::vector<ShotRange>& shots, const std::vector<double>& time_s,
-                  const std::vector<EffectSegment>& segs, size_t regular_rows,
-                  const HapticOptions& o, HapticTrack* track, std::vector<CameraEffect>* effects) {
+                  const std::vector<EffectSegment>& segs, const HapticOptions& o,
+                  HapticTrack* track, std::vector<CameraEffect>* effects) {
   switch (o.model) {
     case HapticModel::kNone:
       break;  // samples start centred
@@ -270,9 +276,6 @@ void RunFilmModel(const CameraPath& path, const CameraPath& read_path,
       CopyPositions(SemanticFrames(time_s, segs, o.seat, o.semantic, effects), &track->samples);
       track->metadata["effects_from"] = EffectsFrom(o);
       track->metadata["effect_segments"] = std::to_string(segs.size());
-      if (time_s.size() > regular_rows) {
-        track->metadata["dense_rows"] = std::to_string(time_s.size() - regular_rows);
-      }
       break;
     }
     case HapticModel::kRandom: {
@@ -531,8 +534,7 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   const std::vector<ShotRange> shots = SplitShots(path);
   const std::vector<double> cut_times = CutTimes(path, shots);
   const std::vector<EffectSegment> segs = SemanticSegments(path, o);
-  if (o.model == HapticModel::kSemantic)
-    time_s = SemanticSampleTimes(std::move(time_s), segs, cut_times, o);
+  if (UsesSemantic(o)) time_s = SemanticSampleTimes(std::move(time_s), segs, cut_times, o);
   const size_t n = time_s.size();
 
   HapticTrack track;
@@ -545,7 +547,8 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   track.samples.resize(n);
   for (size_t i = 0; i < n; ++i) track.samples[i].time_s = time_s[i];
   std::vector<CameraEffect> effects;
-  RunFilmModel(path, read_path, shots, time_s, segs, regular_rows, o, &track, &effects);
+  RunFilmModel(path, read_path, shots, time_s, segs, o, &track, &effects);
+  if (n > regular_rows) track.metadata["dense_rows"] = std::to_string(n - regular_rows);
   if (!o.edits.empty()) ApplyEdits(path, read_path, shots, time_s, o, &track, &effects);
   ApplyCutTransitions(time_s, cut_times, o.washout.cut_ramp_s, &track.samples);
   const int limited = LimitSpeed(o.washout.max_speed_m_s, rate, &track.samples);

@@ -14,6 +14,8 @@ PACKAGES=(
   # them in today; listed so that they stay installed whatever those depend on.
   libmpv2 libopencv-imgcodecs406
   libcli11-dev nlohmann-json3-dev
+  # The studio's HTTP server (studio/, `hapcine studio`).
+  libcpp-httplib-dev
   libgtest-dev libgmock-dev
   colmap
   # Slurm test (batch issue): a real single-node cluster.
