@@ -97,8 +97,13 @@ case "$cmd" in
     echo "plot $kind $in" >> "$LOG"
     ;;
   preview)
-    # preview FILM --track TRACK -o OUT: a "video" of the track's bytes.
-    track=$3; out=$5
+    # preview FILM --track TRACK [...] -o OUT: a "video" of the track's bytes.
+    track=""; out=""
+    args=("$@")
+    for ((i = 1; i + 1 < ${#args[@]}; i++)); do
+      [ "${args[$i]}" = --track ] && track=${args[$((i + 1))]}
+      [ "${args[$i]}" = -o ] && out=${args[$((i + 1))]}
+    done
     IFS= read -r -d '' content < "$track"
     printf 'preview\n%s' "$content" > "$out"
     echo "preview $track" >> "$LOG"

@@ -513,17 +513,26 @@ std::string TrackText(const HapticTrack& t) {
   return ss.str();
 }
 
-// Largest |a - b| of any coordinate over the samples with from <= t < to.
+// Largest |a - b| of any coordinate over the rows both tracks have (same
+// time: a semantic track adds dense rows between the regular ones) with
+// from <= t < to.
 double MaxDifference(const HapticTrack& a, const HapticTrack& b, double from, double to) {
-  EXPECT_EQ(a.samples.size(), b.samples.size());
   double m = 0;
-  for (size_t i = 0; i < a.samples.size() && i < b.samples.size(); ++i) {
-    const double t = a.samples[i].time_s;
-    if (t < from - 1e-9 || t >= to - 1e-9) continue;
-    for (int k = 0; k < kNumActuators; ++k) {
-      m = std::max(m, (a.samples[i].pos_m[k] - b.samples[i].pos_m[k]).cwiseAbs().maxCoeff());
+  size_t common = 0;
+  for (size_t i = 0, j = 0; i < a.samples.size() && j < b.samples.size();) {
+    const double ta = a.samples[i].time_s, tb = b.samples[j].time_s;
+    if (ta < tb - 1e-9) { ++i; continue; }
+    if (tb < ta - 1e-9) { ++j; continue; }
+    if (ta >= from - 1e-9 && ta < to - 1e-9) {
+      ++common;
+      for (int k = 0; k < kNumActuators; ++k) {
+        m = std::max(m, (a.samples[i].pos_m[k] - b.samples[j].pos_m[k]).cwiseAbs().maxCoeff());
+      }
     }
+    ++i;
+    ++j;
   }
+  EXPECT_GT(common, 0u);
   return m;
 }
 
