@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <thread>
 #include <cstdlib>
 #include <fstream>
 
@@ -107,6 +110,37 @@ void JobProgress::Tick() {
 void JobProgress::Close() {
   std::lock_guard<std::mutex> lock(mu_);
   progress_.Close();
+}
+
+MakeResult RunMakeWithProgress(const MakeOptions& options, const FilmLayout& layout,
+                               std::ostream& out, ProgressMode mode, const std::string& label) {
+  JobProgress progress(out, mode, label, MakeStepNames(layout));
+  // The steps write a progress line every half second into their logs.
+  ::setenv("HAPCINE_PROGRESS_INTERVAL", "0.5", 1);
+  MakeResult result;
+  std::exception_ptr failure;
+  bool finished = false;
+  std::mutex mu;
+  std::condition_variable cv;
+  std::thread worker([&] {
+    try {
+      result = RunMake(options, &progress);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mu);
+    finished = true;
+    cv.notify_all();
+  });
+  {
+    std::unique_lock<std::mutex> lock(mu);
+    while (!cv.wait_for(lock, std::chrono::milliseconds(200), [&] { return finished; }))
+      progress.Tick();
+  }
+  worker.join();
+  progress.Close();
+  if (failure) std::rethrow_exception(failure);
+  return result;
 }
 
 }  // namespace hapcine::batch

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "batch/film_runner.h"
+#include "batch/make.h"
 #include "core/progress.h"
 
 namespace hapcine::batch {
@@ -49,5 +50,11 @@ class JobProgress : public FilmObserver {
   double last_line_s_ = -1e300;
   double start_s_ = 0;
 };
+
+// RunMake on a worker thread while this one redraws a bar labelled `label`
+// over the film's steps on `out`; rethrows what RunMake threw. Shared by
+// `hapcine make` and `hapcine studio`.
+MakeResult RunMakeWithProgress(const MakeOptions& options, const FilmLayout& layout,
+                               std::ostream& out, ProgressMode mode, const std::string& label);
 
 }  // namespace hapcine::batch

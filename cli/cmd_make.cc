@@ -179,33 +179,7 @@ batch::MakeResult RunWithProgress(const batch::MakeOptions& options, ProgressMod
     ReadHapticEditsFile(layout.edits);  // a bad file fails now, not after the estimate
     std::cerr << "make: edits from " << layout.edits << " (--no-edits to ignore)\n";
   }
-  batch::JobProgress progress(std::cerr, mode, "make", batch::MakeStepNames(layout));
-  // The steps write a progress line every half second into their logs.
-  ::setenv("HAPCINE_PROGRESS_INTERVAL", "0.5", 1);
-  batch::MakeResult result;
-  std::exception_ptr failure;
-  bool finished = false;
-  std::mutex mu;
-  std::condition_variable cv;
-  std::thread worker([&] {
-    try {
-      result = batch::RunMake(options, &progress);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    std::lock_guard<std::mutex> lock(mu);
-    finished = true;
-    cv.notify_all();
-  });
-  {
-    std::unique_lock<std::mutex> lock(mu);
-    while (!cv.wait_for(lock, std::chrono::milliseconds(200), [&] { return finished; }))
-      progress.Tick();
-  }
-  worker.join();
-  progress.Close();
-  if (failure) std::rethrow_exception(failure);
-  return result;
+  return batch::RunMakeWithProgress(options, layout, std::cerr, mode, "make");
 }
 
 }  // namespace

@@ -112,32 +112,8 @@ std::vector<std::string> ExpandFilms(const std::vector<std::string>& inputs) {
 // make's runner on a worker thread while this one redraws the progress.
 batch::MakeResult MakeWithProgress(const batch::MakeOptions& options, ProgressMode mode) {
   const batch::FilmPlan film = batch::MakeFilmPlan(options.film);
-  batch::JobProgress progress(std::cerr, mode, "studio: " + fs::path(options.film).filename().string(),
-                              batch::MakeStepNames(batch::MakeLayout(options, film)));
-  ::setenv("HAPCINE_PROGRESS_INTERVAL", "0.5", 1);
-  batch::MakeResult result;
-  std::exception_ptr failure;
-  bool finished = false;
-  std::mutex mu;
-  std::condition_variable cv;
-  std::thread worker([&] {
-    try {
-      result = batch::RunMake(options, &progress);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    std::lock_guard<std::mutex> lock(mu);
-    finished = true;
-    cv.notify_all();
-  });
-  {
-    std::unique_lock<std::mutex> lock(mu);
-    while (!cv.wait_for(lock, std::chrono::milliseconds(200), [&] { return finished; })) progress.Tick();
-  }
-  worker.join();
-  progress.Close();
-  if (failure) std::rethrow_exception(failure);
-  return result;
+  return batch::RunMakeWithProgress(options, batch::MakeLayout(options, film), std::cerr, mode,
+                                    "studio: " + fs::path(options.film).filename().string());
 }
 
 struct StudioArgs {
