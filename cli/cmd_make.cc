@@ -30,25 +30,6 @@ namespace hapcine::cli {
 namespace {
 namespace fs = std::filesystem;
 
-// Option name ("--tracks", "-q") -> takes a value.
-using OptionTable = std::map<std::string, bool>;
-
-OptionTable OptionsOf(int (*run)(int, char**), const std::string& command) {
-  OptionTable table;
-  ScopedAppProbe probe([&](CLI::App& app, int, char**) {
-    for (const CLI::Option* o : app.get_options()) {
-      const bool takes_value = o->get_items_expected_max() > 0;
-      for (const std::string& n : o->get_lnames()) table["--" + n] = takes_value;
-      for (const std::string& n : o->get_snames()) table["-" + n] = takes_value;
-    }
-    return 0;
-  });
-  std::string prog = "hapcine " + command;
-  char* argv[] = {prog.data(), nullptr};
-  run(1, argv);
-  return table;
-}
-
 // Options of estimate/haptics that make sets itself or that write files of
 // their own outside the film's layout.
 const std::map<std::string, std::string>& RefusedOptions() {

@@ -42,29 +42,11 @@ const std::map<std::string, std::string>& RefusedEstimateOptions() {
   return refused;
 }
 
-// Option name -> takes a value, for a command (its own table, read through
-// ScopedAppProbe as `make` does).
-std::map<std::string, bool> OptionTable(int (*run)(int, char**), const std::string& command) {
-  std::map<std::string, bool> table;
-  ScopedAppProbe probe([&](CLI::App& app, int, char**) {
-    for (const CLI::Option* o : app.get_options()) {
-      const bool takes_value = o->get_items_expected_max() > 0;
-      for (const std::string& n : o->get_lnames()) table["--" + n] = takes_value;
-      for (const std::string& n : o->get_snames()) table["-" + n] = takes_value;
-    }
-    return 0;
-  });
-  std::string prog = "hapcine " + command;
-  char* argv[] = {prog.data(), nullptr};
-  run(1, argv);
-  return table;
-}
-
 // Deals argv to the studio (its own options and the films) or to estimate.
 void SplitArguments(int argc, char** argv, const CLI::App& app, std::vector<std::string>* own,
                     std::vector<std::string>* estimate) {
-  const std::map<std::string, bool> est = OptionTable(RunEstimate, "estimate");
-  const std::map<std::string, bool> hap = OptionTable(RunHaptics, "haptics");
+  const OptionTable est = OptionsOf(RunEstimate, "estimate");
+  const OptionTable hap = OptionsOf(RunHaptics, "haptics");
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     const std::string name = word.substr(0, word.find('='));

@@ -17,6 +17,22 @@ ScopedAppProbe::ScopedAppProbe(AppProbe probe) : probe_(std::move(probe)), previ
 
 ScopedAppProbe::~ScopedAppProbe() { current_probe = previous_; }
 
+OptionTable OptionsOf(int (*run)(int, char**), const std::string& command) {
+  OptionTable table;
+  ScopedAppProbe probe([&](CLI::App& app, int, char**) {
+    for (const CLI::Option* o : app.get_options()) {
+      const bool takes_value = o->get_items_expected_max() > 0;
+      for (const std::string& n : o->get_lnames()) table["--" + n] = takes_value;
+      for (const std::string& n : o->get_snames()) table["-" + n] = takes_value;
+    }
+    return 0;
+  });
+  std::string prog = "hapcine " + command;
+  char* argv[] = {prog.data(), nullptr};
+  run(1, argv);
+  return table;
+}
+
 int RunApp(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   if (current_probe) return (*current_probe)(app, argc, argv);
   try {

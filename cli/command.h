@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <map>
 #include <string>
 
 namespace hapcine::cli {
@@ -35,6 +36,11 @@ class ScopedAppProbe {
   AppProbe probe_;
   AppProbe* previous_;
 };
+
+// Option name ("--tracks", "-q") -> takes a value, of the command `run`
+// (read through a ScopedAppProbe: nothing is parsed or run).
+using OptionTable = std::map<std::string, bool>;
+OptionTable OptionsOf(int (*run)(int, char**), const std::string& command);
 
 // One function per subcommand; argv[0] is "hapcine <name>".
 int RunSynth(int argc, char** argv);
