@@ -15,15 +15,10 @@ extern "C" {
 #include <vector>
 
 #include "core/error.h"
+#include "extract/av_error.h"
 
 namespace hapcine {
 namespace {
-
-std::string AvError(int code) {
-  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
-  av_strerror(code, buf, sizeof(buf));
-  return buf;
-}
 
 struct InputCloser {
   void operator()(AVFormatContext* c) const { avformat_close_input(&c); }
@@ -64,10 +59,10 @@ PacketPtr NewPacket() {
 InputPtr OpenInput(const std::string& path, const std::string& name) {
   AVFormatContext* ctx = nullptr;
   int rc = avformat_open_input(&ctx, path.c_str(), nullptr, nullptr);
-  if (rc < 0) throw Error(name, "cannot open " + path + ": " + AvError(rc));
+  if (rc < 0) throw Error(name, "cannot open " + path + ": " + AvErrorText(rc));
   InputPtr in(ctx);
   rc = avformat_find_stream_info(ctx, nullptr);
-  if (rc < 0) throw Error(name, "cannot read the streams of " + path + ": " + AvError(rc));
+  if (rc < 0) throw Error(name, "cannot read the streams of " + path + ": " + AvErrorText(rc));
   return in;
 }
 
@@ -82,7 +77,7 @@ bool ReadStreamPacket(AVFormatContext* in, int stream, AVPacket* p, const std::s
   for (;;) {
     const int rc = av_read_frame(in, p);
     if (rc == AVERROR_EOF) return false;
-    if (rc < 0) throw Error(name, std::string("cannot read ") + in->url + ": " + AvError(rc));
+    if (rc < 0) throw Error(name, std::string("cannot read ") + in->url + ": " + AvErrorText(rc));
     if (p->stream_index == stream) return true;
     av_packet_unref(p);
   }
@@ -227,7 +222,7 @@ void AudioEncode::OpenDecoder() {
   if (!decoder_) throw std::bad_alloc();
   int rc = avcodec_parameters_to_context(decoder_.get(), par);
   if (rc >= 0) rc = avcodec_open2(decoder_.get(), codec, nullptr);
-  if (rc < 0) throw Error(film_.name, "cannot open the film's audio decoder: " + AvError(rc));
+  if (rc < 0) throw Error(film_.name, "cannot open the film's audio decoder: " + AvErrorText(rc));
 }
 
 // The film's rate when AAC has it (8 to 96 kHz), else 48 kHz.
@@ -252,7 +247,7 @@ void AudioEncode::OpenEncoder(AVFormatContext* out_format) {
     encoder_->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   int rc = avcodec_open2(encoder_.get(), codec, nullptr);
   if (rc >= 0) rc = avcodec_parameters_from_context(out_->codecpar, encoder_.get());
-  if (rc < 0) throw Error(film_.name, "cannot open the AAC encoder: " + AvError(rc));
+  if (rc < 0) throw Error(film_.name, "cannot open the AAC encoder: " + AvErrorText(rc));
   out_->time_base = encoder_->time_base;
   fifo_.reset(av_audio_fifo_alloc(AV_SAMPLE_FMT_FLTP, channels, 4 * encoder_->frame_size + 1));
   if (!fifo_) throw std::bad_alloc();
@@ -293,7 +288,7 @@ bool AudioEncode::Take(AVFrame* f) {
     av_channel_layout_uninit(&in_layout);
     swr_.reset(s);
     if (rc >= 0) rc = swr_init(s);
-    if (rc < 0) throw Error(film_.name, "cannot convert the film's audio: " + AvError(rc));
+    if (rc < 0) throw Error(film_.name, "cannot convert the film's audio: " + AvErrorText(rc));
   }
   const int capacity = swr_get_out_samples(swr_.get(), f->nb_samples);
   std::vector<float*> out(planes_.size());
@@ -303,7 +298,7 @@ bool AudioEncode::Take(AVFrame* f) {
   }
   const int n = swr_convert(swr_.get(), reinterpret_cast<uint8_t**>(out.data()), capacity,
                             const_cast<const uint8_t**>(f->extended_data), f->nb_samples);
-  if (n < 0) throw Error(film_.name, "cannot convert the film's audio: " + AvError(n));
+  if (n < 0) throw Error(film_.name, "cannot convert the film's audio: " + AvErrorText(n));
   const double rate = encoder_->sample_rate;
   next_time_s_ = t0 + n / rate;
   const auto sample_at = [&](double t) {
@@ -347,12 +342,12 @@ void AudioEncode::EncodeFifo(bool flush) {
 
 void AudioEncode::Encode(AVFrame* f) {
   int rc = avcodec_send_frame(encoder_.get(), f);
-  if (rc < 0) throw Error(film_.name, "the AAC encoder rejected audio: " + AvError(rc));
+  if (rc < 0) throw Error(film_.name, "the AAC encoder rejected audio: " + AvErrorText(rc));
   for (;;) {
     PacketPtr p = NewPacket();
     rc = avcodec_receive_packet(encoder_.get(), p.get());
     if (rc == AVERROR(EAGAIN) || rc == AVERROR_EOF) return;
-    if (rc < 0) throw Error(film_.name, "AAC encoding failed: " + AvError(rc));
+    if (rc < 0) throw Error(film_.name, "AAC encoding failed: " + AvErrorText(rc));
     av_packet_rescale_ts(p.get(), encoder_->time_base, out_->time_base);
     p->stream_index = out_->index;
     ready_.push_back(std::move(p));
@@ -381,7 +376,7 @@ void Interleave(AVFormatContext* out, PacketSource* video, PacketSource* audio,
       k = av_compare_ts(pending[0]->dts, tb0, pending[1]->dts, tb1) <= 0 ? 0 : 1;
     }
     const int rc = av_interleaved_write_frame(out, pending[k].get());  // takes the data
-    if (rc < 0) throw Error(name, "write failed (disk full?): " + AvError(rc));
+    if (rc < 0) throw Error(name, "write failed (disk full?): " + AvErrorText(rc));
     has[k] = sources[k]->Next(pending[k].get());
   }
 }
@@ -405,13 +400,13 @@ std::string MuxFilmAudio(const std::string& video_only, const std::string& film,
   const FilmAudio audio = FindFilmAudio(source.get(), range, error_name);
   AVFormatContext* raw = nullptr;
   int rc = avformat_alloc_output_context2(&raw, nullptr, "mp4", output_path.c_str());
-  if (rc < 0 || !raw) throw Error(error_name, "cannot create MP4 muxer: " + AvError(rc));
+  if (rc < 0 || !raw) throw Error(error_name, "cannot create MP4 muxer: " + AvErrorText(rc));
   const OutputPtr out(raw);
   AVStream* video_out = avformat_new_stream(raw, nullptr);
   AVStream* audio_out = avformat_new_stream(raw, nullptr);
   if (!video_out || !audio_out) throw std::bad_alloc();
   rc = avcodec_parameters_copy(video_out->codecpar, video->streams[0]->codecpar);
-  if (rc < 0) throw Error(error_name, "codec parameters: " + AvError(rc));
+  if (rc < 0) throw Error(error_name, "codec parameters: " + AvErrorText(rc));
   video_out->codecpar->codec_tag = 0;
   video_out->time_base = video->streams[0]->time_base;
   video_out->avg_frame_rate = video->streams[0]->avg_frame_rate;
@@ -419,7 +414,7 @@ std::string MuxFilmAudio(const std::string& video_only, const std::string& film,
   const bool copy = Mp4CopiesAudio(audio.in()->codecpar->codec_id);
   if (copy) {
     rc = avcodec_parameters_copy(audio_out->codecpar, audio.in()->codecpar);
-    if (rc < 0) throw Error(error_name, "codec parameters: " + AvError(rc));
+    if (rc < 0) throw Error(error_name, "codec parameters: " + AvErrorText(rc));
     audio_out->codecpar->codec_tag = 0;
     audio_out->time_base = audio.in()->time_base;
     audio_source = std::make_unique<AudioCopy>(audio, audio_out);
@@ -427,15 +422,15 @@ std::string MuxFilmAudio(const std::string& video_only, const std::string& film,
     audio_source = std::make_unique<AudioEncode>(audio, raw, audio_out);
   }
   rc = avio_open(&raw->pb, output_path.c_str(), AVIO_FLAG_WRITE);
-  if (rc < 0) throw Error(error_name, "cannot open for writing: " + AvError(rc));
+  if (rc < 0) throw Error(error_name, "cannot open for writing: " + AvErrorText(rc));
   rc = avformat_write_header(raw, nullptr);
-  if (rc < 0) throw Error(error_name, "cannot write MP4 header: " + AvError(rc));
+  if (rc < 0) throw Error(error_name, "cannot write MP4 header: " + AvErrorText(rc));
   VideoCopy video_source(video.get(), video_out, error_name);
   Interleave(raw, &video_source, audio_source.get(), error_name);
   rc = av_write_trailer(raw);
-  if (rc < 0) throw Error(error_name, "cannot finish MP4: " + AvError(rc));
+  if (rc < 0) throw Error(error_name, "cannot finish MP4: " + AvErrorText(rc));
   rc = avio_closep(&raw->pb);
-  if (rc < 0) throw Error(error_name, "cannot close file: " + AvError(rc));
+  if (rc < 0) throw Error(error_name, "cannot close file: " + AvErrorText(rc));
   return copy ? "copy" : "aac";
 }
 

@@ -12,15 +12,10 @@ extern "C" {
 
 #include "core/output_files.h"
 #include "core/error.h"
+#include "extract/av_error.h"
 
 namespace hapcine {
 namespace {
-
-std::string AvError(int code) {
-  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
-  av_strerror(code, buf, sizeof(buf));
-  return buf;
-}
 
 // Exact rationals for the broadcast rates, so 23.976 is 24000/1001.
 AVRational FpsRational(double fps) {
@@ -70,7 +65,7 @@ void VideoWriter::Open(const std::string& path, int width, int height, double fp
   try {
     // The temporary name has no .mp4 suffix, so name the muxer explicitly.
     int rc = avformat_alloc_output_context2(&format_, nullptr, "mp4", temp_path.c_str());
-    if (rc < 0 || !format_) throw Error(path, "cannot create MP4 muxer: " + AvError(rc));
+    if (rc < 0 || !format_) throw Error(path, "cannot create MP4 muxer: " + AvErrorText(rc));
     const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
     if (!codec) throw Error(path, "FFmpeg has no libx264 encoder");
     stream_ = avformat_new_stream(format_, nullptr);
@@ -94,16 +89,16 @@ void VideoWriter::Open(const std::string& path, int width, int height, double fp
     av_opt_set(codec_->priv_data, "preset", options.preset.c_str(), 0);
     av_opt_set(codec_->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
     rc = avcodec_open2(codec_, codec, nullptr);
-    if (rc < 0) throw Error(path, "cannot open libx264 (preset '" + options.preset + "'): " + AvError(rc));
+    if (rc < 0) throw Error(path, "cannot open libx264 (preset '" + options.preset + "'): " + AvErrorText(rc));
     rc = avcodec_parameters_from_context(stream_->codecpar, codec_);
-    if (rc < 0) throw Error(path, "codec parameters: " + AvError(rc));
+    if (rc < 0) throw Error(path, "codec parameters: " + AvErrorText(rc));
     stream_->time_base = codec_->time_base;
     stream_->avg_frame_rate = rate;
     stream_->r_frame_rate = rate;
     rc = avio_open(&format_->pb, temp_path.c_str(), AVIO_FLAG_WRITE);
-    if (rc < 0) throw Error(path, "cannot open for writing: " + AvError(rc));
+    if (rc < 0) throw Error(path, "cannot open for writing: " + AvErrorText(rc));
     rc = avformat_write_header(format_, nullptr);
-    if (rc < 0) throw Error(path, "cannot write MP4 header: " + AvError(rc));
+    if (rc < 0) throw Error(path, "cannot write MP4 header: " + AvErrorText(rc));
     header_written_ = true;
     frame_ = av_frame_alloc();
     packet_ = av_packet_alloc();
@@ -114,7 +109,7 @@ void VideoWriter::Open(const std::string& path, int width, int height, double fp
     frame_->colorspace = AVCOL_SPC_SMPTE170M;
     frame_->color_range = AVCOL_RANGE_MPEG;
     rc = av_frame_get_buffer(frame_, 0);
-    if (rc < 0) throw Error(path, "frame buffer: " + AvError(rc));
+    if (rc < 0) throw Error(path, "frame buffer: " + AvErrorText(rc));
     sws_ = sws_getContext(width, height, AV_PIX_FMT_BGR24, width, height, AV_PIX_FMT_YUV420P,
                           SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr,
                           nullptr);
@@ -133,7 +128,7 @@ void VideoWriter::Write(const cv::Mat& bgr) {
                              std::to_string(height_));
     }
     const int rc = av_frame_make_writable(frame_);
-    if (rc < 0) throw Error(path_, "frame not writable: " + AvError(rc));
+    if (rc < 0) throw Error(path_, "frame not writable: " + AvErrorText(rc));
     const uint8_t* src[1] = {bgr.data};
     const int stride[1] = {static_cast<int>(bgr.step[0])};
     sws_scale(sws_, src, stride, 0, height_, frame_->data, frame_->linesize);
@@ -148,15 +143,15 @@ void VideoWriter::Write(const cv::Mat& bgr) {
 
 void VideoWriter::Encode(AVFrame* frame) {
   int rc = avcodec_send_frame(codec_, frame);
-  if (rc < 0) throw Error(path_, "encoder rejected a frame: " + AvError(rc));
+  if (rc < 0) throw Error(path_, "encoder rejected a frame: " + AvErrorText(rc));
   for (;;) {
     rc = avcodec_receive_packet(codec_, packet_);
     if (rc == AVERROR(EAGAIN) || rc == AVERROR_EOF) return;
-    if (rc < 0) throw Error(path_, "encoding failed: " + AvError(rc));
+    if (rc < 0) throw Error(path_, "encoding failed: " + AvErrorText(rc));
     av_packet_rescale_ts(packet_, codec_->time_base, stream_->time_base);
     packet_->stream_index = stream_->index;
     rc = av_interleaved_write_frame(format_, packet_);  // takes the packet's data
-    if (rc < 0) throw Error(path_, "write failed (disk full?): " + AvError(rc));
+    if (rc < 0) throw Error(path_, "write failed (disk full?): " + AvErrorText(rc));
   }
 }
 
@@ -166,9 +161,9 @@ void VideoWriter::Close() {
     if (frames_ == 0) throw Error(path_, "no frames written");
     Encode(nullptr);
     int rc = av_write_trailer(format_);
-    if (rc < 0) throw Error(path_, "cannot finish MP4: " + AvError(rc));
+    if (rc < 0) throw Error(path_, "cannot finish MP4: " + AvErrorText(rc));
     rc = avio_closep(&format_->pb);
-    if (rc < 0) throw Error(path_, "cannot close file: " + AvError(rc));
+    if (rc < 0) throw Error(path_, "cannot close file: " + AvErrorText(rc));
   } catch (...) {
     Abort();
     throw;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "extract/av_error.h"
 #include "extract/half_gray.h"
 #include "extract/video_sources.h"
 
@@ -31,12 +32,6 @@ extern "C" {
 
 namespace hapcine {
 namespace {
-
-std::string AvError(int err) {
-  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
-  av_strerror(err, buf, sizeof(buf));
-  return buf;
-}
 
 // Clockwise rotation (0/90/180/270) that makes the frame display upright,
 // the same reading as the ffmpeg CLI's autorotate.
@@ -124,12 +119,12 @@ class FfmpegSource : public FrameSource {
     // one-line error this class throws with the same reason.
     if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_FATAL);
     int r = avformat_open_input(&fmt_, path.c_str(), nullptr, nullptr);
-    if (r < 0) throw Error(path, "not a media file FFmpeg can read (" + AvError(r) + ")");
+    if (r < 0) throw Error(path, "not a media file FFmpeg can read (" + AvErrorText(r) + ")");
     // The "tty" demuxer turns any .txt/.ans file into ANSI-art video.
     if (fmt_->iformat && std::strcmp(fmt_->iformat->name, "tty") == 0)
       throw Error(path, "not a media file (text)");
     r = avformat_find_stream_info(fmt_, nullptr);
-    if (r < 0) throw Error(path, "cannot read stream information (" + AvError(r) + ")");
+    if (r < 0) throw Error(path, "cannot read stream information (" + AvErrorText(r) + ")");
 
     stream_index_ = PickVideoStream();
     AVStream* st = fmt_->streams[stream_index_];
@@ -151,7 +146,7 @@ class FfmpegSource : public FrameSource {
     dec_ = avcodec_alloc_context3(codec);
     if (!dec_) throw Error(path, "out of memory (decoder context)");
     r = avcodec_parameters_to_context(dec_, par);
-    if (r < 0) throw Error(path, "bad codec parameters (" + AvError(r) + ")");
+    if (r < 0) throw Error(path, "bad codec parameters (" + AvErrorText(r) + ")");
     dec_->pkt_timebase = st->time_base;
     dec_->thread_count = options_.decode_threads;  // 0 = automatic
     dec_->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
@@ -159,7 +154,7 @@ class FfmpegSource : public FrameSource {
     skipping_ = options_.skip_nonref_frames;
     if (skipping_) dec_->skip_frame = AVDISCARD_NONREF;
     r = avcodec_open2(dec_, codec, nullptr);
-    if (r < 0) throw Error(path, "cannot open " + info_.codec + " decoder (" + AvError(r) + ")");
+    if (r < 0) throw Error(path, "cannot open " + info_.codec + " decoder (" + AvErrorText(r) + ")");
 
     pkt_ = av_packet_alloc();
     frame_ = av_frame_alloc();
