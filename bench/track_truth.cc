@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
   double noise = 0, cut = 1;
   int klt_anchor_frames = 0;
   double klt_anchor_min = 0.5;
+  bool klt_anchor_affine = false;
   int klt_window = 0, points = 0, per_frame = 0, layers = 0, stills = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
     else if (a == "--klt-window") klt_window = std::stoi(argv[i + 1]);
     else if (a == "--klt-anchor-frames") klt_anchor_frames = std::stoi(argv[i + 1]);
     else if (a == "--klt-anchor-min") klt_anchor_min = std::stod(argv[i + 1]);
+    else if (a == "--klt-anchor-affine") klt_anchor_affine = std::stoi(argv[i + 1]) != 0;
     else if (a == "--points") points = std::stoi(argv[i + 1]);
     else if (a == "--per-frame") per_frame = std::stoi(argv[i + 1]);
     else if (a == "--est-out") est_out = argv[i + 1];
@@ -122,6 +124,7 @@ int main(int argc, char** argv) {
   to.stills = stills != 0;
   to.klt_anchor_frames = klt_anchor_frames;
   to.klt_anchor_min_px = klt_anchor_min;
+  to.klt_anchor_affine = klt_anchor_affine;
   FeatureTracker tracker{to};
   std::vector<FrameTracks> frames;
   Frame frame;

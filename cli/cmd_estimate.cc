@@ -162,6 +162,14 @@ int RunEstimate(int argc, char** argv) {
                  "that anchor on every N frames; a track whose correction is an outlier ends (0 = off)")
       ->capture_default_str()
       ->check(FiniteRange(0, 10000));
+  app.add_option("--klt-anchor-min", opt.tracker.klt_anchor_min_px,
+                 "with --klt-anchor-frames: the smallest anchor correction that can end a track, working pixels")
+      ->capture_default_str()
+      ->check(FiniteRange(0.01, 100));
+  app.add_flag("--klt-anchor-affine", opt.tracker.klt_anchor_affine,
+               "with --klt-anchor-frames: align each anchor's patch by an affine warp (follows its change of "
+               "shape as the view turns); a track whose patch no longer aligns, or aligns worse than the "
+               "frame's others (robust outlier), ends");
   bool no_klt_predict = false;
   app.add_flag("--no-klt-predict", no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
@@ -196,7 +204,7 @@ int RunEstimate(int argc, char** argv) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--klt-anchor-frames", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations"})
     app.get_option(name)->group("Tuning");
 

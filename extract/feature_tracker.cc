@@ -24,6 +24,7 @@
 #include "core/diagnostics.h"
 #include "core/error.h"
 #include "core/statistics.h"
+#include "extract/affine_lk.h"
 #include "extract/descriptor_linker.h"
 #include "extract/descriptor_relinker.h"
 #include "extract/grid_detector.h"
@@ -151,6 +152,8 @@ struct FeatureTracker::Impl {
   struct TrackAnchor {
     cv::Point2f point;
     int frame = 0;
+    cv::Matx22f linear = cv::Matx22f::eye();  // the last affine fit (klt_anchor_affine)
+    float residual = 0;                        // its normalised residual
   };
   std::unordered_map<long, TrackAnchor> anchors;
   std::unordered_map<int, std::vector<cv::Mat>> anchor_levels;
@@ -510,7 +513,7 @@ struct FeatureTracker::Impl {
   // only, started at its frame-to-frame position (the drift to correct is a
   // pixel or two, within one level's reach), with a forward-backward check.
   // refined[i] is NaN where that failed or the track has no older anchor.
-  std::vector<cv::Point2f> TrackFromAnchors(const FrameWork& w) const {
+  std::vector<cv::Point2f> TrackFromAnchors(const FrameWork& w) {
     const cv::Point2f none(kNoMotion, kNoMotion);
     std::vector<cv::Point2f> refined(w.points.size(), none);
     std::unordered_map<int, std::vector<size_t>> by_anchor;
@@ -522,6 +525,7 @@ struct FeatureTracker::Impl {
     lk.max_level = 0;
     const std::vector<cv::Mat> level0(w.pyramid.begin(), w.pyramid.begin() + 2);
     const float fb2 = static_cast<float>(options.fb_threshold_px * options.fb_threshold_px);
+    if (options.klt_anchor_affine) return AlignToAnchors(w, by_anchor);
     for (const auto& [frame, tracks] : by_anchor) {
       const std::vector<cv::Mat>& anchor_level = anchor_levels.at(frame);
       std::vector<cv::Point2f> from, to;
@@ -544,6 +548,56 @@ struct FeatureTracker::Impl {
     return refined;
   }
 
+  // The affine drift bound: each track's patch at its anchor aligned by an
+  // affine warp (AlignAffinePatch) from its KLT position and last warp.
+  std::vector<cv::Point2f> AlignToAnchors(const FrameWork& w,
+                                          const std::unordered_map<int, std::vector<size_t>>& by_anchor) {
+    std::vector<cv::Point2f> refined(w.points.size(), cv::Point2f(kNoMotion, kNoMotion));
+    const int half = options.klt_window / 2;
+    for (const auto& [frame, tracks] : by_anchor) {
+      const cv::Mat& anchor_image = anchor_levels.at(frame)[0];
+      for (size_t i : tracks) {
+        TrackAnchor& a = anchors.at(w.ids[i]);
+        AffinePatchFit start;
+        start.position = w.points[i];
+        start.linear = a.linear;
+        const AffinePatchFit fit = AlignAffinePatch(anchor_image, a.point, w.pyramid[0], start, half);
+        if (!fit.ok) {
+          a.residual = -1;  // the patch no longer aligns
+          continue;
+        }
+        refined[i] = fit.position;
+        a.linear = fit.linear;
+        a.residual = fit.residual;
+      }
+    }
+    return refined;
+  }
+
+  // Median + 3 robust sigmas (1.4826 MAD) of a frame's values: beyond it a
+  // value is an outlier among the frame's tracks.
+  static float RobustUpperBound(std::vector<float> values) {
+    const float median = Quantile(values, 0.5);
+    for (float& v : values) v = std::abs(v - median);
+    return median + 3 * 1.4826f * Quantile(std::move(values), 0.5);
+  }
+
+  float AnchorResidualBound(const FrameWork& w, const std::vector<cv::Point2f>& refined) const {
+    std::vector<float> residuals;
+    for (size_t i = 0; i < w.points.size(); ++i)
+      if (std::isfinite(refined[i].x)) residuals.push_back(anchors.at(w.ids[i]).residual);
+    return residuals.empty() ? 0.f : RobustUpperBound(std::move(residuals));
+  }
+
+  // Affine check: a patch that no longer aligns with its first appearance,
+  // or whose residual is an outlier among the frame's, has drifted off its
+  // point (re-anchoring it would keep the drift): the track ends.
+  bool LostItsAnchor(long id, bool aligned, float residual_bound) const {
+    const auto it = anchors.find(id);
+    if (it == anchors.end()) return false;
+    return aligned ? it->second.residual > residual_bound : it->second.residual < 0;
+  }
+
   // The drift bound: tracks move to their anchored positions; a correction
   // beyond median + 3 robust sigmas of this frame's corrections (and
   // klt_anchor_min_px) marks a track that slipped onto another point: it
@@ -559,17 +613,16 @@ struct FeatureTracker::Impl {
       measured.push_back(correction[i]);
     }
     if (measured.empty()) return;
-    const float median = Quantile(measured, 0.5);
-    for (float& c : measured) c = std::abs(c - median);
-    const float mad = Quantile(std::move(measured), 0.5);
-    const float bound = std::max(static_cast<float>(options.klt_anchor_min_px), median + 3 * 1.4826f * mad);
+    const float bound = std::max(static_cast<float>(options.klt_anchor_min_px), RobustUpperBound(measured));
+    const float residual_bound = options.klt_anchor_affine ? AnchorResidualBound(*w, refined) : 0.f;
     size_t kept = 0;
     for (size_t i = 0; i < w->points.size(); ++i) {
-      if (correction[i] > bound) {
+      const bool refined_ok = correction[i] >= 0;
+      if (correction[i] > bound || (options.klt_anchor_affine && LostItsAnchor(w->ids[i], refined_ok, residual_bound))) {
         anchors.erase(w->ids[i]);
         continue;
       }
-      if (correction[i] >= 0) w->points[i] = refined[i];
+      if (refined_ok) w->points[i] = refined[i];
       else anchors.erase(w->ids[i]);  // re-anchored on this frame (UpdateAnchors)
       w->points[kept] = w->points[i];
       w->ids[kept] = w->ids[i];

@@ -43,6 +43,9 @@ struct TrackerOptions {
   // (the patch's appearance changes as the view turns). 0: off.
   int klt_anchor_frames = 0;
   double klt_anchor_min_px = 0.5;
+  // The anchor check aligns the anchor's patch by an affine warp (and gain,
+  // bias) instead of a translation: it follows the patch's change of shape.
+  bool klt_anchor_affine = false;
   bool descriptor_recovery = true; // ORB re-linking when tracking collapses
   // SIFT linking where KLT cannot bridge (descriptor_linker.h): tried when
   // fewer than 70 % of the tracks survive KLT, taken when KLT's survivors
