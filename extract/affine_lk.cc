@@ -69,13 +69,17 @@ AffinePatchFit AlignAffinePatch(const cv::Mat& anchor_image, cv::Point2f anchor,
   const int h = half_window;
   AffinePatchFit fit = start;
   fit.ok = false;
+  fit.inside = true;
   std::vector<float> patch, warped;
   patch.reserve(static_cast<size_t>(2 * h + 1) * (2 * h + 1));
   double mean = 0;
   for (int v = -h; v <= h; ++v)
     for (int u = -h; u <= h; ++u) {
       float value = 0;
-      if (!Sample(anchor_image, anchor.x + u, anchor.y + v, &value)) return fit;
+      if (!Sample(anchor_image, anchor.x + u, anchor.y + v, &value)) {
+        fit.inside = false;
+        return fit;
+      }
       patch.push_back(value);
       mean += value;
     }
@@ -86,7 +90,10 @@ AffinePatchFit AlignAffinePatch(const cv::Mat& anchor_image, cv::Point2f anchor,
   if (!(contrast > 0)) return fit;
   double gain = 1, bias = 0, rms = 0;
   for (int it = 0; it < max_iterations; ++it) {
-    if (!SampleWarped(image, fit.position, fit.linear, h, &warped)) return fit;
+    if (!SampleWarped(image, fit.position, fit.linear, h, &warped)) {
+      fit.inside = false;
+      return fit;
+    }
     cv::Vec<double, 8> d;
     rms = Step(warped, patch, h, gain, bias, &d);
     if (rms < 0 || !std::isfinite(d[0])) return fit;
@@ -100,7 +107,10 @@ AffinePatchFit AlignAffinePatch(const cv::Mat& anchor_image, cv::Point2f anchor,
     bias += d[7];
     if (std::hypot(step.x, step.y) < min_step_px) break;
   }
-  if (!SampleWarped(image, fit.position, fit.linear, h, &warped)) return fit;
+  if (!SampleWarped(image, fit.position, fit.linear, h, &warped)) {
+    fit.inside = false;
+    return fit;
+  }
   cv::Vec<double, 8> unused;
   rms = Step(warped, patch, h, gain, bias, &unused);
   // In units of the matched patch's contrast (gain x the anchor's): a fit

@@ -16,6 +16,7 @@ struct AffinePatchFit {
   cv::Matx22f linear = cv::Matx22f::eye();     // image offset per anchor offset
   float residual = 0;  // RMS of the photometric residual / the matched patch's RMS contrast
   bool ok = false;     // inside the image, not flat, area changed by less than 4x
+  bool inside = true;  // false: a window left its image (nothing measured, no evidence either way)
 };
 
 // Aligns the (2 half_window + 1)^2 patch of `anchor_image` centred at

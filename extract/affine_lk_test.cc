@@ -66,16 +66,23 @@ TEST(AffineLkTest, AnotherPictureLeavesALargeResidual) {
   if (wrong.ok) EXPECT_GT(wrong.residual, 0.3);
 }
 
-// Degenerate cases: a flat patch (nothing to align), a patch whose window
-// leaves the anchor image, a start outside the image.
+// Degenerate cases: a flat patch (nothing to align: fails inside), a patch
+// whose window leaves the anchor image, a start outside the image (nothing
+// measured: not inside).
 TEST(AffineLkTest, FlatOrOutsidePatchesDoNotAlign) {
   const cv::Mat flat(240, 320, CV_8UC1, cv::Scalar(128)), noise = GrayNoise(5);
   AffinePatchFit start;
   start.position = {160, 120};
-  EXPECT_FALSE(AlignAffinePatch(flat, {160, 120}, flat, start, 8).ok);
-  EXPECT_FALSE(AlignAffinePatch(noise, {3, 120}, noise, start, 8).ok);
+  const AffinePatchFit flat_fit = AlignAffinePatch(flat, {160, 120}, flat, start, 8);
+  EXPECT_FALSE(flat_fit.ok);
+  EXPECT_TRUE(flat_fit.inside);
+  const AffinePatchFit border_anchor = AlignAffinePatch(noise, {3, 120}, noise, start, 8);
+  EXPECT_FALSE(border_anchor.ok);
+  EXPECT_FALSE(border_anchor.inside);
   start.position = {-20, 120};
-  EXPECT_FALSE(AlignAffinePatch(noise, {160, 120}, noise, start, 8).ok);
+  const AffinePatchFit outside = AlignAffinePatch(noise, {160, 120}, noise, start, 8);
+  EXPECT_FALSE(outside.ok);
+  EXPECT_FALSE(outside.inside);
 }
 
 }  // namespace

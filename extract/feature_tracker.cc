@@ -91,6 +91,12 @@ constexpr double kDissolvedShare = 0.75;
 // Share of a frame's tracks one homography must explain to a pixel for the
 // run's chained motion to predict the picture (ExplainsThePicture).
 constexpr double kPictureExplained = 0.8;
+// The affine anchor check's residual (RMS over the patch's contrast) below
+// which a patch still matches whatever the frame's others do: 8-bit
+// rounding, resampling and compression leave a few percent on a clean
+// still picture, where the robust bound of near-zero residuals would end
+// tracks at random.
+constexpr float kAnchorResidualFloor = 0.1f;
 // Correspondences a run frame's homography is fitted to (ChainRunMotion).
 constexpr size_t kChainPoints = 100;
 
@@ -563,7 +569,9 @@ struct FeatureTracker::Impl {
         start.linear = a.linear;
         const AffinePatchFit fit = AlignAffinePatch(anchor_image, a.point, w.pyramid[0], start, half);
         if (!fit.ok) {
-          a.residual = -1;  // the patch no longer aligns
+          // No longer aligns; a window at the image border measured nothing
+          // (the track keeps its KLT position and is re-anchored).
+          a.residual = fit.inside ? -1 : 0;
           continue;
         }
         refined[i] = fit.position;
@@ -586,7 +594,8 @@ struct FeatureTracker::Impl {
     std::vector<float> residuals;
     for (size_t i = 0; i < w.points.size(); ++i)
       if (std::isfinite(refined[i].x)) residuals.push_back(anchors.at(w.ids[i]).residual);
-    return residuals.empty() ? 0.f : RobustUpperBound(std::move(residuals));
+    return residuals.empty() ? 0.f
+                             : std::max(kAnchorResidualFloor, RobustUpperBound(std::move(residuals)));
   }
 
   // Affine check: a patch that no longer aligns with its first appearance,
