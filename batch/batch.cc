@@ -234,12 +234,9 @@ std::vector<FilmOutcome> InPathOrder(const std::vector<const FilmPlan*>& films,
 
 // A shard's summary goes to the state folder (the submitter merges them);
 // an unsharded run writes summary.json and summary.txt.
-void WriteRunSummary(const BatchOptions& options, const fs::path& state, const BatchSummary& summary) {
+void WriteRunSummary(const BatchOptions& options, const BatchSummary& summary) {
   if (options.sharded()) {
-    WriteJsonAtomic((state / "shards" /
-                     ("summary-" + std::to_string(options.shard_index) + "-of-" +
-                      std::to_string(options.shard_count) + ".json"))
-                        .string(),
+    WriteJsonAtomic(ShardSummaryPath(options.out_dir, options.shard_index, options.shard_count),
                     summary.ToJson());
   } else {
     WriteSummary(summary);
@@ -272,7 +269,7 @@ BatchSummary RunLocalBatch(const BatchOptions& options) {
   summary.films = InPathOrder(mine, outcomes);
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  WriteRunSummary(options, state, summary);
+  WriteRunSummary(options, summary);
   return summary;
 }
 

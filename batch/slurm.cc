@@ -51,12 +51,6 @@ std::string StatusPath(const std::string& out_dir, int task) {
   return (fs::path(out_dir) / "slurm" / ("task-" + std::to_string(task) + ".status")).string();
 }
 
-std::string ShardSummaryPath(const std::string& out_dir, int task, int shards) {
-  return (fs::path(out_dir) / kStateDir / "shards" /
-          ("summary-" + std::to_string(task) + "-of-" + std::to_string(shards) + ".json"))
-      .string();
-}
-
 // The job's tasks still known to Slurm (pending or running), or -1 if squeue
 // could not be asked.
 int TasksInQueue(const std::string& job_id, const std::string& log) {
