@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <limits>
 #include <opencv2/calib3d.hpp>
@@ -92,6 +93,9 @@ constexpr double kDissolvedShare = 0.75;
 constexpr double kPictureExplained = 0.8;
 // Correspondences a run frame's homography is fitted to (ChainRunMotion).
 constexpr size_t kChainPoints = 100;
+// Earlier stills each still is linked to (LinkEarlierViews): a bound on the
+// SIFT matching per still; views further round share nothing anyway.
+constexpr size_t kStillsViewsBack = 8;
 
 }  // namespace
 
@@ -112,6 +116,7 @@ struct FeatureTracker::Impl {
   DescribedFrame last_described;  // the last frame, in descriptor mode
   DescribedFrame good_described;  // the last well-linked one (or a shot's first)
   LinkResult last_link;           // the last link's motion: the next one's prediction
+  std::deque<DescribedFrame> stills_views;  // the shot's last stills, oldest first
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -167,6 +172,7 @@ struct FeatureTracker::Impl {
     anchor_levels.clear();
     last_described = good_described = {};
     last_link = {};
+    stills_views.clear();
     descriptor_mode = options.stills;
   }
 
@@ -978,6 +984,32 @@ struct FeatureTracker::Impl {
     last_link = link;
   }
 
+  // Stills: a view links to the one before it, but a keypoint that view
+  // missed (occluded, out of frame, below its cap) may be in the views
+  // before; linking to them too continues those tracks (ids skip the
+  // views that missed them) and spans weak links with more than the few
+  // tracks one pair shares. Back from the last view (but `linked`, the
+  // view already linked), until a view no longer links (those further
+  // round share less); a current keypoint keeps the first track it joins.
+  void LinkEarlierViews(const cv::Mat& linked, DescribedFrame* cur, FrameWork* w) {
+    std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
+    for (size_t back = 1; back <= stills_views.size(); ++back) {
+      const DescribedFrame& view = stills_views[stills_views.size() - back];
+      if (view.gray.data == linked.data) continue;
+      const LinkResult earlier = linker.Link(view, *cur);
+      if (!earlier.ok()) break;
+      for (size_t k = 0; k < earlier.point_of_keypoint.size(); ++k) {
+        const int i = earlier.point_of_keypoint[k];
+        if (i < 0 || cur->point_of_keypoint[k] >= 0 || taken.count(earlier.ids[i])) continue;
+        cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
+        w->points.push_back(earlier.points[i]);
+        w->ids.push_back(earlier.ids[i]);
+        taken.insert(earlier.ids[i]);
+        ++w->relinked;
+      }
+    }
+  }
+
   // Descriptor mode: the frame is linked to the last one by SIFT (else to
   // the last well-linked one). Stills: no link to either splits the shot.
   // KLT takes over once a link's motion is within its reach; in a video
@@ -993,9 +1025,12 @@ struct FeatureTracker::Impl {
     cur.gray = frame.gray;
     linker.Describe(&cur);
     LinkResult link;
+    cv::Mat linked = last_described.gray;  // the view `link` links to
     if (!last_described.empty()) link = linker.Link(last_described, cur, &last_link);
-    if (!link.ok() && !good_described.empty() && good_described.gray.data != last_described.gray.data)
+    if (!link.ok() && !good_described.empty() && good_described.gray.data != last_described.gray.data) {
       link = linker.Link(good_described, cur);
+      linked = good_described.gray;
+    }
     last_link = link;
     RecordLink(frame, "stills", link, link.points.size());
     if (w->had_tracks && !link.ok() && options.stills) {
@@ -1013,8 +1048,13 @@ struct FeatureTracker::Impl {
         AccumulateRun(w->before, w->relinked, std::move(disp), frame.gray.cols);
       }
     }
+    if (link.ok() && options.stills) LinkEarlierViews(linked, &cur, w);
     DescribedTopUp(&cur, w);
     last_described = cur;
+    if (options.stills) {
+      stills_views.push_back(cur);
+      if (stills_views.size() > kStillsViewsBack) stills_views.pop_front();
+    }
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
     // Frames as close as a video's (a folder of a video's frames too): KLT,

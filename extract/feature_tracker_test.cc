@@ -341,6 +341,33 @@ TEST(FeatureTrackerTest, StillsContinueTheirTrackIds) {
   }
 }
 
+// A still that misses part of the picture (the left half covered): the
+// next still is linked to the one before it too, and the tracks the covered
+// still missed continue there with their ids, on the true positions.
+TEST(FeatureTrackerTest, StillsContinueTracksAViewMissed) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 46);
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  std::vector<FrameTracks> views;
+  for (int i = 0; i < 3; ++i) {
+    cv::Mat view = Turned(texture, 10.0 * i, 40.0 * i, 0);
+    if (i == 1) view(cv::Rect(0, 0, kDecoded.width / 2, kDecoded.height)).setTo(cv::Scalar(128, 128, 128));
+    views.push_back(tracker.Process(MakeFrame(view, i, 0.5)));
+    EXPECT_EQ(views.back().shot, 0);
+  }
+  const auto first = ById(views[0]), covered = ById(views[1]);
+  int continued = 0, off = 0;
+  for (const auto& p : views[2].points) {
+    const auto it = first.find(p.track_id);
+    if (it == first.end() || covered.count(p.track_id)) continue;
+    ++continued;
+    if ((TurnedPoint(it->second, 20.0, 80.0, 0) - p.px).norm() > 2.0) ++off;
+  }
+  EXPECT_GE(continued, 20);
+  EXPECT_LE(off, continued / 20 + 1);
+}
+
 // Stills as close as a video's frames (a folder of a video's frames): the
 // first link measures a motion within KLT's reach, and KLT (sub-pixel, no
 // keypoint noise) takes the following frames, keeping the ids.
