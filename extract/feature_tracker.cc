@@ -113,6 +113,10 @@ struct FeatureTracker::Impl {
   DescriptorLinker linker;
   // Linking every frame by descriptors (stills, or KLT could not bridge).
   bool descriptor_mode = false;
+  // A video found to be a sequence of stills (StillsByEvidence): linked as
+  // stills until a link measures a motion within KLT's reach.
+  bool stills_by_evidence = false;
+  int shot_tracked_frames = 0;  // tracked frames of the current shot so far
   DescribedFrame last_described;  // the last frame, in descriptor mode
   DescribedFrame good_described;  // the last well-linked one (or a shot's first)
   LinkResult last_link;           // the last link's motion: the next one's prediction
@@ -173,7 +177,8 @@ struct FeatureTracker::Impl {
     last_described = good_described = {};
     last_link = {};
     stills_views.clear();
-    descriptor_mode = options.stills;
+    descriptor_mode = Stills();
+    shot_tracked_frames = 0;
   }
 
   // The guided KLT of the descriptor linker: the tracker's window and
@@ -189,6 +194,8 @@ struct FeatureTracker::Impl {
     l.fb_threshold_px = o.fb_threshold_px;
     return l;
   }
+
+  bool Stills() const { return options.stills || stills_by_evidence; }
 
   cv::Size Window() const { return {options.klt_window, options.klt_window}; }
 
@@ -681,7 +688,7 @@ struct FeatureTracker::Impl {
     if (first) {
       out->boundary = ShotBoundary::kStart;
       first = false;
-    } else if (options.stills) {
+    } else if (Stills()) {
       // Stills: a new view changes the histogram; the descriptor link decides.
     } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.size())) {
       // Gradual change explained by tracked motion: same shot, keep tracking.
@@ -971,10 +978,12 @@ struct FeatureTracker::Impl {
       ++checked;
       agree += linker.Agrees(link, it->second, w->points[i]);
     }
-    const bool klt_right = checked >= kMinTracksForCollapse && 2 * agree >= checked;
+    if (StillsByEvidence(link)) stills_by_evidence = true;
+    const bool klt_right = !stills_by_evidence && checked >= kMinTracksForCollapse && 2 * agree >= checked;
     RecordLink(frame, "probe", link, klt_right ? 0 : link.points.size());
     if (klt_right) return;
-    TakeLink(link, key_by_id, w);
+    // Stills: KLT's answers across the jump are not kept beside the keypoints'.
+    TakeLink(link, stills_by_evidence ? std::unordered_map<long, cv::Point2f>{} : key_by_id, w);
     out->recovered = w->relinked > 0;
     if (link.median_motion_px < options.klt_window) return;
     descriptor_mode = true;
@@ -982,6 +991,17 @@ struct FeatureTracker::Impl {
     DescribedTopUp(&cur, w);
     last_described = good_described = cur;
     last_link = link;
+    if (stills_by_evidence) KeepStillsView(cur);
+  }
+
+  // A video that is a sequence of stills: its shot's very first step already
+  // jumps beyond KLT's reach (KLT lost over 30 % of the tracks, the verified
+  // descriptor matches moved a KLT window or more). Consecutive video frames
+  // sample a continuous motion and a shot starts within KLT's reach; a cut
+  // into a whip pan blurs past what descriptors verify.
+  bool StillsByEvidence(const LinkResult& link) const {
+    return options.stills_by_evidence && shot_tracked_frames == 1 && link.ok() &&
+           link.median_motion_px >= options.klt_window;
   }
 
   // Stills: a view links to the one before it, but a keypoint that view
@@ -1033,7 +1053,7 @@ struct FeatureTracker::Impl {
     }
     last_link = link;
     RecordLink(frame, "stills", link, link.points.size());
-    if (w->had_tracks && !link.ok() && options.stills) {
+    if (w->had_tracks && !link.ok() && Stills()) {
       StartShotAtThisFrame(out, &w->points, &w->ids);
       w->had_tracks = false;
       descriptor_mode = true;  // this frame is described; KLT (video) from the next
@@ -1048,20 +1068,24 @@ struct FeatureTracker::Impl {
         AccumulateRun(w->before, w->relinked, std::move(disp), frame.gray.cols);
       }
     }
-    if (link.ok() && options.stills) LinkEarlierViews(linked, &cur, w);
+    if (link.ok() && Stills()) LinkEarlierViews(linked, &cur, w);
     DescribedTopUp(&cur, w);
     last_described = cur;
-    if (options.stills) {
-      stills_views.push_back(cur);
-      if (stills_views.size() > kStillsViewsBack) stills_views.pop_front();
-    }
+    if (Stills()) KeepStillsView(cur);
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
     // Frames as close as a video's (a folder of a video's frames too): KLT,
     // far more precise than keypoints, takes the next frame; the probe
     // brings the descriptors back where it fails.
-    if ((!options.stills && !link.ok()) || (link.ok() && link.median_motion_px < options.klt_window))
+    if ((!Stills() && !link.ok()) || (link.ok() && link.median_motion_px < options.klt_window)) {
       descriptor_mode = false;
+      stills_by_evidence = false;
+    }
+  }
+
+  void KeepStillsView(const DescribedFrame& view) {
+    stills_views.push_back(view);
+    if (stills_views.size() > kStillsViewsBack) stills_views.pop_front();
   }
 
   FrameTracks Process(const Frame& frame) {
@@ -1106,6 +1130,8 @@ struct FeatureTracker::Impl {
     if (healthy || (out.recovered && w.relinked >= kMinTracksForCollapse))
       relinker.SetKeyframe(frame.gray, w.points, w.ids);
     WriteTracks(frame, w, &out);
+    out.still = Stills();
+    ++shot_tracked_frames;
     UpdateAnchors(frame.index, w);
     KeepForNextFrame(&w);
     prev_tracked_index = frame.index;

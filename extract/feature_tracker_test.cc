@@ -392,6 +392,41 @@ TEST(FeatureTrackerTest, StillsAsCloseAsVideoFramesGoBackToKlt) {
   }
 }
 
+// A video of stills (20 degrees of roll and 70 px from its first step on,
+// as a folder of photos made into a video): linked as stills, the ids
+// continue; without the rule its frames are not stills.
+TEST(FeatureTrackerTest, VideoThatJumpsFromItsFirstStepIsLinkedAsStills) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 47);
+  for (const bool evidence : {true, false}) {
+    TrackerOptions o = SmallOptions();
+    o.stills_by_evidence = evidence;
+    FeatureTracker tracker(o);
+    FrameTracks last;
+    for (int i = 0; i < 4; ++i) {
+      const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 20.0 * i, 70.0 * i, -30.0 * i), i, 0.5));
+      EXPECT_EQ(t.shot, 0);
+      if (i >= 1) EXPECT_EQ(t.still, evidence) << "frame " << i;
+      if (i >= 2 && evidence) {
+        const auto before = ById(last);
+        int continued = 0;
+        for (const auto& p : t.points) continued += before.count(p.track_id) > 0;
+        EXPECT_GE(continued, 40) << "frame " << i;
+      }
+      last = t;
+    }
+  }
+}
+
+// The same jump later in a shot (after frames KLT followed) is a video's
+// jump (a whip, a lost frame), not stills.
+TEST(FeatureTrackerTest, JumpAfterTrackedFramesIsNotStills) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 48);
+  FeatureTracker tracker(SmallOptions());
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(tracker.Process(MakeFrame(Turned(texture, 0, 2.0 * i, 0), i, 0.5)).still);
+  for (int i = 3; i < 5; ++i)
+    EXPECT_FALSE(tracker.Process(MakeFrame(Turned(texture, 20.0 * (i - 2), 70.0 * (i - 2), 0), i, 0.5)).still);
+}
+
 // A still that shares nothing with the one before starts a new shot.
 TEST(FeatureTrackerTest, StillsThatCannotBeLinkedSplitTheShot) {
   TrackerOptions o = SmallOptions();
