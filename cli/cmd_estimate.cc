@@ -184,7 +184,8 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
   app.add_flag("--stills", opt->tracker.stills,
                "every frame is a still: link frames by descriptors (SIFT; KLT only where they are as "
                "close as a video's), split shots only where nothing links, do not smooth the path "
-               "(automatic for image folders and patterns)");
+               "(automatic for image folders and patterns, and for a video whose shot jumps beyond KLT's "
+               "reach from its first step)");
   app.add_option("--pyramid-levels", opt->tracker.pyramid_levels, "KLT pyramid levels")
       ->check(FiniteRange(1, 8));
   app.add_option("--klt-coarse-iterations", opt->tracker.klt_coarse_iterations,
