@@ -117,9 +117,10 @@ void WriteSummary(const BatchSummary& summary) {
   text.Commit();
 }
 
-BatchSummary RunLocalBatch(const BatchOptions& options) {
-  options.Check();
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+// The summary's header: what runs, where, on how many workers, since when.
+BatchSummary SummaryHeader(const BatchOptions& options) {
   BatchSummary summary;
   summary.library = options.library;
   summary.out_dir = options.out_dir;
@@ -127,68 +128,82 @@ BatchSummary RunLocalBatch(const BatchOptions& options) {
   summary.shard_count = options.shard_count;
   summary.jobs = options.ResolvedJobs();
   summary.started_utc = UtcNow();
+  return summary;
+}
 
+// OUT_DIR/.hapcine (kStateDir) and its shards/ folder, created, with the
+// temporary files of dead runs removed; returns the state folder.
+fs::path PrepareStateFolder(const std::string& out_dir) {
   std::error_code ec;
-  const fs::path state = fs::path(options.out_dir) / kStateDir;
+  const fs::path state = fs::path(out_dir) / kStateDir;
   fs::create_directories(state / "shards", ec);
-  if (ec) throw Error(options.out_dir, "cannot create output folder: " + ec.message());
-  CleanDeadTempFiles(options.out_dir);
+  if (ec) throw Error(out_dir, "cannot create output folder: " + ec.message());
+  CleanDeadTempFiles(out_dir);
   CleanDeadTempFiles(state.string());
   CleanDeadTempFiles((state / "shards").string());
+  return state;
+}
 
-  const BatchPlan plan = MakePlan(options);
-  summary.settings_hash = plan.settings_hash;
-  // Shards share one plan.json written by the submitter; an unsharded run
-  // writes its own (status reads it).
-  if (!options.sharded()) WriteJsonAtomic((state / "plan.json").string(), PlanToJson(plan));
-
+// The plan's films of shard `shard_index`, originals first, so a duplicate
+// is recorded after what it points to.
+std::vector<const FilmPlan*> FilmsOfShard(const BatchPlan& plan, int shard_index) {
   std::vector<const FilmPlan*> mine;
   for (const FilmPlan& f : plan.films) {
-    if (f.shard == options.shard_index) mine.push_back(&f);
+    if (f.shard == shard_index) mine.push_back(&f);
   }
-  // Originals first, so a duplicate is recorded after what it points to.
   std::stable_partition(mine.begin(), mine.end(),
                         [](const FilmPlan* f) { return f->duplicate_of.empty(); });
+  return mine;
+}
 
-  ProgressReporter::Mode mode = ProgressReporter::Mode::kQuiet;
-  switch (options.progress) {
+ProgressReporter::Mode ReporterMode(BatchOptions::Progress progress) {
+  switch (progress) {
     case BatchOptions::Progress::kAuto:
-      mode = ProgressModeFor(false);
-      break;
+      return ProgressModeFor(false);
     case BatchOptions::Progress::kBar:
-      mode = ProgressReporter::Mode::kBar;
-      break;
+      return ProgressReporter::Mode::kBar;
     case BatchOptions::Progress::kLines:
-      mode = ProgressReporter::Mode::kLines;
-      break;
+      return ProgressReporter::Mode::kLines;
     case BatchOptions::Progress::kQuiet:
       break;
   }
-  const std::string step_exe = options.ResolvedStepExe();
-  const int workers = std::max(1, std::min<int>(summary.jobs, static_cast<int>(mine.size())));
-  ProgressReporter progress(std::cerr, mode, static_cast<int>(mine.size()), workers);
+  return ProgressReporter::Mode::kQuiet;
+}
 
-  std::vector<FilmOutcome> outcomes(mine.size());
+// One film's steps; an exception (e.g. an unwritable output folder) is the
+// film's failure, not the batch's.
+FilmOutcome ProcessFilmOrFail(const BatchOptions& options, const std::string& step_exe,
+                              const std::string& settings_hash, const FilmPlan& film,
+                              ProgressReporter& progress) {
+  FilmOutcome o;
+  progress.Started(film.id);
+  try {
+    o = ProcessFilm(options, step_exe, settings_hash, film);
+  } catch (const std::exception& e) {
+    o.id = film.id;
+    o.path = film.path;
+    o.status = FilmStatus::kFailed;
+    o.reason = e.what();
+  }
+  const bool reused = o.status != FilmStatus::kDone && o.status != FilmStatus::kFailed;
+  progress.Finished(o.id, FilmStatusName(o.status), o.seconds, reused, o.reason);
+  return o;
+}
+
+// The films on `workers` threads, each taking the next film left, while
+// this thread ticks the progress every second; outcomes in `films` order.
+std::vector<FilmOutcome> ProcessFilmsInParallel(const BatchOptions& options, const std::string& step_exe,
+                                                const std::string& settings_hash,
+                                                const std::vector<const FilmPlan*>& films, int workers,
+                                                ProgressReporter& progress) {
+  std::vector<FilmOutcome> outcomes(films.size());
   std::atomic<size_t> next{0};
   std::mutex mu;
   std::condition_variable cv;
   int running_workers = workers;
   auto worker = [&]() {
-    for (size_t i = next++; i < mine.size(); i = next++) {
-      FilmOutcome o;
-      progress.Started(mine[i]->id);
-      try {
-        o = ProcessFilm(options, step_exe, plan.settings_hash, *mine[i]);
-      } catch (const std::exception& e) {  // e.g. an unwritable output folder
-        o.id = mine[i]->id;
-        o.path = mine[i]->path;
-        o.status = FilmStatus::kFailed;
-        o.reason = e.what();
-      }
-      const bool reused = o.status != FilmStatus::kDone && o.status != FilmStatus::kFailed;
-      progress.Finished(o.id, FilmStatusName(o.status), o.seconds, reused, o.reason);
-      outcomes[i] = std::move(o);
-    }
+    for (size_t i = next++; i < films.size(); i = next++)
+      outcomes[i] = ProcessFilmOrFail(options, step_exe, settings_hash, *films[i], progress);
     std::lock_guard<std::mutex> lock(mu);
     --running_workers;
     cv.notify_all();
@@ -202,26 +217,59 @@ BatchSummary RunLocalBatch(const BatchOptions& options) {
     }
   }
   for (std::thread& t : threads) t.join();
-  progress.Close();
+  return outcomes;
+}
 
-  // Summary in plan (path) order, whatever order the workers finished in.
-  std::vector<size_t> order(mine.size());
+// The outcomes in plan (path) order, whatever order the workers finished in.
+std::vector<FilmOutcome> InPathOrder(const std::vector<const FilmPlan*>& films,
+                                     const std::vector<FilmOutcome>& outcomes) {
+  std::vector<size_t> order(films.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(),
-            [&](size_t a, size_t b) { return mine[a]->path < mine[b]->path; });
-  for (size_t i : order) summary.films.push_back(outcomes[i]);
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            [&](size_t a, size_t b) { return films[a]->path < films[b]->path; });
+  std::vector<FilmOutcome> sorted;
+  for (size_t i : order) sorted.push_back(outcomes[i]);
+  return sorted;
+}
 
+// A shard's summary goes to the state folder (the submitter merges them);
+// an unsharded run writes summary.json and summary.txt.
+void WriteRunSummary(const BatchOptions& options, const BatchSummary& summary) {
   if (options.sharded()) {
-    WriteJsonAtomic((state / "shards" /
-                     ("summary-" + std::to_string(options.shard_index) + "-of-" +
-                      std::to_string(options.shard_count) + ".json"))
-                        .string(),
+    WriteJsonAtomic(ShardSummaryPath(options.out_dir, options.shard_index, options.shard_count),
                     summary.ToJson());
   } else {
     WriteSummary(summary);
   }
+}
+
+}  // namespace
+
+BatchSummary RunLocalBatch(const BatchOptions& options) {
+  options.Check();
+  const auto t0 = std::chrono::steady_clock::now();
+  BatchSummary summary = SummaryHeader(options);
+  const fs::path state = PrepareStateFolder(options.out_dir);
+
+  const BatchPlan plan = MakePlan(options);
+  summary.settings_hash = plan.settings_hash;
+  // Shards share one plan.json written by the submitter; an unsharded run
+  // writes its own (status reads it).
+  if (!options.sharded()) WriteJsonAtomic((state / "plan.json").string(), PlanToJson(plan));
+  const std::vector<const FilmPlan*> mine = FilmsOfShard(plan, options.shard_index);
+
+  const ProgressReporter::Mode mode = ReporterMode(options.progress);
+  const std::string step_exe = options.ResolvedStepExe();
+  const int workers = std::max(1, std::min<int>(summary.jobs, static_cast<int>(mine.size())));
+  ProgressReporter progress(std::cerr, mode, static_cast<int>(mine.size()), workers);
+  const std::vector<FilmOutcome> outcomes =
+      ProcessFilmsInParallel(options, step_exe, plan.settings_hash, mine, workers, progress);
+  progress.Close();
+
+  summary.films = InPathOrder(mine, outcomes);
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  WriteRunSummary(options, summary);
   return summary;
 }
 

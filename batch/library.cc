@@ -11,15 +11,11 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/text.h"
 
 namespace hapcine::batch {
 namespace fs = std::filesystem;
 namespace {
-
-std::string Lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string Trim(const std::string& s) {
   size_t b = 0, e = s.size();
@@ -39,7 +35,7 @@ std::vector<std::string> ReadManifest(const fs::path& manifest) {
   InputFile file(manifest.string());
   std::ifstream& in = file.stream();
   const fs::path base = manifest.parent_path();
-  const bool csv = Lower(manifest.extension().string()) == ".csv";
+  const bool csv = LowerCase(manifest.extension().string()) == ".csv";
   std::vector<std::string> paths;
   std::string line;
   int line_no = 0;
@@ -56,7 +52,7 @@ std::vector<std::string> ReadManifest(const fs::path& manifest) {
       std::vector<std::string> fields = SplitCsvLine(line);
       if (path_column < 0) {
         for (size_t i = 0; i < fields.size(); ++i) {
-          if (Lower(Trim(fields[i])) == "path") path_column = static_cast<int>(i);
+          if (LowerCase(Trim(fields[i])) == "path") path_column = static_cast<int>(i);
         }
         if (path_column < 0) {
           throw Error(manifest.string() + ":" + std::to_string(line_no),
@@ -105,7 +101,7 @@ bool IsVideoExtension(const std::string& extension) {
   static const std::set<std::string> kVideo = {"mp4", "m4v",  "mov", "mkv", "webm", "avi",
                                                "mpg", "mpeg", "m2v", "ts",  "m2ts", "mts",
                                                "wmv", "flv",  "3gp", "ogv", "vob",  "mxf"};
-  return kVideo.count(Lower(extension)) > 0;
+  return kVideo.count(LowerCase(extension)) > 0;
 }
 
 std::vector<std::string> ListLibrary(const std::string& library) {

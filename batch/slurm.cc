@@ -51,12 +51,6 @@ std::string StatusPath(const std::string& out_dir, int task) {
   return (fs::path(out_dir) / "slurm" / ("task-" + std::to_string(task) + ".status")).string();
 }
 
-std::string ShardSummaryPath(const std::string& out_dir, int task, int shards) {
-  return (fs::path(out_dir) / kStateDir / "shards" /
-          ("summary-" + std::to_string(task) + "-of-" + std::to_string(shards) + ".json"))
-      .string();
-}
-
 // The job's tasks still known to Slurm (pending or running), or -1 if squeue
 // could not be asked.
 int TasksInQueue(const std::string& job_id, const std::string& log) {
@@ -173,6 +167,154 @@ BatchSummary MergeShardSummaries(const BatchOptions& options, const BatchPlan& p
   return merged;
 }
 
+namespace {
+
+// The library frozen into `manifest` (tasks read it, not the folder).
+void FreezeLibrary(const std::string& library, const std::string& manifest) {
+  const std::vector<std::string> films = ListLibrary(library);
+  AtomicFile m(manifest);
+  m.stream() << "# frozen by hapcine batch --slurm from " << library << "\n";
+  for (const std::string& p : films) {
+    if (p.find('\n') != std::string::npos) continue;  // cannot be listed in a manifest
+    m.stream() << p << "\n";
+  }
+  m.Commit();
+}
+
+// The plan in as many shards as wanted but no more than there are original
+// films (duplicates need no task); sets options->shard_count.
+BatchPlan PlanInShards(BatchOptions* options, int wanted_shards) {
+  options->shard_count = 1;
+  int originals = 0;
+  for (const FilmPlan& f : MakePlan(*options).films) originals += f.duplicate_of.empty();
+  options->shard_count = std::max(1, std::min(wanted_shards, originals));
+  return MakePlan(*options);
+}
+
+// Forget what an earlier submission reported, and the temporaries of a
+// status its task was killed in the middle of writing (scancel between the
+// job script's printf and mv).
+void ForgetEarlierSubmission(const fs::path& slurm_dir, const fs::path& state) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(slurm_dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() == ".status" || name.find(".status.tmp-") != std::string::npos)
+      fs::remove(entry.path(), ec);
+  }
+  for (const auto& entry : fs::directory_iterator(state / "shards", ec)) {
+    fs::remove(entry.path(), ec);
+  }
+}
+
+void WriteJobScript(const std::string& job, const BatchOptions& options, const SlurmOptions& slurm,
+                    const std::string& manifest) {
+  std::error_code ec;
+  AtomicFile script(job);
+  script.stream() << SlurmJobScript(options, slurm, manifest, options.shard_count);
+  script.Commit();
+  fs::permissions(job, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read, ec);
+}
+
+// `sbatch` of job.sh as an array of options.shard_count tasks; the job id.
+std::string SubmitJobArray(const std::string& sbatch, const BatchOptions& options,
+                           const SlurmOptions& slurm, const fs::path& slurm_dir,
+                           const std::string& job) {
+  std::vector<std::string> cmd = {sbatch,
+                                  "--parsable",
+                                  "--array=0-" + std::to_string(options.shard_count - 1),
+                                  "--job-name=hapcine-batch",
+                                  "--output=" + (slurm_dir / "task-%a.log").string(),
+                                  "--cpus-per-task=" + std::to_string(options.ResolvedJobs())};
+  cmd.insert(cmd.end(), slurm.sbatch_args.begin(), slurm.sbatch_args.end());
+  cmd.push_back(job);
+  const std::string sbatch_log = (slurm_dir / "sbatch.log").string();
+  const ProcessResult r = RunProcess(cmd, sbatch_log);
+  if (!r.ok()) throw Error("sbatch", "refused the job: " + r.Reason());
+  std::string job_id = r.last_line.substr(0, r.last_line.find(';'));
+  if (job_id.empty() || job_id.find_first_not_of("0123456789") != std::string::npos) {
+    throw Error("sbatch", "unexpected output: " + r.last_line);
+  }
+  return job_id;
+}
+
+int FinishedTasks(const std::string& out, int shards) {
+  std::error_code ec;
+  int finished = 0;
+  for (int i = 0; i < shards; ++i) finished += fs::exists(StatusPath(out, i), ec);
+  return finished;
+}
+
+// One line of the job's progress, from the films' state files.
+void PrintJobProgress(const std::string& out, const std::string& job_id, int finished, int shards) {
+  try {
+    const BatchStatus st = ReadBatchStatus(out);
+    std::cerr << "batch: job " << job_id << ": " << finished << "/" << shards
+              << " tasks finished; films " << st.done << " done, " << st.failed << " failed, "
+              << st.running << " running, " << st.pending << " pending\n";
+  } catch (const Error&) {
+  }
+}
+
+// Waits for every task's status file: false when --wait-timeout ran out.
+// Status files first (cheap, written by every task that finished), squeue
+// every few seconds to notice tasks that died without one.
+bool WaitForTasks(const std::string& out, const std::string& job_id, int shards,
+                  const SlurmOptions& slurm, std::chrono::steady_clock::time_point t0) {
+  const std::string squeue_log = (fs::path(out) / "slurm" / "squeue.log").string();
+  auto last_squeue = std::chrono::steady_clock::now();
+  auto last_report = last_squeue;
+  int gone_polls = 0;
+  while (true) {
+    const int finished = FinishedTasks(out, shards);
+    if (finished == shards) return true;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_squeue > std::chrono::seconds(3)) {
+      last_squeue = now;
+      const int queued = TasksInQueue(job_id, squeue_log);
+      // Gone from the queue twice in a row but status files missing: died.
+      gone_polls = queued == 0 ? gone_polls + 1 : 0;
+      if (gone_polls >= 2) {
+        std::cerr << "batch: job " << job_id << " left the queue with " << shards - finished
+                  << " task(s) that wrote no exit status\n";
+        return true;
+      }
+    }
+    if (now - last_report > std::chrono::seconds(10)) {
+      last_report = now;
+      PrintJobProgress(out, job_id, finished, shards);
+    }
+    const double waited = std::chrono::duration<double>(now - t0).count();
+    if (slurm.wait_timeout_s > 0 && waited > slurm.wait_timeout_s) {
+      std::cerr << "batch: stopped waiting after " << FormatDuration(waited) << "; job " << job_id
+                << " keeps running (hapcine batch --status)\n";
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::duration<double>(slurm.poll_s));
+  }
+}
+
+// 0 when every task wrote exit status 0, else 1.
+int TasksExitCode(const std::string& out, int shards) {
+  int exit_code = 0;
+  for (int i = 0; i < shards; ++i) {
+    std::ifstream in(StatusPath(out, i));
+    int rc = -1;
+    if (!(in >> rc) || rc != 0) exit_code = 1;
+  }
+  return exit_code;
+}
+
+void PrintJobTotals(const BatchSummary& merged, const std::string& job_id, const fs::path& out) {
+  std::cerr << "batch: Slurm job " << job_id << " finished in "
+            << FormatDuration(merged.wall_seconds) << ": " << merged.Count(FilmStatus::kDone)
+            << " done, " << merged.Count(FilmStatus::kSkipped) << " skipped, "
+            << merged.Count(FilmStatus::kFailed) << " failed, "
+            << merged.Count(FilmStatus::kDuplicate) << " duplicate; see "
+            << (out / "summary.txt").string() << "\n";
+}
+
+}  // namespace
+
 int SubmitSlurmBatch(const BatchOptions& base_options, const SlurmOptions& slurm) {
   base_options.Check();
   slurm.Check();
@@ -187,62 +329,18 @@ int SubmitSlurmBatch(const BatchOptions& base_options, const SlurmOptions& slurm
   fs::create_directories(slurm_dir, ec);
   if (ec) throw Error(out.string(), "cannot create output folder: " + ec.message());
 
-  // Freeze the library: tasks read this manifest, not the folder.
   BatchOptions options = base_options;
   options.out_dir = out.string();
-  const std::vector<std::string> films = ListLibrary(options.library);
   const std::string manifest = (state / "library.txt").string();
-  {
-    AtomicFile m(manifest);
-    m.stream() << "# frozen by hapcine batch --slurm from " << options.library << "\n";
-    for (const std::string& p : films) {
-      if (p.find('\n') != std::string::npos) continue;  // cannot be listed in a manifest
-      m.stream() << p << "\n";
-    }
-    m.Commit();
-  }
+  FreezeLibrary(options.library, manifest);
   options.library = manifest;
-  options.shard_count = 1;
-  int originals = 0;
-  for (const FilmPlan& f : MakePlan(options).films) originals += f.duplicate_of.empty();
-  const int shards = std::max(1, std::min(slurm.shards, originals));
-  options.shard_count = shards;
-  const BatchPlan plan = MakePlan(options);
+  const BatchPlan plan = PlanInShards(&options, slurm.shards);
+  const int shards = options.shard_count;
   WriteJsonAtomic((state / "plan.json").string(), PlanToJson(plan));
-
-  // Forget what an earlier submission reported, and the temporaries of a
-  // status its task was killed in the middle of writing (scancel between the
-  // job script's printf and mv).
-  for (const auto& entry : fs::directory_iterator(slurm_dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.path().extension() == ".status" || name.find(".status.tmp-") != std::string::npos)
-      fs::remove(entry.path(), ec);
-  }
-  for (const auto& entry : fs::directory_iterator(state / "shards", ec)) {
-    fs::remove(entry.path(), ec);
-  }
+  ForgetEarlierSubmission(slurm_dir, state);
   const std::string job = (slurm_dir / "job.sh").string();
-  {
-    AtomicFile script(job);
-    script.stream() << SlurmJobScript(options, slurm, manifest, shards);
-    script.Commit();
-    fs::permissions(job, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read, ec);
-  }
-  std::vector<std::string> cmd = {sbatch,
-                                  "--parsable",
-                                  "--array=0-" + std::to_string(shards - 1),
-                                  "--job-name=hapcine-batch",
-                                  "--output=" + (slurm_dir / "task-%a.log").string(),
-                                  "--cpus-per-task=" + std::to_string(options.ResolvedJobs())};
-  cmd.insert(cmd.end(), slurm.sbatch_args.begin(), slurm.sbatch_args.end());
-  cmd.push_back(job);
-  const std::string sbatch_log = (slurm_dir / "sbatch.log").string();
-  const ProcessResult r = RunProcess(cmd, sbatch_log);
-  if (!r.ok()) throw Error("sbatch", "refused the job: " + r.Reason());
-  std::string job_id = r.last_line.substr(0, r.last_line.find(';'));
-  if (job_id.empty() || job_id.find_first_not_of("0123456789") != std::string::npos) {
-    throw Error("sbatch", "unexpected output: " + r.last_line);
-  }
+  WriteJobScript(job, options, slurm, manifest);
+  const std::string job_id = SubmitJobArray(sbatch, options, slurm, slurm_dir, job);
   std::cerr << "batch: submitted Slurm job " << job_id << ": " << plan.films.size() << " films in "
             << shards << " array task(s); state in " << out.string() << "\n";
   if (!slurm.wait) {
@@ -250,66 +348,16 @@ int SubmitSlurmBatch(const BatchOptions& base_options, const SlurmOptions& slurm
               << ShellQuote(out.string()) << "\n";
     return 0;
   }
+  if (!WaitForTasks(out.string(), job_id, shards, slurm, t0)) return 1;
 
-  // Wait: status files first (cheap, written by every task that finished),
-  // squeue every few seconds to notice tasks that died without one.
-  const std::string squeue_log = (slurm_dir / "squeue.log").string();
-  auto last_squeue = std::chrono::steady_clock::now();
-  auto last_report = last_squeue;
-  int gone_polls = 0;
-  while (true) {
-    int finished = 0;
-    for (int i = 0; i < shards; ++i) finished += fs::exists(StatusPath(out.string(), i), ec);
-    if (finished == shards) break;
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_squeue > std::chrono::seconds(3)) {
-      last_squeue = now;
-      const int queued = TasksInQueue(job_id, squeue_log);
-      // Gone from the queue twice in a row but status files missing: died.
-      gone_polls = queued == 0 ? gone_polls + 1 : 0;
-      if (gone_polls >= 2) {
-        std::cerr << "batch: job " << job_id << " left the queue with " << shards - finished
-                  << " task(s) that wrote no exit status\n";
-        break;
-      }
-    }
-    if (now - last_report > std::chrono::seconds(10)) {
-      last_report = now;
-      try {
-        const BatchStatus st = ReadBatchStatus(out.string());
-        std::cerr << "batch: job " << job_id << ": " << finished << "/" << shards
-                  << " tasks finished; films " << st.done << " done, " << st.failed << " failed, "
-                  << st.running << " running, " << st.pending << " pending\n";
-      } catch (const Error&) {
-      }
-    }
-    const double waited = std::chrono::duration<double>(now - t0).count();
-    if (slurm.wait_timeout_s > 0 && waited > slurm.wait_timeout_s) {
-      std::cerr << "batch: stopped waiting after " << FormatDuration(waited) << "; job " << job_id
-                << " keeps running (hapcine batch --status)\n";
-      return 1;
-    }
-    std::this_thread::sleep_for(std::chrono::duration<double>(slurm.poll_s));
-  }
-
-  int exit_code = 0;
-  for (int i = 0; i < shards; ++i) {
-    std::ifstream in(StatusPath(out.string(), i));
-    int rc = -1;
-    if (!(in >> rc) || rc != 0) exit_code = 1;
-  }
+  const int exit_code = TasksExitCode(out.string(), shards);
   BatchSummary merged = MergeShardSummaries(options, plan);
   merged.library = base_options.library;
   merged.started_utc = started_utc;
   merged.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   WriteSummary(merged);
-  std::cerr << "batch: Slurm job " << job_id << " finished in "
-            << FormatDuration(merged.wall_seconds) << ": " << merged.Count(FilmStatus::kDone)
-            << " done, " << merged.Count(FilmStatus::kSkipped) << " skipped, "
-            << merged.Count(FilmStatus::kFailed) << " failed, "
-            << merged.Count(FilmStatus::kDuplicate) << " duplicate; see "
-            << (out / "summary.txt").string() << "\n";
+  PrintJobTotals(merged, job_id, out);
   return std::max(exit_code, merged.ExitCode());
 }
 

@@ -106,6 +106,12 @@ int CleanDeadTempFiles(const std::string& dir) {
   return RemoveTempFilesIn(dir, true) + SweepStaleTemps(dir);
 }
 
+std::string ShardSummaryPath(const std::string& out_dir, int shard, int shards) {
+  return (fs::path(out_dir) / kStateDir / "shards" /
+          ("summary-" + std::to_string(shard) + "-of-" + std::to_string(shards) + ".json"))
+      .string();
+}
+
 std::string UtcNow() {
   const std::time_t t = std::time(nullptr);
   std::tm tm{};

@@ -69,6 +69,10 @@ int CleanFilmTemp(const std::string& film_dir);
 // whose writer pid is not alive on this host (safe while other batches run).
 int CleanDeadTempFiles(const std::string& dir);
 
+// OUT_DIR/.batch/shards/summary-<shard>-of-<shards>.json: where shard
+// `shard` of a sharded run writes its summary (the Slurm submitter merges them).
+std::string ShardSummaryPath(const std::string& out_dir, int shard, int shards);
+
 // UTC time as "2026-11-22T07:30:00Z".
 std::string UtcNow();
 

@@ -78,88 +78,123 @@ std::vector<double> AxisTicks(double lo, double hi, bool log) {
   return ticks;
 }
 
-cv::Mat RenderScatter(const ScatterChart& chart) {
-  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+namespace {
+
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+const cv::Scalar kBlack(0, 0, 0), kGrid(225, 225, 225);
+
+// Pad a range (a factor on log axes) so markers are not on the frame.
+void PadRange(double& lo, double& hi, bool log) {
+  if (log) {
+    if (hi / lo < 10) { const double m = std::sqrt(10 / (hi / lo)); lo /= m; hi *= m; }
+    lo /= 1.3;
+    hi *= 1.3;
+  } else {
+    double span = hi - lo;
+    if (span <= 0) span = std::max(1.0, std::fabs(hi));
+    lo -= 0.08 * span;
+    hi += 0.08 * span;
+  }
+}
+
+// The plotted ranges and where they go in the image.
+struct PlotFrame {
+  double x_lo, x_hi, y_lo, y_hi;
+  bool log_x, log_y;
+  cv::Rect area;  // the axes' box, pixels
+
+  static double Fraction(double v, double lo, double hi, bool log) {
+    return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
+  }
+  cv::Point ToPx(double x, double y) const {
+    return cv::Point(static_cast<int>(std::lround(area.x + area.width * Fraction(x, x_lo, x_hi, log_x))),
+                     static_cast<int>(std::lround(area.y + area.height * (1 - Fraction(y, y_lo, y_hi, log_y)))));
+  }
+};
+
+// The usable points' ranges, padded; throws when there is no point.
+PlotFrame DataRanges(const ScatterChart& chart) {
+  PlotFrame f;
+  f.log_x = chart.log_x;
+  f.log_y = chart.log_y;
+  f.x_lo = f.y_lo = std::numeric_limits<double>::infinity();
+  f.x_hi = f.y_hi = -f.x_lo;
   for (const auto& s : chart.series) {
     if (s.x.size() != s.y.size()) throw Error(chart.title, "series '" + s.name + "' has x/y of different lengths");
     for (size_t i = 0; i < s.x.size(); ++i) {
       if (!Usable(s.x[i], chart.log_x) || !Usable(s.y[i], chart.log_y)) continue;
-      x_lo = std::min(x_lo, s.x[i]);
-      x_hi = std::max(x_hi, s.x[i]);
-      y_lo = std::min(y_lo, s.y[i]);
-      y_hi = std::max(y_hi, s.y[i]);
+      f.x_lo = std::min(f.x_lo, s.x[i]);
+      f.x_hi = std::max(f.x_hi, s.x[i]);
+      f.y_lo = std::min(f.y_lo, s.y[i]);
+      f.y_hi = std::max(f.y_hi, s.y[i]);
     }
   }
-  if (!std::isfinite(x_lo) || !std::isfinite(y_lo)) throw Error(chart.title, "no point to plot");
-  // Pad the ranges (a factor on log axes) so markers are not on the frame.
-  auto pad = [](double& lo, double& hi, bool log) {
-    if (log) {
-      if (hi / lo < 10) { const double m = std::sqrt(10 / (hi / lo)); lo /= m; hi *= m; }
-      lo /= 1.3;
-      hi *= 1.3;
-    } else {
-      double span = hi - lo;
-      if (span <= 0) span = std::max(1.0, std::fabs(hi));
-      lo -= 0.08 * span;
-      hi += 0.08 * span;
-    }
-  };
-  pad(x_lo, x_hi, chart.log_x);
-  const bool from_zero = chart.y_from_zero && !chart.log_y && y_lo >= 0;
-  if (from_zero) y_lo = 0;
-  pad(y_lo, y_hi, chart.log_y);
-  if (from_zero) y_lo = 0;  // padding only above
+  if (!std::isfinite(f.x_lo) || !std::isfinite(f.y_lo)) throw Error(chart.title, "no point to plot");
+  PadRange(f.x_lo, f.x_hi, chart.log_x);
+  const bool from_zero = chart.y_from_zero && !chart.log_y && f.y_lo >= 0;
+  if (from_zero) f.y_lo = 0;
+  PadRange(f.y_lo, f.y_hi, chart.log_y);
+  if (from_zero) f.y_lo = 0;  // padding only above
+  return f;
+}
 
-  cv::Mat img(chart.height_px, chart.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
-  // The legend column is as wide as the longest name.
+constexpr int kLeft = 80, kTop = 64;
+
+// The axes' box: the legend column on the right is as wide as the longest
+// name; two rows of category labels need more room below.
+cv::Rect PlotArea(const ScatterChart& chart) {
   int legend_w = 0;
   for (const auto& s : chart.series)
-    legend_w = std::max(legend_w, cv::getTextSize(s.name, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, nullptr).width);
-  const int left = 80, right = legend_w + 60, top = 64, bottom = chart.x_categories.empty() ? 60 : 76;
-  const cv::Rect area(left, top, chart.width_px - left - right, chart.height_px - top - bottom);
+    legend_w = std::max(legend_w, cv::getTextSize(s.name, kFont, 0.45, 1, nullptr).width);
+  const int right = legend_w + 60, bottom = chart.x_categories.empty() ? 60 : 76;
+  const cv::Rect area(kLeft, kTop, chart.width_px - kLeft - right, chart.height_px - kTop - bottom);
   if (area.width < 50 || area.height < 50) throw Error(chart.title, "chart too small");
-  auto map = [](double v, double lo, double hi, bool log) {
-    return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
-  };
-  auto to_px = [&](double x, double y) {
-    return cv::Point(static_cast<int>(std::lround(area.x + area.width * map(x, x_lo, x_hi, chart.log_x))),
-                     static_cast<int>(std::lround(area.y + area.height * (1 - map(y, y_lo, y_hi, chart.log_y)))));
-  };
-  const cv::Scalar black(0, 0, 0), grid(225, 225, 225);
-  const int font = cv::FONT_HERSHEY_SIMPLEX;
-  if (chart.x_categories.empty()) {
-    for (double t : AxisTicks(x_lo, x_hi, chart.log_x)) {
-      const int px = to_px(t, y_lo).x;
-      cv::line(img, {px, area.y}, {px, area.y + area.height}, grid, 1);
-      const std::string s = TickText(t);
-      cv::putText(img, s, {px - 4 * static_cast<int>(s.size()), area.y + area.height + 20}, font, 0.45, black, 1, cv::LINE_AA);
-    }
-  } else {
-    // Labels on two alternating rows so neighbours do not overlap.
-    for (size_t k = 0; k < chart.x_categories.size(); ++k) {
-      const double t = k + 1.0;
-      if (t < x_lo || t > x_hi) continue;
-      const int px = to_px(t, y_lo).x;
-      cv::line(img, {px, area.y}, {px, area.y + area.height}, grid, 1);
-      const std::string& s = chart.x_categories[k];
-      const int w = cv::getTextSize(s, font, 0.38, 1, nullptr).width;
-      cv::putText(img, s, {px - w / 2, area.y + area.height + 18 + 16 * static_cast<int>(k % 2)}, font, 0.38, black, 1,
-                  cv::LINE_AA);
-    }
-  }
-  for (double t : AxisTicks(y_lo, y_hi, chart.log_y)) {
-    const int py = to_px(x_lo, t).y;
-    cv::line(img, {area.x, py}, {area.x + area.width, py}, grid, 1);
-    const std::string s = TickText(t);
-    cv::putText(img, s, {area.x - 10 - 9 * static_cast<int>(s.size()), py + 5}, font, 0.45, black, 1, cv::LINE_AA);
-  }
-  cv::rectangle(img, area, black, 1);
-  cv::putText(img, chart.title, {left, 26}, font, 0.65, black, 1, cv::LINE_AA);
-  cv::putText(img, chart.x_label, {area.x + area.width / 2 - 4 * static_cast<int>(chart.x_label.size()),
-                                   chart.height_px - 18}, font, 0.5, black, 1, cv::LINE_AA);
-  cv::putText(img, chart.y_label, {8, top - 10}, font, 0.5, black, 1, cv::LINE_AA);
+  return area;
+}
 
-  // Every series' points first, so that labels avoid each other across series.
+void DrawXAxis(cv::Mat& img, const ScatterChart& chart, const PlotFrame& f) {
+  const cv::Rect& area = f.area;
+  if (chart.x_categories.empty()) {
+    for (double t : AxisTicks(f.x_lo, f.x_hi, chart.log_x)) {
+      const int px = f.ToPx(t, f.y_lo).x;
+      cv::line(img, {px, area.y}, {px, area.y + area.height}, kGrid, 1);
+      const std::string s = TickText(t);
+      cv::putText(img, s, {px - 4 * static_cast<int>(s.size()), area.y + area.height + 20}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
+    }
+    return;
+  }
+  // Labels on two alternating rows so neighbours do not overlap.
+  for (size_t k = 0; k < chart.x_categories.size(); ++k) {
+    const double t = k + 1.0;
+    if (t < f.x_lo || t > f.x_hi) continue;
+    const int px = f.ToPx(t, f.y_lo).x;
+    cv::line(img, {px, area.y}, {px, area.y + area.height}, kGrid, 1);
+    const std::string& s = chart.x_categories[k];
+    const int w = cv::getTextSize(s, kFont, 0.38, 1, nullptr).width;
+    cv::putText(img, s, {px - w / 2, area.y + area.height + 18 + 16 * static_cast<int>(k % 2)}, kFont, 0.38, kBlack, 1,
+                cv::LINE_AA);
+  }
+}
+
+// The y grid and ticks, the box, the title and the axis labels.
+void DrawYAxisAndTitles(cv::Mat& img, const ScatterChart& chart, const PlotFrame& f) {
+  const cv::Rect& area = f.area;
+  for (double t : AxisTicks(f.y_lo, f.y_hi, chart.log_y)) {
+    const int py = f.ToPx(f.x_lo, t).y;
+    cv::line(img, {area.x, py}, {area.x + area.width, py}, kGrid, 1);
+    const std::string s = TickText(t);
+    cv::putText(img, s, {area.x - 10 - 9 * static_cast<int>(s.size()), py + 5}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
+  }
+  cv::rectangle(img, area, kBlack, 1);
+  cv::putText(img, chart.title, {kLeft, 26}, kFont, 0.65, kBlack, 1, cv::LINE_AA);
+  cv::putText(img, chart.x_label, {area.x + area.width / 2 - 4 * static_cast<int>(chart.x_label.size()),
+                                   chart.height_px - 18}, kFont, 0.5, kBlack, 1, cv::LINE_AA);
+  cv::putText(img, chart.y_label, {8, kTop - 10}, kFont, 0.5, kBlack, 1, cv::LINE_AA);
+}
+
+// Every series' points in pixels; then their labels, placed all at once so
+// that they avoid each other across series.
+std::vector<std::vector<cv::Point>> DrawPointLabels(cv::Mat& img, const ScatterChart& chart, const PlotFrame& f) {
   std::vector<std::vector<cv::Point>> points(chart.series.size());
   std::vector<cv::Point> label_anchor;
   std::vector<cv::Size> label_size;
@@ -168,37 +203,55 @@ cv::Mat RenderScatter(const ScatterChart& chart) {
     const ScatterSeries& s = chart.series[k];
     for (size_t i = 0; i < s.x.size(); ++i) {
       if (!Usable(s.x[i], chart.log_x) || !Usable(s.y[i], chart.log_y)) continue;
-      points[k].push_back(to_px(s.x[i], s.y[i]));
+      points[k].push_back(f.ToPx(s.x[i], s.y[i]));
       if (i < s.labels.size() && !s.labels[i].empty()) {
         label_anchor.push_back(points[k].back());
-        label_size.push_back(cv::getTextSize(s.labels[i], font, 0.38, 1, nullptr));
+        label_size.push_back(cv::getTextSize(s.labels[i], kFont, 0.38, 1, nullptr));
         label_of.push_back({k, i});
       }
     }
   }
   const std::vector<cv::Rect> boxes =
-      PlaceLabels(label_anchor, label_size, cv::Rect(0, 0, area.x + area.width + 10, chart.height_px));
+      PlaceLabels(label_anchor, label_size, cv::Rect(0, 0, f.area.x + f.area.width + 10, chart.height_px));
   for (size_t j = 0; j < boxes.size(); ++j) {
     const ScatterSeries& s = chart.series[label_of[j].first];
-    cv::putText(img, s.labels[label_of[j].second], {boxes[j].x, boxes[j].y + boxes[j].height}, font, 0.38,
+    cv::putText(img, s.labels[label_of[j].second], {boxes[j].x, boxes[j].y + boxes[j].height}, kFont, 0.38,
                 Palette(s.color_index), 1, cv::LINE_AA);
   }
+  return points;
+}
 
-  int legend_y = top + 10;
+// Each series' line and markers, and its legend entry (none for a series
+// with nothing drawn).
+void DrawSeriesAndLegend(cv::Mat& img, const ScatterChart& chart, const cv::Rect& area,
+                         const std::vector<std::vector<cv::Point>>& points) {
+  int legend_y = kTop + 10;
   for (size_t k = 0; k < chart.series.size(); ++k) {
     const ScatterSeries& s = chart.series[k];
     const cv::Scalar color = Palette(s.color_index);
     const std::vector<cv::Point>& pts = points[k];
     if (s.line && pts.size() > 1) cv::polylines(img, pts, false, color, 2, cv::LINE_AA);
     for (const auto& p : pts) DrawMarker(img, p, s.marker, color);
-    if (!s.name.empty() && !pts.empty()) {  // no legend entry for a series with nothing drawn
+    if (!s.name.empty() && !pts.empty()) {
       const cv::Point lp(area.x + area.width + 20, legend_y);
       if (s.line) cv::line(img, lp + cv::Point(-8, 0), lp + cv::Point(8, 0), color, 2, cv::LINE_AA);
       DrawMarker(img, lp, s.marker, color);
-      cv::putText(img, s.name, lp + cv::Point(16, 5), font, 0.45, black, 1, cv::LINE_AA);
+      cv::putText(img, s.name, lp + cv::Point(16, 5), kFont, 0.45, kBlack, 1, cv::LINE_AA);
       legend_y += 24;
     }
   }
+}
+
+}  // namespace
+
+cv::Mat RenderScatter(const ScatterChart& chart) {
+  PlotFrame frame = DataRanges(chart);
+  cv::Mat img(chart.height_px, chart.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  frame.area = PlotArea(chart);
+  DrawXAxis(img, chart, frame);
+  DrawYAxisAndTitles(img, chart, frame);
+  const std::vector<std::vector<cv::Point>> points = DrawPointLabels(img, chart, frame);
+  DrawSeriesAndLegend(img, chart, frame.area, points);
   return img;
 }
 

@@ -8,19 +8,9 @@
 
 #include "core/error.h"
 #include "core/header_value.h"
+#include "core/text.h"
 
 namespace hapcine {
-namespace {
-
-std::string Trim(const std::string& s) {
-  size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  size_t e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
-
-}  // namespace
-
 namespace {
 
 // The quoted field starting at line[*i] == '"'; leaves *i after its closing quote.
@@ -53,7 +43,7 @@ std::vector<std::string> SplitCsvLine(const std::string& line) {
       while (i < line.size() && line[i] != ',') ++i;  // white space after the closing quote
     } else {
       const size_t comma = std::min(line.find(',', i), line.size());
-      field = Trim(line.substr(i, comma - i));
+      field = TrimBlanks(line.substr(i, comma - i));
       i = comma;
     }
     out.push_back(field);
@@ -118,19 +108,19 @@ void CsvReader::ReadPreamble() {
   std::string raw;
   while (std::getline(in_, raw)) {
     ++line_;
-    std::string s = Trim(raw);
+    std::string s = TrimBlanks(raw);
     if (line_ == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s = s.substr(3);  // BOM
     if (s.empty()) continue;
     if (s[0] == '#') {
       // "# key=value" (value may hold spaces, e.g. a file name; escaped as in
       // core/header_value.h), or several
       // space-separated pairs on one line ("# width=1920 height=1080 fps=24").
-      const std::string body = Trim(s.substr(1));
+      const std::string body = TrimBlanks(s.substr(1));
       const size_t eq = body.find('=');
       if (eq != std::string::npos && eq > 0) {
         if (body.find('=', eq + 1) == std::string::npos) {
-          metadata_[UnescapeHeaderValue(Trim(body.substr(0, eq)))] =
-              UnescapeHeaderValue(Trim(body.substr(eq + 1)));
+          metadata_[UnescapeHeaderValue(TrimBlanks(body.substr(0, eq)))] =
+              UnescapeHeaderValue(TrimBlanks(body.substr(eq + 1)));
         } else {
           size_t pos = 0;
           while (pos < body.size()) {
@@ -175,7 +165,7 @@ bool CsvReader::NextRow(std::vector<std::string>* fields) {
   std::string raw;
   while (std::getline(in_, raw)) {
     ++line_;
-    std::string s = Trim(raw);
+    std::string s = TrimBlanks(raw);
     if (s.empty()) continue;
     if (s[0] == '#') Fail("metadata line after the header");
     *fields = SplitCsvLine(s);

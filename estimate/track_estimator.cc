@@ -85,6 +85,7 @@ void TrackCameraEstimator::StartShot(int shot) {
   shot_ = shot;
   shot_frames_ = 0;
   shot_video_frames_ = 0;
+  shot_of_stills_ = false;
   frames_.clear();
   buffer_start_ = 0;
   keyframes_.clear();
@@ -107,6 +108,7 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
     StartShot(shot_ < 0 ? tracks.shot : std::max(tracks.shot, shot_ + 1));
     source_shot_ = tracks.shot;
   }
+  shot_of_stills_ = shot_of_stills_ || tracks.still;
   BufferedFrame f;
   f.tracks = tracks;
   f.tracks.points.clear();
@@ -316,7 +318,9 @@ void TrackCameraEstimator::FinishShot() {
     c[i] = raw_[i].cam.center;
     lf[i] = raw_[i].cam.log_focal;
   }
-  if (options_.smooth && options_.smooth_sigma_frames > 0) SmoothShot(&q, &c, &lf);
+  // Stills are whole steps apart: a Gaussian over frames would blur one
+  // view's pose into its neighbours'.
+  if (options_.smooth && options_.smooth_sigma_frames > 0 && !shot_of_stills_) SmoothShot(&q, &c, &lf);
   HoldPlaceholders(&q, &c, &lf);
   last_log_focal_.reset();
   for (int i = 0; i < n; ++i) {

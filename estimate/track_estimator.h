@@ -181,6 +181,7 @@ class TrackCameraEstimator {
   std::optional<double> last_log_focal_;  // the last placed frame's, set by FinishShot
   int shot_frames_ = 0;              // frames seen in the shot
   int shot_video_frames_ = 0;        // the same in frames of the video (skipped ones too)
+  bool shot_of_stills_ = false;      // a frame of the shot was linked as a still: no smoothing
   std::deque<BufferedFrame> frames_; // from buffer_start_ on
   int buffer_start_ = 0;
   std::vector<Keyframe> keyframes_;  // of the current window

@@ -514,6 +514,42 @@ TEST(TrackEstimator, SmoothingSigmaCountsFramesOfTheVideo) {
   EXPECT_LT(worst, 0.03);
 }
 
+// A shot of stills (FrameTracks::still: an image folder, --stills, a video
+// found to be stills) is not smoothed: its path is the unsmoothed one,
+// while the same frames as video are smoothed.
+TEST(TrackEstimator, ShotsOfStillsAreNotSmoothed) {
+  const auto pts = RandomPoints(1500, 3, 12, 2.5, 11);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.world_from_cam = Eigen::AngleAxisd(4e-4 * i * i, Eigen::Vector3d::UnitY());
+    c.focal_px = 800;
+    return c;
+  };
+  auto run = [&](bool still, bool smooth) {
+    TrackEstimatorOptions o;
+    o.smooth = smooth;
+    o.smooth_sigma_frames = 4;
+    TrackCameraEstimator est(kW, kH, o);
+    std::mt19937 rng(42);
+    for (int i = 0; i < 30; ++i) {
+      FrameTracks t = MakeFrameTracks(i, 25, cam_at(i), pts, kW, kH, 0.3, 0.0, &rng);
+      t.still = still;
+      est.AddFrame(t);
+    }
+    return est.Finish();
+  };
+  const CameraPath stills = run(true, true), unsmoothed = run(false, false), video = run(false, true);
+  ASSERT_EQ(stills.frames.size(), 30u);
+  ASSERT_EQ(video.frames.size(), 30u);
+  double smoothing_moved = 0;
+  for (size_t i = 0; i < 30; ++i) {
+    EXPECT_EQ(stills.frames[i].world_from_cam.coeffs(), unsmoothed.frames[i].world_from_cam.coeffs()) << i;
+    smoothing_moved = std::max(smoothing_moved, AngleBetweenDeg(video.frames[i].world_from_cam,
+                                                                unsmoothed.frames[i].world_from_cam));
+  }
+  EXPECT_GT(smoothing_moved, 0.01);
+}
+
 // Several windows of a traveling through a cloud of points at random depths
 // (every neighbourhood spans a wide depth range): every frame is emitted
 // once, in order, and the path stays accurate across the window joins.

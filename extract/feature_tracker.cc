@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <limits>
 #include <opencv2/calib3d.hpp>
@@ -99,6 +100,9 @@ constexpr double kPictureExplained = 0.8;
 constexpr float kAnchorResidualFloor = 0.1f;
 // Correspondences a run frame's homography is fitted to (ChainRunMotion).
 constexpr size_t kChainPoints = 100;
+// Earlier stills each still is linked to (LinkEarlierViews): a bound on the
+// SIFT matching per still; views further round share nothing anyway.
+constexpr size_t kStillsViewsBack = 8;
 
 }  // namespace
 
@@ -116,9 +120,14 @@ struct FeatureTracker::Impl {
   DescriptorLinker linker;
   // Linking every frame by descriptors (stills, or KLT could not bridge).
   bool descriptor_mode = false;
+  // A video found to be a sequence of stills (StillsByEvidence): linked as
+  // stills until a link measures a motion within KLT's reach.
+  bool stills_by_evidence = false;
+  int shot_tracked_frames = 0;  // tracked frames of the current shot so far
   DescribedFrame last_described;  // the last frame, in descriptor mode
   DescribedFrame good_described;  // the last well-linked one (or a shot's first)
   LinkResult last_link;           // the last link's motion: the next one's prediction
+  std::deque<DescribedFrame> stills_views;  // the shot's last stills, oldest first
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -176,7 +185,9 @@ struct FeatureTracker::Impl {
     anchor_levels.clear();
     last_described = good_described = {};
     last_link = {};
-    descriptor_mode = options.stills;
+    stills_views.clear();
+    descriptor_mode = Stills();
+    shot_tracked_frames = 0;
   }
 
   // The guided KLT of the descriptor linker: the tracker's window and
@@ -192,6 +203,8 @@ struct FeatureTracker::Impl {
     l.fb_threshold_px = o.fb_threshold_px;
     return l;
   }
+
+  bool Stills() const { return options.stills || stills_by_evidence; }
 
   cv::Size Window() const { return {options.klt_window, options.klt_window}; }
 
@@ -737,7 +750,7 @@ struct FeatureTracker::Impl {
     if (first) {
       out->boundary = ShotBoundary::kStart;
       first = false;
-    } else if (options.stills) {
+    } else if (Stills()) {
       // Stills: a new view changes the histogram; the descriptor link decides.
     } else if (decision.boundary == ShotBoundary::kFade && RunWasCameraMotion(frame.gray.size())) {
       // Gradual change explained by tracked motion: same shot, keep tracking.
@@ -1027,10 +1040,12 @@ struct FeatureTracker::Impl {
       ++checked;
       agree += linker.Agrees(link, it->second, w->points[i]);
     }
-    const bool klt_right = checked >= kMinTracksForCollapse && 2 * agree >= checked;
+    if (StillsByEvidence(link)) stills_by_evidence = true;
+    const bool klt_right = !stills_by_evidence && checked >= kMinTracksForCollapse && 2 * agree >= checked;
     RecordLink(frame, "probe", link, klt_right ? 0 : link.points.size());
     if (klt_right) return;
-    TakeLink(link, key_by_id, w);
+    // Stills: KLT's answers across the jump are not kept beside the keypoints'.
+    TakeLink(link, stills_by_evidence ? std::unordered_map<long, cv::Point2f>{} : key_by_id, w);
     out->recovered = w->relinked > 0;
     if (link.median_motion_px < options.klt_window) return;
     descriptor_mode = true;
@@ -1038,6 +1053,43 @@ struct FeatureTracker::Impl {
     DescribedTopUp(&cur, w);
     last_described = good_described = cur;
     last_link = link;
+    if (stills_by_evidence) KeepStillsView(cur);
+  }
+
+  // A video that is a sequence of stills: its shot's very first step already
+  // jumps beyond KLT's reach (KLT lost over 30 % of the tracks, the verified
+  // descriptor matches moved a KLT window or more). Consecutive video frames
+  // sample a continuous motion and a shot starts within KLT's reach; a cut
+  // into a whip pan blurs past what descriptors verify.
+  bool StillsByEvidence(const LinkResult& link) const {
+    return options.stills_by_evidence && shot_tracked_frames == 1 && link.ok() &&
+           link.median_motion_px >= options.klt_window;
+  }
+
+  // Stills: a view links to the one before it, but a keypoint that view
+  // missed (occluded, out of frame, below its cap) may be in the views
+  // before; linking to them too continues those tracks (ids skip the
+  // views that missed them) and spans weak links with more than the few
+  // tracks one pair shares. Back from the last view (but `linked`, the
+  // view already linked), until a view no longer links (those further
+  // round share less); a current keypoint keeps the first track it joins.
+  void LinkEarlierViews(const cv::Mat& linked, DescribedFrame* cur, FrameWork* w) {
+    std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
+    for (size_t back = 1; back <= stills_views.size(); ++back) {
+      const DescribedFrame& view = stills_views[stills_views.size() - back];
+      if (view.gray.data == linked.data) continue;
+      const LinkResult earlier = linker.Link(view, *cur);
+      if (!earlier.ok()) break;
+      for (size_t k = 0; k < earlier.point_of_keypoint.size(); ++k) {
+        const int i = earlier.point_of_keypoint[k];
+        if (i < 0 || cur->point_of_keypoint[k] >= 0 || taken.count(earlier.ids[i])) continue;
+        cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
+        w->points.push_back(earlier.points[i]);
+        w->ids.push_back(earlier.ids[i]);
+        taken.insert(earlier.ids[i]);
+        ++w->relinked;
+      }
+    }
   }
 
   // Descriptor mode: the frame is linked to the last one by SIFT (else to
@@ -1055,12 +1107,15 @@ struct FeatureTracker::Impl {
     cur.gray = frame.gray;
     linker.Describe(&cur);
     LinkResult link;
+    cv::Mat linked = last_described.gray;  // the view `link` links to
     if (!last_described.empty()) link = linker.Link(last_described, cur, &last_link);
-    if (!link.ok() && !good_described.empty() && good_described.gray.data != last_described.gray.data)
+    if (!link.ok() && !good_described.empty() && good_described.gray.data != last_described.gray.data) {
       link = linker.Link(good_described, cur);
+      linked = good_described.gray;
+    }
     last_link = link;
     RecordLink(frame, "stills", link, link.points.size());
-    if (w->had_tracks && !link.ok() && options.stills) {
+    if (w->had_tracks && !link.ok() && Stills()) {
       StartShotAtThisFrame(out, &w->points, &w->ids);
       w->had_tracks = false;
       descriptor_mode = true;  // this frame is described; KLT (video) from the next
@@ -1075,15 +1130,24 @@ struct FeatureTracker::Impl {
         AccumulateRun(w->before, w->relinked, std::move(disp), frame.gray.cols);
       }
     }
+    if (link.ok() && Stills()) LinkEarlierViews(linked, &cur, w);
     DescribedTopUp(&cur, w);
     last_described = cur;
+    if (Stills()) KeepStillsView(cur);
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
     // Frames as close as a video's (a folder of a video's frames too): KLT,
     // far more precise than keypoints, takes the next frame; the probe
     // brings the descriptors back where it fails.
-    if ((!options.stills && !link.ok()) || (link.ok() && link.median_motion_px < options.klt_window))
+    if ((!Stills() && !link.ok()) || (link.ok() && link.median_motion_px < options.klt_window)) {
       descriptor_mode = false;
+      stills_by_evidence = false;
+    }
+  }
+
+  void KeepStillsView(const DescribedFrame& view) {
+    stills_views.push_back(view);
+    if (stills_views.size() > kStillsViewsBack) stills_views.pop_front();
   }
 
   FrameTracks Process(const Frame& frame) {
@@ -1128,6 +1192,8 @@ struct FeatureTracker::Impl {
     if (healthy || (out.recovered && w.relinked >= kMinTracksForCollapse))
       relinker.SetKeyframe(frame.gray, w.points, w.ids);
     WriteTracks(frame, w, &out);
+    out.still = Stills();
+    ++shot_tracked_frames;
     UpdateAnchors(frame.index, w);
     KeepForNextFrame(&w);
     prev_tracked_index = frame.index;

@@ -57,6 +57,11 @@ struct TrackerOptions {
   // measures a motion within its reach), and only a failed link (to the last
   // frame or the last well-linked one), not the histogram, splits a shot.
   bool stills = false;
+  // A video whose shot jumps beyond KLT's reach from its very first step
+  // (the descriptors verify a motion of a KLT window or more where KLT lost
+  // most tracks) is a sequence of stills too, until a link measures a
+  // motion within KLT's reach.
+  bool stills_by_evidence = true;
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
   double blank_luma = 16;          // mean luma (0..255) under which a frame is blank

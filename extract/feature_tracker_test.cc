@@ -440,6 +440,33 @@ TEST(FeatureTrackerTest, StillsContinueTheirTrackIds) {
   }
 }
 
+// A still that misses part of the picture (the left half covered): the
+// next still is linked to the one before it too, and the tracks the covered
+// still missed continue there with their ids, on the true positions.
+TEST(FeatureTrackerTest, StillsContinueTracksAViewMissed) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 46);
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  std::vector<FrameTracks> views;
+  for (int i = 0; i < 3; ++i) {
+    cv::Mat view = Turned(texture, 10.0 * i, 40.0 * i, 0);
+    if (i == 1) view(cv::Rect(0, 0, kDecoded.width / 2, kDecoded.height)).setTo(cv::Scalar(128, 128, 128));
+    views.push_back(tracker.Process(MakeFrame(view, i, 0.5)));
+    EXPECT_EQ(views.back().shot, 0);
+  }
+  const auto first = ById(views[0]), covered = ById(views[1]);
+  int continued = 0, off = 0;
+  for (const auto& p : views[2].points) {
+    const auto it = first.find(p.track_id);
+    if (it == first.end() || covered.count(p.track_id)) continue;
+    ++continued;
+    if ((TurnedPoint(it->second, 20.0, 80.0, 0) - p.px).norm() > 2.0) ++off;
+  }
+  EXPECT_GE(continued, 20);
+  EXPECT_LE(off, continued / 20 + 1);
+}
+
 // Stills as close as a video's frames (a folder of a video's frames): the
 // first link measures a motion within KLT's reach, and KLT (sub-pixel, no
 // keypoint noise) takes the following frames, keeping the ids.
@@ -462,6 +489,41 @@ TEST(FeatureTrackerTest, StillsAsCloseAsVideoFramesGoBackToKlt) {
     }
     last = t;
   }
+}
+
+// A video of stills (20 degrees of roll and 70 px from its first step on,
+// as a folder of photos made into a video): linked as stills, the ids
+// continue; without the rule its frames are not stills.
+TEST(FeatureTrackerTest, VideoThatJumpsFromItsFirstStepIsLinkedAsStills) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 47);
+  for (const bool evidence : {true, false}) {
+    TrackerOptions o = SmallOptions();
+    o.stills_by_evidence = evidence;
+    FeatureTracker tracker(o);
+    FrameTracks last;
+    for (int i = 0; i < 4; ++i) {
+      const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 20.0 * i, 70.0 * i, -30.0 * i), i, 0.5));
+      EXPECT_EQ(t.shot, 0);
+      if (i >= 1) EXPECT_EQ(t.still, evidence) << "frame " << i;
+      if (i >= 2 && evidence) {
+        const auto before = ById(last);
+        int continued = 0;
+        for (const auto& p : t.points) continued += before.count(p.track_id) > 0;
+        EXPECT_GE(continued, 40) << "frame " << i;
+      }
+      last = t;
+    }
+  }
+}
+
+// The same jump later in a shot (after frames KLT followed) is a video's
+// jump (a whip, a lost frame), not stills.
+TEST(FeatureTrackerTest, JumpAfterTrackedFramesIsNotStills) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 48);
+  FeatureTracker tracker(SmallOptions());
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(tracker.Process(MakeFrame(Turned(texture, 0, 2.0 * i, 0), i, 0.5)).still);
+  for (int i = 3; i < 5; ++i)
+    EXPECT_FALSE(tracker.Process(MakeFrame(Turned(texture, 20.0 * (i - 2), 70.0 * (i - 2), 0), i, 0.5)).still);
 }
 
 // A still that shares nothing with the one before starts a new shot.

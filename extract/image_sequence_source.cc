@@ -23,6 +23,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/text.h"
 #include "extract/video_sources.h"
 
 namespace hapcine {
@@ -184,20 +185,12 @@ cv::Mat ReadImageWithFfmpeg(const std::string& path) {
 }
 
 bool HasImageExtension(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = LowerExtension(p.string());
   static const char* kExts[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp",
                                 ".pgm", ".ppm", ".pnm",  ".exr", ".jp2", ".dpx", ".cin"};
   for (const char* e : kExts)
     if (ext == e) return true;
   return false;
-}
-
-std::string LowerExtension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 // The number at the end of a file's stem ("plate.1001.exr" -> 1001), or -1.

@@ -52,6 +52,9 @@ struct FrameTracks {
   // Inside a suspected gradual transition (fade/dissolve in progress): the
   // tracks are kept but quality is capped (see docs/extract.md).
   bool transition = false;
+  // Linked as a still (an image folder, --stills, or a video found to be a
+  // sequence of stills): its pose is not smoothed with its neighbours'.
+  bool still = false;
   std::vector<TrackPoint> points;  // tracks alive in this frame
 };
 

@@ -7,19 +7,13 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/text.h"
 
 namespace hapcine {
 namespace {
 
-std::string Trim(const std::string& s) {
-  const size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  const size_t e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
-
 double ParseNumber(const std::string& text, const std::string& where, const char* name) {
-  const std::string t = Trim(text);
+  const std::string t = TrimBlanks(text);
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
   if (t.empty() || *end != '\0' || !std::isfinite(v)) {
@@ -37,11 +31,11 @@ std::vector<EffectSegment> ReadKeyframes(std::istream& in, const std::string& sr
   bool have_header = false;
   while (std::getline(in, line)) {
     ++line_no;
-    const std::string t = Trim(line);
+    const std::string t = TrimBlanks(line);
     if (t.empty() || t[0] == '#') continue;
     const std::string where = src + ":" + std::to_string(line_no);
     std::vector<std::string> f = SplitCsvLine(t);
-    for (auto& s : f) s = Trim(s);
+    for (auto& s : f) s = TrimBlanks(s);
     if (!have_header) {
       if (f != std::vector<std::string>{"start_s", "end_s", "effect", "intensity"}) {
         throw Error(where, "header must be 'start_s,end_s,effect,intensity'");

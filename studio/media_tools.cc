@@ -15,6 +15,7 @@ extern "C" {
 
 #include "core/child_process.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace hapcine::studio {
 namespace {
@@ -25,12 +26,6 @@ bool OneOf(const std::string& value, const std::vector<std::string>& set) {
     if (value == s) return true;
   }
   return false;
-}
-
-std::string LowerExtension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 bool BrowserPlays(const MediaProbe& p, const std::string& film) {

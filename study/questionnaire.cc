@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "study/json_util.h"
 
 namespace hapcine::study {
@@ -76,11 +77,6 @@ std::vector<Question> PaperQuestionnaire() {
 
 namespace {
 
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 std::string Trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\n");
   if (b == std::string::npos) return "";
@@ -111,7 +107,7 @@ Question QuestionFromJson(const json& jq, size_t position, const std::string& sr
     std::set<std::string> seen;
     for (const auto& o : q.options) {
       if (Trim(o).empty()) throw Error(src, where + ": empty option");
-      if (!seen.insert(Lower(o)).second)
+      if (!seen.insert(LowerCase(o)).second)
         throw Error(src, where + ": option '" + o + "' listed twice");
     }
     if (q.options.size() < 2) throw Error(src, where + ": a choice needs at least two options");
@@ -193,7 +189,7 @@ std::optional<json> ParseAnswer(const Question& q, const std::string& typed, std
     return std::nullopt;
   }
   for (size_t i = 0; i < q.options.size(); ++i)
-    if (t == std::to_string(i + 1) || Lower(t) == Lower(q.options[i])) return json(q.options[i]);
+    if (t == std::to_string(i + 1) || LowerCase(t) == LowerCase(q.options[i])) return json(q.options[i]);
   *why = "Please type a number from 1 to " + std::to_string(q.options.size()) + ".";
   return std::nullopt;
 }

@@ -130,65 +130,67 @@ std::vector<double> AverageRanks(const std::vector<double>& x) {
   return rank;
 }
 
-ShapiroWilkResult ShapiroWilk(std::vector<double> x) {
-  ShapiroWilkResult res;
-  const int n = static_cast<int>(x.size());
-  res.n = n;
-  if (n < 3 || n > 5000) {
-    res.reason = "Shapiro-Wilk needs 3 to 5000 values, got " + std::to_string(n);
-    return res;
-  }
-  for (double v : x) {
-    if (!std::isfinite(v)) {
-      res.reason = "non-finite value";
-      return res;
-    }
-  }
-  std::sort(x.begin(), x.end());
-  const double range = x[n - 1] - x[0];
-  if (!(range > 1e-19 * std::max(1.0, std::fabs(x[0])))) {
-    res.reason = "all values are identical";
-    return res;
-  }
+namespace {
 
-  // Coefficients a[1..n/2] for the upper half (the lower half is antisymmetric).
+// Why x cannot be tested (empty: it can). Sorts x.
+std::string ShapiroWilkRefusal(std::vector<double>* x) {
+  const int n = static_cast<int>(x->size());
+  if (n < 3 || n > 5000) return "Shapiro-Wilk needs 3 to 5000 values, got " + std::to_string(n);
+  for (double v : *x) {
+    if (!std::isfinite(v)) return "non-finite value";
+  }
+  std::sort(x->begin(), x->end());
+  const double range = (*x)[n - 1] - (*x)[0];
+  if (!(range > 1e-19 * std::max(1.0, std::fabs((*x)[0])))) return "all values are identical";
+  return "";
+}
+
+// Coefficients a[1..n/2] (1-based) for the upper half of n sorted values;
+// the lower half is antisymmetric (AS R94).
+std::vector<double> ShapiroWilkCoefficients(int n) {
   const int nn2 = n / 2;
   std::vector<double> a(nn2 + 1, 0.0);  // 1-based
   const double an = n;
   if (n == 3) {
     a[1] = std::sqrt(0.5);
-  } else {
-    static const double c1[6] = {0., .221157, -.147981, -2.07119, 4.434685, -2.706056};
-    static const double c2[6] = {0., .042981, -.293762, -1.752461, 5.682633, -3.582633};
-    const double an25 = an + .25;
-    double summ2 = 0;
-    for (int i = 1; i <= nn2; ++i) {
-      a[i] = NormalQuantile((i - .375) / an25);  // m_i, negative for the lower half
-      summ2 += a[i] * a[i];
-    }
-    summ2 *= 2;
-    const double ssumm2 = std::sqrt(summ2);
-    const double rsn = 1 / std::sqrt(an);
-    const double a1 = Poly(c1, 6, rsn) - a[1] / ssumm2;
-    int i1;
-    double fac;
-    if (n > 5) {
-      i1 = 3;
-      const double a2 = -a[2] / ssumm2 + Poly(c2, 6, rsn);
-      fac =
-          std::sqrt((summ2 - 2 * a[1] * a[1] - 2 * a[2] * a[2]) / (1 - 2 * a1 * a1 - 2 * a2 * a2));
-      a[2] = a2;
-    } else {
-      i1 = 2;
-      fac = std::sqrt((summ2 - 2 * a[1] * a[1]) / (1 - 2 * a1 * a1));
-    }
-    a[1] = a1;
-    for (int i = i1; i <= nn2; ++i) a[i] /= -fac;
+    return a;
   }
+  static const double c1[6] = {0., .221157, -.147981, -2.07119, 4.434685, -2.706056};
+  static const double c2[6] = {0., .042981, -.293762, -1.752461, 5.682633, -3.582633};
+  const double an25 = an + .25;
+  double summ2 = 0;
+  for (int i = 1; i <= nn2; ++i) {
+    a[i] = NormalQuantile((i - .375) / an25);  // m_i, negative for the lower half
+    summ2 += a[i] * a[i];
+  }
+  summ2 *= 2;
+  const double ssumm2 = std::sqrt(summ2);
+  const double rsn = 1 / std::sqrt(an);
+  const double a1 = Poly(c1, 6, rsn) - a[1] / ssumm2;
+  int i1;
+  double fac;
+  if (n > 5) {
+    i1 = 3;
+    const double a2 = -a[2] / ssumm2 + Poly(c2, 6, rsn);
+    fac =
+        std::sqrt((summ2 - 2 * a[1] * a[1] - 2 * a[2] * a[2]) / (1 - 2 * a1 * a1 - 2 * a2 * a2));
+    a[2] = a2;
+  } else {
+    i1 = 2;
+    fac = std::sqrt((summ2 - 2 * a[1] * a[1]) / (1 - 2 * a1 * a1));
+  }
+  a[1] = a1;
+  for (int i = i1; i <= nn2; ++i) a[i] /= -fac;
+  return a;
+}
 
-  // W = squared correlation between sorted data and the full (antisymmetric)
-  // coefficient vector. 1 - W is computed directly (as AS R94 does) to avoid
-  // cancellation when W is very near 1.
+// 1 - W, W the squared correlation between the sorted data and the full
+// (antisymmetric) coefficient vector. 1 - W is computed directly (as AS R94
+// does) to avoid cancellation when W is very near 1.
+double OneMinusW(const std::vector<double>& sorted, const std::vector<double>& a) {
+  const int n = static_cast<int>(sorted.size());
+  const int nn2 = n / 2;
+  const double range = sorted[n - 1] - sorted[0];
   std::vector<double> coef(n, 0.0);
   for (int i = 0; i < nn2; ++i) {
     coef[i] = -a[i + 1];
@@ -197,32 +199,31 @@ ShapiroWilkResult ShapiroWilk(std::vector<double> x) {
   double sa = 0, sx = 0;
   for (int i = 0; i < n; ++i) {
     sa += coef[i];
-    sx += x[i] / range;
+    sx += sorted[i] / range;
   }
   sa /= n;
   sx /= n;
   double ssa = 0, ssx = 0, sax = 0;
   for (int i = 0; i < n; ++i) {
     const double asa = coef[i] - sa;
-    const double xsx = x[i] / range - sx;
+    const double xsx = sorted[i] / range - sx;
     ssa += asa * asa;
     ssx += xsx * xsx;
     sax += asa * xsx;
   }
   const double ssassx = std::sqrt(ssa * ssx);
-  const double w1 = (ssassx - sax) * (ssassx + sax) / (ssa * ssx);
-  res.w = 1 - w1;
-  res.valid = true;
+  return (ssassx - sax) * (ssassx + sax) / (ssa * ssx);
+}
 
+// The p-value of W = 1 - w1 for n values (AS R94: exact for n = 3, else
+// Royston's normalising transformations).
+double ShapiroWilkP(int n, double w1) {
+  const double an = n;
   if (n == 3) {  // exact
     const double pi6 = 6 / M_PI, stqr = M_PI / 3;
-    res.p = std::clamp(pi6 * (std::asin(std::sqrt(res.w)) - stqr), 0.0, 1.0);
-    return res;
+    return std::clamp(pi6 * (std::asin(std::sqrt(1 - w1)) - stqr), 0.0, 1.0);
   }
-  if (!(w1 > 0)) {  // W == 1 to machine precision: perfectly "normal" order statistics
-    res.p = 1;
-    return res;
-  }
+  if (!(w1 > 0)) return 1;  // W == 1 to machine precision: perfectly "normal" order statistics
   double y = std::log(w1);
   const double xx = std::log(an);
   double m, s;
@@ -231,10 +232,7 @@ ShapiroWilkResult ShapiroWilk(std::vector<double> x) {
     static const double c3[4] = {.544, -.39978, .025054, -6.714e-4};
     static const double c4[4] = {1.3822, -.77857, .062767, -.0020322};
     const double gamma = Poly(g, 2, an);
-    if (y >= gamma) {
-      res.p = 1e-99;  // as AS R94: far in the tail
-      return res;
-    }
+    if (y >= gamma) return 1e-99;  // as AS R94: far in the tail
     y = -std::log(gamma - y);
     m = Poly(c3, 4, an);
     s = std::exp(Poly(c4, 4, an));
@@ -244,7 +242,20 @@ ShapiroWilkResult ShapiroWilk(std::vector<double> x) {
     m = Poly(c5, 4, xx);
     s = std::exp(Poly(c6, 3, xx));
   }
-  res.p = std::clamp(NormalSf((y - m) / s), 0.0, 1.0);
+  return std::clamp(NormalSf((y - m) / s), 0.0, 1.0);
+}
+
+}  // namespace
+
+ShapiroWilkResult ShapiroWilk(std::vector<double> x) {
+  ShapiroWilkResult res;
+  res.n = static_cast<int>(x.size());
+  res.reason = ShapiroWilkRefusal(&x);
+  if (!res.reason.empty()) return res;
+  const double w1 = OneMinusW(x, ShapiroWilkCoefficients(res.n));
+  res.w = 1 - w1;
+  res.valid = true;
+  res.p = ShapiroWilkP(res.n, w1);
   return res;
 }
 
