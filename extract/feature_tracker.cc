@@ -262,6 +262,7 @@ struct FeatureTracker::Impl {
     out->shot = ++shot;
     out->transition = false;
     out->recovered = false;
+    out->jump = false;
     points->clear();
     ids->clear();
     DropTracks();
@@ -971,6 +972,7 @@ struct FeatureTracker::Impl {
     TakeLink(link, key_by_id, w);
     out->recovered = w->relinked > 0;
     if (link.median_motion_px < options.klt_window) return;
+    out->jump = true;
     descriptor_mode = true;
     cur.point_of_keypoint = link.point_of_keypoint;
     DescribedTopUp(&cur, w);
@@ -1005,6 +1007,7 @@ struct FeatureTracker::Impl {
     } else if (link.ok()) {
       TakeLink(link, {}, w);
       out->recovered = w->relinked > 0;
+      out->jump = link.median_motion_px >= options.klt_window;
       cur.point_of_keypoint = link.point_of_keypoint;
       if (decision.transition) {
         std::vector<float> disp;
