@@ -368,6 +368,9 @@ void TrackCameraEstimator::HoldPlaceholders(std::vector<Eigen::Quaterniond>* q, 
 // segment's model has. Lost frames are neither smoothed nor used as a
 // segment's neighbours: their placeholder pose is no measurement, and
 // blending it in would pull placed frames towards the pose before the gap.
+// A jump (FrameTracks::jump) ends a segment too, and its two sides are not
+// each other's neighbours: the filter assumes a path continuous at the scale
+// of a frame, and blurring a step spreads it over the frames either side.
 void TrackCameraEstimator::SmoothShot(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
                                       std::vector<double>* lf) const {
   const int n = static_cast<int>(raw_.size());
@@ -382,12 +385,14 @@ void TrackCameraEstimator::SmoothShot(std::vector<Eigen::Quaterniond>* q, std::v
                              : options_.smooth_sigma_frames;
   for (int s = 0; s < n;) {
     int e = s;
-    while (e + 1 < n && raw_[e + 1].model == raw_[s].model && raw_[e + 1].lost == raw_[s].lost) ++e;
+    while (e + 1 < n && raw_[e + 1].model == raw_[s].model && raw_[e + 1].lost == raw_[s].lost &&
+           !raw_[e + 1].meta.jump)
+      ++e;
     const MotionModel m = raw_[s].model;
     const bool lost = raw_[s].lost;
     // Include the neighbour frames so that segment ends stay continuous.
-    const int lo = s > 0 && !raw_[s - 1].lost ? s - 1 : s;
-    const int hi = e + 1 < n && !raw_[e + 1].lost ? e + 1 : e;
+    const int lo = s > 0 && !raw_[s - 1].lost && !raw_[s].meta.jump ? s - 1 : s;
+    const int hi = e + 1 < n && !raw_[e + 1].lost && !raw_[e + 1].meta.jump ? e + 1 : e;
     auto sub = [&](auto& v) { return std::vector<std::decay_t<decltype(v[0])>>(v.begin() + lo, v.begin() + hi + 1); };
     if (!lost && HasRotation(m)) {
       const auto sm = SmoothRotations(sub(*q), sigma);

@@ -550,6 +550,31 @@ TEST(TrackEstimator, ShotsOfStillsAreNotSmoothed) {
   EXPECT_GT(smoothing_moved, 0.01);
 }
 
+// A pan with a jump of 8 degrees before frame 20 that the tracker flagged
+// (FrameTracks::jump: linked by descriptors beyond KLT's reach): the
+// smoothing does not blur the step. A Gaussian of sigma 1.5 frames across it
+// would put frames 19 and 20 about 3 degrees towards each other.
+TEST(TrackEstimator, SmoothingDoesNotBlurAJump) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 12);
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    PanTiltRoll ptr;
+    ptr.pan_deg = 0.2 * i + (i >= 20 ? 8 : 0);
+    c.world_from_cam = QuaternionFromPanTiltRoll(ptr);
+    c.focal_px = 800;
+    return c;
+  };
+  const SimRun run = SimulateFrames(40, cam_at, [&](int i, const SceneCamera& cam, std::mt19937* rng) {
+    FrameTracks ft = MakeFrameTracks(i, 25, cam, pts, kW, kH, 0.1, 0.0, rng);
+    ft.jump = i == 20;
+    return ft;
+  });
+  ASSERT_EQ(run.path.frames.size(), 40u);
+  EXPECT_EQ(run.path.frames[20].shot, 0);
+  for (int i : {18, 19, 20, 21})
+    EXPECT_LT(AngleBetweenDeg(run.path.frames[i].world_from_cam, run.truth[i].world_from_cam), 0.3) << i;
+}
+
 // Several windows of a traveling through a cloud of points at random depths
 // (every neighbourhood spans a wide depth range): every frame is emitted
 // once, in order, and the path stays accurate across the window joins.

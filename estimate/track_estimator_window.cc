@@ -41,7 +41,8 @@ const char* const kCandidateNames[kNumCandidates] = {"static", "zoom", "rotation
 WindowInput TrackCameraEstimator::WindowInputOf(bool labels_revised) const {
   WindowInput in;
   for (const Keyframe& k : keyframes_)
-    in.keyframes.push_back({k.pos, k.cam, k.model, k.fixed, k.fixed_focal, k.chain_start, &At(k.pos).u});
+    in.keyframes.push_back(
+        {k.pos, k.cam, k.model, k.fixed, k.fixed_focal, k.chain_start, &At(k.pos).u, At(k.pos).tracks.jump});
   for (int pos = keyframes_.front().pos; pos <= keyframes_.back().pos; ++pos) in.frames.push_back(&At(pos).u);
   in.outlier_tracks = outlier_tracks_;
   for (const auto& [id, n] : mover_intervals_)

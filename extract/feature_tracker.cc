@@ -284,6 +284,7 @@ struct FeatureTracker::Impl {
     out->shot = ++shot;
     out->transition = false;
     out->recovered = false;
+    out->jump = false;
     points->clear();
     ids->clear();
     DropTracks();
@@ -1048,6 +1049,7 @@ struct FeatureTracker::Impl {
     TakeLink(link, stills_by_evidence ? std::unordered_map<long, cv::Point2f>{} : key_by_id, w);
     out->recovered = w->relinked > 0;
     if (link.median_motion_px < options.klt_window) return;
+    out->jump = true;
     descriptor_mode = true;
     cur.point_of_keypoint = link.point_of_keypoint;
     DescribedTopUp(&cur, w);
@@ -1122,6 +1124,7 @@ struct FeatureTracker::Impl {
     } else if (link.ok()) {
       TakeLink(link, {}, w);
       out->recovered = w->relinked > 0;
+      out->jump = link.median_motion_px >= options.klt_window;
       cur.point_of_keypoint = link.point_of_keypoint;
       if (decision.transition) {
         std::vector<float> disp;

@@ -480,6 +480,7 @@ TEST(FeatureTrackerTest, StillsAsCloseAsVideoFramesGoBackToKlt) {
     const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 0, 2.7 * i, 0.4 * i), i, 0.5));
     EXPECT_EQ(t.shot, 0);
     if (i == 1) EXPECT_TRUE(t.recovered);  // linked by descriptors
+    EXPECT_FALSE(t.jump) << i;             // ... within KLT's reach
     if (i >= 2) {
       EXPECT_FALSE(t.recovered) << i;  // tracked by KLT
       const auto before = ById(last);
@@ -561,8 +562,10 @@ TEST(FeatureTrackerTest, SuddenRollIsLinkedByDescriptors) {
       const Eigen::Vector2d at_zero = it->second - Eigen::Vector2d(4.0, 0);
       if ((TurnedPoint(at_zero, 60, 4.0, 0) - p.px).norm() > 2.0) ++off;
     }
+    EXPECT_FALSE(last.jump);
     if (linking) {
       EXPECT_TRUE(rolled.recovered);
+      EXPECT_TRUE(rolled.jump);  // beyond KLT's reach: the path is not continuous here
       EXPECT_EQ(rolled.shot, 0);
       EXPECT_GE(continued, 40);
       EXPECT_LE(off, continued / 20 + 1);

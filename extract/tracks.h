@@ -49,6 +49,10 @@ struct FrameTracks {
   // 0.25 when `transition`; 0 when `blank`.
   double quality = 0;
   bool recovered = false;  // tracks were re-linked by descriptor matching
+  // Linked by descriptors across a motion beyond KLT's reach (median motion
+  // of a KLT window or more): the camera jumped, the path is not continuous
+  // from the previous frame to this one (the estimator does not smooth across).
+  bool jump = false;
   // Inside a suspected gradual transition (fade/dissolve in progress): the
   // tracks are kept but quality is capped (see docs/extract.md).
   bool transition = false;

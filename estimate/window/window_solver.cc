@@ -20,6 +20,7 @@
 #include "estimate/window/axial_ambiguity.h"
 #include "estimate/window/dolly_or_zoom.h"
 #include "estimate/window/focal_search.h"
+#include "estimate/window/jump_resection.h"
 #include "estimate/window/occlusion_order.h"
 #include "estimate/window/plane_prior.h"
 #include "estimate/geometry/reference_width.h"
@@ -93,6 +94,23 @@ void ChooseWindowPoints(WindowProblem* p) {
                                         spread_points ? opt.point_grid_cells : 0);
 }
 
+// A jump keyframe's two-view pose rests on the few tracks its link shares
+// with the keyframe before; where it continues tracks that earlier keyframes
+// triangulate, resection measures it better (jump_resection.h).
+void PlaceJumpKeyframes(WindowProblem* p) {
+  std::vector<BaCamera> cams(p->n);
+  std::vector<const KeyframeTracks*> tracks(p->n);
+  for (int i = 0; i < p->n; ++i) {
+    cams[i] = p->keyframes[i].cam;
+    tracks[i] = p->keyframes[i].tracks;
+  }
+  for (int i = p->held + 1; i < p->n; ++i) {
+    if (!p->keyframes[i].jump || p->keyframes[i].fixed) continue;
+    if (const auto placed = ResectKeyframe(cams, tracks, i)) MoveChainFrom(i, *placed, &cams);
+  }
+  for (int i = 0; i < p->n; ++i) p->keyframes[i].cam = cams[i];
+}
+
 void InitPoints(const WindowProblem& p, const std::vector<BaCamera>& c, std::vector<BaPoint>* pts,
                 std::vector<BaObservation>* ob) {
   InitWindowPoints(c, p.window_tracks, p.tracks_at, p.has_translation, 0.2 / p.in->scene_depth, pts, ob);
@@ -155,6 +173,7 @@ WindowProblem SetUpWindow(const WindowInput& in, const WindowOptions& opt) {
   if (shift)
     for (auto& k : p.keyframes) k.cam.log_focal += *shift;
   while (p.held + 1 < p.n && p.keyframes[p.held + 1].fixed) ++p.held;
+  PlaceJumpKeyframes(&p);
   ChooseWindowPoints(&p);
   p.cams = WindowCameras(p.keyframes, false, p.recalibrate_lead_in);
   InitPoints(p, p.cams, &p.points, &p.obs);

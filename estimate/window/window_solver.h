@@ -46,6 +46,7 @@ struct WindowKeyframe {
   bool fixed_focal = false;        // focal held too
   bool chain_start = false;        // first keyframe of a chain: no interval of its own
   const KeyframeTracks* tracks = nullptr;  // its tracks, normalised coordinates
+  bool jump = false;               // reached by a jump (FrameTracks::jump): placed by resection where it can be
 };
 
 struct WindowInput {
