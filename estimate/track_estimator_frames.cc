@@ -50,6 +50,8 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
                              : keyframes_[n - 2].pos;  // exclusive
   const int emit_begin =
       raw_.empty() ? 0 : raw_.back().meta.index - frames_.front().tracks.index + buffer_start_ + 1;
+  // A zoom decision the evidence barely made weakens the window's frames (zoom_evidence.h).
+  const double zoom_factor = ZoomConfidenceFactor(w.report.zoom_decisions);
   int ki = 0;
   for (int pos = emit_begin; pos < emit_end; ++pos) {
     const BufferedFrame& f = At(pos);
@@ -69,7 +71,7 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
       if (a.fixed && ki == 0 && n > 1) out.model = keyframes_[1].model;
       out.confidence = Clamp01(a.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
                        std::exp(-0.5 * std::pow(w.rms_px * kReferenceWidthPx / width_ / 2.0, 2)) *
-                       (w.focal_observable ? 1.0 : 0.8);
+                       (w.focal_observable ? 1.0 : 0.8) * zoom_factor;
       if (!w.success) out.confidence *= 0.3;
       raw_.push_back(out);
       continue;
@@ -119,7 +121,7 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
     }
     out.confidence = Clamp01(b.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
                      std::exp(-0.5 * std::pow(rms_px * kReferenceWidthPx / width_ / 2.0, 2)) *
-                     (w.focal_observable ? 1.0 : 0.8);
+                     (w.focal_observable ? 1.0 : 0.8) * zoom_factor;
     if (!w.success) out.confidence *= 0.3;
     raw_.push_back(out);
   }

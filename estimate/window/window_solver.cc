@@ -283,6 +283,9 @@ bool FreedomsPayOff(const WindowProblem& p, const Candidate& with, const Candida
       CandidateReport("freedoms", "with", with.summary, ev.chi2_with + ev.penalty, ev.PaysOff()));
   report->candidates.push_back(
       CandidateReport("freedoms", "without", without.summary, ev.chi2_without, !ev.PaysOff()));
+  if (ev.translation_dropped == 0 && ev.zoom_dropped > 0)  // a test of the zoom alone
+    report->zoom_decisions.push_back(
+        {"freedoms", ev.chi2_without - ev.chi2_with, ev.penalty, ev.PaysOff(), ev.zoom_change});
   return ev.PaysOff();
 }
 
@@ -304,6 +307,10 @@ std::vector<MotionModel> PromotionPaysOff(const WindowProblem& p, const Candidat
                                                !ev.PaysOff()));
   report->candidates.push_back(
       CandidateReport("promotion", "promoted", c.summary, ev.chi2_promoted + ev.penalty, ev.PaysOff()));
+  std::vector<char> promoted_intervals(labels.size());
+  for (size_t i = 0; i < labels.size(); ++i) promoted_intervals[i] = labels[i] != p.keyframes[i].model;
+  report->zoom_decisions.push_back({"promotion", ev.chi2_current - ev.chi2_promoted, ev.penalty, !ev.PaysOff(),
+                                    TotalLogZoom(current.cams, promoted_intervals)});
   if (!ev.PaysOff()) return {};
   return labels;
 }
@@ -357,6 +364,8 @@ std::optional<std::pair<std::vector<MotionModel>, Candidate>> DollyPaysOff(const
   report->candidates.push_back(
       CandidateReport("dolly_or_zoom", "dolly", dolly.summary, b.chi2_general + b.penalty, is_dolly));
   report->candidates.back().depth_relief = relief;
+  report->zoom_decisions.push_back(
+      {"dolly_or_zoom", b.chi2_simpler - b.chi2_general, b.penalty, !is_dolly, TotalLogZoom(zoom.cams), relief});
   if (!is_dolly) return std::nullopt;
   return std::make_pair(std::move(labels), std::move(dolly));
 }
@@ -482,6 +491,24 @@ Candidate SolveMirroredBranch(const WindowProblem& p, const Candidate& constant,
   return SolveFrom(p, MirroredAxialBranch(solved, p.held, matches));
 }
 
+// The focal choice's zoom decision (zoom_evidence.h): the constant focal
+// against the best candidate not ruled out, the zoom it adds in the general
+// intervals. None when every candidate is ruled out.
+void RecordFocalDecision(const WindowProblem& p, const FocalCandidateScores& s, const std::vector<char>& ruled_out,
+                         const std::vector<Candidate>& zoomed, WindowReport* report) {
+  int best = -1;
+  for (size_t c = 0; c < s.chi2.size() && c < zoomed.size(); ++c)
+    if (!(c + 1 < ruled_out.size() && ruled_out[c + 1]) && (best < 0 || s.chi2[c] < s.chi2[best]))
+      best = static_cast<int>(c);
+  if (best < 0) return;
+  std::vector<char> general(p.n, 0);
+  for (int i = 1; i < p.n; ++i) general[i] = p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
+  ZoomDecision d{"focal", s.chi2_constant - s.chi2[best], s.penalty, s.best >= 0,
+                 TotalLogZoom(zoomed[best].cams, general)};
+  d.decided_by_cue = !ruled_out.empty() && ruled_out[0];
+  report->zoom_decisions.push_back(d);
+}
+
 // BIC: does a per-keyframe focal in the general intervals pay for itself?
 // Candidates: the per-keyframe-focal solve from the two-view chain (solving
 // on another thread) and, along the optical axis, from the other branch of
@@ -528,6 +555,7 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
     solved_reports[c]->score = c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty;
     solved_reports[c]->chosen = static_cast<int>(c) == s.best + 1;
   }
+  RecordFocalDecision(p, s, ruled_out, zoomed, report);
   if (s.best >= 0) {
     *chosen = std::move(zoomed[s.best]);
     report->zoom_by_bic = true;
