@@ -225,9 +225,13 @@ int RunEstimate(int argc, char** argv) {
                              " video frame(s): camera motion needs at least two");
     if (const auto w = path.metadata.find("warning"); w != path.metadata.end())
       std::cerr << "hapcine estimate: " << video << ": warning: " << w->second << "\n";
-    // One line per doubtful shot (the rule: estimate/shot_quality.h), even with --quiet.
-    for (const ShotQuality& q : ReadShotQuality(path))
+    // One line per doubtful shot and per shot with an undecided zoom (the
+    // rules: estimate/shot_quality.h), even with --quiet.
+    for (const ShotQuality& q : ReadShotQuality(path)) {
       if (q.doubtful) std::cerr << "hapcine estimate: " << video << ": " << DoubtfulShotLine(q) << "\n";
+      if (q.zoom_ambiguous.value_or(0) > 0)
+        std::cerr << "hapcine estimate: " << video << ": warning: " << AmbiguousZoomLine(q) << "\n";
+    }
     WriteCameraPathFile(path, output);
     if (!report.empty()) WriteReport(diagnostics, video, path, report);
     outputs.CommitAll();

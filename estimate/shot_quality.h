@@ -35,6 +35,10 @@ struct ShotQuality {
   std::optional<double> inlier_ratio;      // two-view inliers / correspondences of its keyframes
   std::optional<double> rms_px;            // reprojection RMS, pixels at 960 px width
   std::optional<bool> focal_observable;    // some window turned enough to calibrate the focal
+  // Frames written by windows whose zoom decision the evidence did not make
+  // clearly (zoom_evidence.h: their confidence is lowered); 0: every zoom
+  // decision decisive, or none to make.
+  std::optional<int> zoom_ambiguous;
   bool doubtful = false;
 };
 
@@ -46,13 +50,17 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
                                         int width);
 
 // `# shot_quality.<shot>=first:F last:L frames:N lost:K median_confidence:C
-// inlier_ratio:I rms_px:R focal_observable:0|1 doubtful:0|1` (I, R, focal
-// absent when unknown) into the path's metadata, and the reverse.
+// inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z doubtful:0|1`
+// (I, R, focal, Z absent when unknown) into the path's metadata, and the
+// reverse.
 void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path);
 std::vector<ShotQuality> ReadShotQuality(const CameraPath& path);
 
 nlohmann::json ShotQualityJson(const ShotQuality& q);
 // "shot 2 (frames 120-260): doubtful: 14 frames lost, median confidence 0.21"
 std::string DoubtfulShotLine(const ShotQuality& q);
+// "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly,
+// zoom or none: the evidence did not decide clearly): confidence lowered there"
+std::string AmbiguousZoomLine(const ShotQuality& q);
 
 }  // namespace hapcine
