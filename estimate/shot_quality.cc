@@ -38,14 +38,14 @@ double ConfidenceAsWritten(const CameraFrame& f) {
   return std::strtod(FormatFloat((*f.confidence).raw()).c_str(), nullptr);
 }
 
-// Frames of shot `q` written by windows with an undecided zoom: each
+// Frames of shot `q` written by windows with an ambiguous zoom decision: each
 // window writes the frames after the previous window's last, up to its own.
 int ZoomAmbiguousFrames(const ShotQuality& q, const std::vector<WindowReport>& windows) {
   int frames = 0, written_up_to = q.first_frame - 1;
   for (const WindowReport& w : windows) {
     if (w.shot != q.shot) continue;
     const int first = std::max(written_up_to + 1, q.first_frame), last = std::min(w.last_frame, q.last_frame);
-    if (WindowDecisiveness(w.zoom_decisions) < 1 && last >= first) frames += last - first + 1;
+    if (WindowZoomAmbiguous(w.zoom_decisions) && last >= first) frames += last - first + 1;
     written_up_to = std::max(written_up_to, w.last_frame);
   }
   return frames;
@@ -166,8 +166,7 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
 std::string AmbiguousZoomLine(const ShotQuality& q) {
   return "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
          std::to_string(q.last_frame) + "): zoom ambiguous in " + std::to_string(q.zoom_ambiguous.value_or(0)) +
-         " of " + std::to_string(q.frames) +
-         " frames (zoom or dolly, zoom or none: the evidence did not decide clearly): confidence lowered there";
+         " of " + std::to_string(q.frames) + " frames (zoom or dolly, zoom or none): taken without zoom, confidence lowered";
 }
 
 }  // namespace hapcine

@@ -39,6 +39,21 @@ double Decisiveness(const ZoomDecision& d) {
 
 bool IsDecisive(const ZoomDecision& d) { return Decisiveness(d) >= 1; }
 
+bool IsAmbiguous(const ZoomDecision& d) { return Decisiveness(d) < kAmbiguousBelow; }
+
+bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions) {
+  return WindowDecisiveness(decisions) < kAmbiguousBelow;
+}
+
+// Only where the zoom is the added freedom (the focal choice, the freedom
+// test): there the reading without zoom is also the simpler one. A dolly or
+// a promotion to general adds a centre and a depth per point instead, which
+// an ambiguous margin does not pay for (a telephoto zoom's tail taken as a
+// dolly invents a translation).
+bool PreferNoZoom(const ZoomDecision& d) {
+  return d.zoom_taken && IsAmbiguous(d) && (d.test == "focal" || d.test == "freedoms");
+}
+
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {
   double least = 1;
   for (const ZoomDecision& d : decisions) least = std::min(least, Decisiveness(d));

@@ -23,6 +23,10 @@
 // d its least decisive decision: 1 for decisive ones, down to 1/2 at a
 // decision exactly on its threshold; continuous in the evidence, so the
 // confidence does not jump between two nearly equal windows.
+//
+// Ambiguous: decisiveness under kAmbiguousBelow, the evidence within half a
+// threshold of the other reading. There the reading without zoom is taken
+// (PreferNoZoom), and the shot quality summary counts the frames.
 
 #include <string>
 #include <vector>
@@ -33,6 +37,8 @@ namespace hapcine {
 
 // The largest share of a frame's confidence an undecided zoom takes away.
 constexpr double kAmbiguityDiscount = 0.5;
+// A decision less decisive than this is ambiguous (above).
+constexpr double kAmbiguousBelow = 0.5;
 
 struct ZoomDecision {
   std::string test;         // "dolly_or_zoom", "focal", "promotion" or "freedoms"
@@ -54,6 +60,18 @@ double ReliefMargin(const ZoomDecision& d);
 double Decisiveness(const ZoomDecision& d);
 
 bool IsDecisive(const ZoomDecision& d);
+
+// Decisiveness < kAmbiguousBelow.
+bool IsAmbiguous(const ZoomDecision& d);
+
+// The least decisive of a window's decisions is ambiguous.
+bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions);
+
+// Where the evidence cannot tell, the reading without zoom is taken: true
+// for an ambiguous decision that kept (or took) the zoom. The caller takes
+// the other reading and records the decision with zoom_taken false (it
+// stays ambiguous: its confidence is lowered all the same).
+bool PreferNoZoom(const ZoomDecision& d);
 
 // The least decisive of a window's decisions; 1 without any.
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions);

@@ -83,6 +83,39 @@ TEST(ZoomEvidence, WindowFactorIsBoundedAndFollowsTheLeastDecisive) {
   }
 }
 
+TEST(ZoomEvidence, AmbiguousWithinHalfAThreshold) {
+  EXPECT_TRUE(IsAmbiguous(Bic(140, 100, true)));    // 0.4
+  EXPECT_FALSE(IsAmbiguous(Bic(160, 100, true)));   // 0.6: not decisive, not ambiguous
+  EXPECT_TRUE(IsAmbiguous(Bic(60, 100, false)));
+  EXPECT_FALSE(IsAmbiguous(Bic(40, 100, false)));
+  EXPECT_TRUE(WindowZoomAmbiguous({Bic(300, 100, true), Bic(110, 100, false)}));
+  EXPECT_FALSE(WindowZoomAmbiguous({Bic(300, 100, true), Bic(160, 100, true)}));
+  EXPECT_FALSE(WindowZoomAmbiguous({}));
+}
+
+// Where the evidence cannot tell, the reading without zoom: only an
+// ambiguous decision that kept the zoom is turned.
+TEST(ZoomEvidence, PreferNoZoomOnlyWhereAmbiguousAndZoomed) {
+  EXPECT_TRUE(PreferNoZoom(Bic(130, 100, true)));     // the zoom won narrowly
+  EXPECT_FALSE(PreferNoZoom(Bic(130, 100, false)));   // no zoom already
+  EXPECT_FALSE(PreferNoZoom(Bic(250, 100, true)));    // a clear zoom stays
+  EXPECT_FALSE(PreferNoZoom(Bic(160, 100, true)));    // not clear, not ambiguous: stays
+  ZoomDecision freedoms = Bic(130, 100, true);
+  freedoms.test = "freedoms";
+  EXPECT_TRUE(PreferNoZoom(freedoms));
+  // Not where the reading without zoom is the richer one: the dolly just
+  // failed the BIC gate (ambiguous, but a dolly buys a depth per point).
+  EXPECT_TRUE(IsAmbiguous(Dolly(90, 2 * kMinDollyRelief)));
+  EXPECT_FALSE(PreferNoZoom(Dolly(90, 2 * kMinDollyRelief)));
+  EXPECT_FALSE(PreferNoZoom(Dolly(10000, 0.02)));  // a flat dolly is the zoom
+  ZoomDecision promotion = Bic(60, 100, true);
+  promotion.test = "promotion";
+  EXPECT_FALSE(PreferNoZoom(promotion));
+  ZoomDecision cue = Bic(101, 100, true);
+  cue.decided_by_cue = true;
+  EXPECT_FALSE(PreferNoZoom(cue));
+}
+
 TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
   std::vector<BaCamera> cams(3);
   cams[0].log_focal = 0;
