@@ -166,7 +166,7 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
 std::string AmbiguousZoomLine(const ShotQuality& q) {
   return "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
          std::to_string(q.last_frame) + "): zoom ambiguous in " + std::to_string(q.zoom_ambiguous.value_or(0)) +
-         " of " + std::to_string(q.frames) + " frames (zoom or dolly, zoom or none): taken without zoom, confidence lowered";
+         " of " + std::to_string(q.frames) + " frames (zoom or dolly, zoom or none): confidence lowered";
 }
 
 }  // namespace hapcine

@@ -37,8 +37,8 @@ struct ShotQuality {
   std::optional<bool> focal_observable;    // some window turned enough to calibrate the focal
   // Frames written by windows whose zoom decision was ambiguous
   // (zoom_evidence.h: the evidence within half a threshold of the other
-  // reading; the reading without zoom taken, the confidence lowered); 0: no
-  // ambiguous decision, or none to make.
+  // reading; the confidence lowered, the reading without zoom taken where it
+  // is the simpler one); 0: no ambiguous decision, or none to make.
   std::optional<int> zoom_ambiguous;
   bool doubtful = false;
 };
@@ -61,7 +61,7 @@ nlohmann::json ShotQualityJson(const ShotQuality& q);
 // "shot 2 (frames 120-260): doubtful: 14 frames lost, median confidence 0.21"
 std::string DoubtfulShotLine(const ShotQuality& q);
 // "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly,
-// zoom or none): taken without zoom, confidence lowered"
+// zoom or none): confidence lowered"
 std::string AmbiguousZoomLine(const ShotQuality& q);
 
 }  // namespace hapcine

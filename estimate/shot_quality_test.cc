@@ -81,8 +81,8 @@ TEST(ShotQuality, ZoomAmbiguousFramesOfUndecidedWindows) {
   EXPECT_EQ(*q[0].zoom_ambiguous, 10);  // frames 10-19
   EXPECT_EQ(*q[1].zoom_ambiguous, 0);   // no zoom decision to make
   EXPECT_EQ(AmbiguousZoomLine(q[0]),
-            "shot 0 (frames 0-19): zoom ambiguous in 10 of 20 frames (zoom or dolly, zoom or none): taken without "
-            "zoom, confidence lowered");
+            "shot 0 (frames 0-19): zoom ambiguous in 10 of 20 frames (zoom or dolly, zoom or none): confidence "
+            "lowered");
   EXPECT_FALSE(SummariseShots(path, {}, 960)[0].zoom_ambiguous);  // no windows (COLMAP): unknown
 
   WriteShotQuality(q, &path);

@@ -26,7 +26,8 @@
 //
 // Ambiguous: decisiveness under kAmbiguousBelow, the evidence within half a
 // threshold of the other reading. There the reading without zoom is taken
-// (PreferNoZoom), and the shot quality summary counts the frames.
+// where it is also the simpler one (PreferNoZoom), and the shot quality
+// summary counts the frames.
 
 #include <string>
 #include <vector>
@@ -68,9 +69,12 @@ bool IsAmbiguous(const ZoomDecision& d);
 bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions);
 
 // Where the evidence cannot tell, the reading without zoom is taken: true
-// for an ambiguous decision that kept (or took) the zoom. The caller takes
-// the other reading and records the decision with zoom_taken false (it
-// stays ambiguous: its confidence is lowered all the same).
+// for an ambiguous decision that kept (or took) the zoom where the zoom is
+// the added freedom (tests "focal" and "freedoms"; not "dolly_or_zoom" nor
+// "promotion", whose reading without zoom adds a centre and a depth per
+// point). The caller takes the other reading and records the decision with
+// zoom_taken false (it stays ambiguous: its confidence is lowered all the
+// same).
 bool PreferNoZoom(const ZoomDecision& d);
 
 // The least decisive of a window's decisions; 1 without any.
