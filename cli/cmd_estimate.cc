@@ -249,8 +249,13 @@ void CompleteOptions(const EstimateArgs& a, EstimatorOptions* opt) {
 void PrintWarnings(const std::string& video, const CameraPath& path) {
   if (const auto w = path.metadata.find("warning"); w != path.metadata.end())
     std::cerr << "hapcine estimate: " << video << ": warning: " << w->second << "\n";
-  for (const ShotQuality& q : ReadShotQuality(path))
+  // One line per doubtful shot and per shot with an undecided zoom (the
+  // rules: estimate/shot_quality.h), even with --quiet.
+  for (const ShotQuality& q : ReadShotQuality(path)) {
     if (q.doubtful) std::cerr << "hapcine estimate: " << video << ": " << DoubtfulShotLine(q) << "\n";
+    if (q.zoom_ambiguous.value_or(0) > 0)
+      std::cerr << "hapcine estimate: " << video << ": warning: " << AmbiguousZoomLine(q) << "\n";
+  }
 }
 
 // Estimates the path and writes it (and the report) atomically.

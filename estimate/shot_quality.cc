@@ -38,6 +38,19 @@ double ConfidenceAsWritten(const CameraFrame& f) {
   return std::strtod(FormatFloat((*f.confidence).raw()).c_str(), nullptr);
 }
 
+// Frames of shot `q` written by windows with an ambiguous zoom decision: each
+// window writes the frames after the previous window's last, up to its own.
+int ZoomAmbiguousFrames(const ShotQuality& q, const std::vector<WindowReport>& windows) {
+  int frames = 0, written_up_to = q.first_frame - 1;
+  for (const WindowReport& w : windows) {
+    if (w.shot != q.shot) continue;
+    const int first = std::max(written_up_to + 1, q.first_frame), last = std::min(w.last_frame, q.last_frame);
+    if (WindowZoomAmbiguous(w.zoom_decisions) && last >= first) frames += last - first + 1;
+    written_up_to = std::max(written_up_to, w.last_frame);
+  }
+  return frames;
+}
+
 }  // namespace
 
 std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vector<WindowReport>& windows,
@@ -77,6 +90,7 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
       if (t.observations > 0 && width > 0)
         q.rms_px = std::sqrt(t.sum_sq_px / t.observations) * kReferenceWidthPx / width;
       q.focal_observable = t.focal_observable;
+      q.zoom_ambiguous = ZoomAmbiguousFrames(q, windows);
     }
     q.doubtful = q.lost > kDoubtfulLostShare * q.frames || q.median_confidence < kDoubtfulMedianConfidence;
   }
@@ -91,6 +105,7 @@ void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path) {
     if (q.inlier_ratio) v << " inlier_ratio:" << Fixed(*q.inlier_ratio, 3);
     if (q.rms_px) v << " rms_px:" << Fixed(*q.rms_px, 3);
     if (q.focal_observable) v << " focal_observable:" << (*q.focal_observable ? 1 : 0);
+    if (q.zoom_ambiguous) v << " zoom_ambiguous:" << *q.zoom_ambiguous;
     v << " doubtful:" << (q.doubtful ? 1 : 0);
     path->metadata[kKeyPrefix + std::to_string(q.shot)] = v.str();
   }
@@ -117,6 +132,7 @@ std::vector<ShotQuality> ReadShotQuality(const CameraPath& path) {
       else if (name == "inlier_ratio") q.inlier_ratio = v;
       else if (name == "rms_px") q.rms_px = v;
       else if (name == "focal_observable") q.focal_observable = v != 0;
+      else if (name == "zoom_ambiguous") q.zoom_ambiguous = static_cast<int>(v);
       else if (name == "doubtful") q.doubtful = v != 0;
     }
     out.push_back(q);
@@ -136,6 +152,7 @@ nlohmann::json ShotQualityJson(const ShotQuality& q) {
           {"inlier_ratio", opt(q.inlier_ratio)},
           {"rms_px", opt(q.rms_px)},
           {"focal_observable", opt(q.focal_observable)},
+          {"zoom_ambiguous", opt(q.zoom_ambiguous)},
           {"doubtful", q.doubtful}};
 }
 
@@ -144,6 +161,12 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
                   std::to_string(q.last_frame) + "): doubtful: ";
   if (q.lost > 0) s += std::to_string(q.lost) + " of " + std::to_string(q.frames) + " frames lost, ";
   return s + "median confidence " + Fixed(q.median_confidence, 2);
+}
+
+std::string AmbiguousZoomLine(const ShotQuality& q) {
+  return "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
+         std::to_string(q.last_frame) + "): zoom ambiguous in " + std::to_string(q.zoom_ambiguous.value_or(0)) +
+         " of " + std::to_string(q.frames) + " frames (zoom or dolly, zoom or none): confidence lowered";
 }
 
 }  // namespace hapcine

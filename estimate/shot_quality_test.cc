@@ -60,6 +60,42 @@ TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
   EXPECT_EQ(ShotQualityJson(back[1]), ShotQualityJson(q[1]));
 }
 
+// Each window writes the frames after the previous one's; those of a window
+// whose zoom decision sat within half a threshold of the other reading are
+// counted, the others not.
+TEST(ShotQuality, ZoomAmbiguousFramesOfUndecidedWindows) {
+  CameraPath path = TwoShots();
+  WindowReport decided, not_clear, undecided, other_shot;
+  decided.last_frame = 5;
+  decided.zoom_decisions.push_back({"focal", 300, 100, true, 0.2});  // twice the penalty
+  not_clear.last_frame = 9;
+  not_clear.zoom_decisions.push_back({"focal", 175, 100, true, 0.2});  // decisiveness 0.75: not ambiguous
+  undecided.first_frame = 8;                                           // its held lead-in
+  undecided.last_frame = 19;
+  undecided.zoom_decisions.push_back({"focal", 110, 100, true, 0.2});
+  other_shot.shot = 1;
+  other_shot.first_frame = 20;
+  other_shot.last_frame = 39;
+  std::vector<ShotQuality> q = SummariseShots(path, {decided, not_clear, undecided, other_shot}, 960);
+  ASSERT_EQ(q.size(), 2u);
+  EXPECT_EQ(*q[0].zoom_ambiguous, 10);  // frames 10-19
+  EXPECT_EQ(*q[1].zoom_ambiguous, 0);   // no zoom decision to make
+  EXPECT_EQ(AmbiguousZoomLine(q[0]),
+            "shot 0 (frames 0-19): zoom ambiguous in 10 of 20 frames (zoom or dolly, zoom or none): confidence "
+            "lowered");
+  EXPECT_FALSE(SummariseShots(path, {}, 960)[0].zoom_ambiguous);  // no windows (COLMAP): unknown
+
+  WriteShotQuality(q, &path);
+  EXPECT_EQ(path.metadata.at("shot_quality.0"),
+            "first:0 last:19 frames:20 lost:0 median_confidence:0.300 focal_observable:0 zoom_ambiguous:10 doubtful:0");
+  std::stringstream file;
+  WriteCameraPath(path, file);
+  const std::vector<ShotQuality> back = ReadShotQuality(ReadCameraPath(file, "test"));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(ShotQualityJson(back[0]), ShotQualityJson(q[0]));
+  EXPECT_EQ(ShotQualityJson(back[0])["zoom_ambiguous"], 10);
+}
+
 // One lost frame in 20 is the limit; a single weak frame is not a weak shot.
 TEST(ShotQuality, DoubtfulRuleAtItsEdges) {
   CameraPath path = TwoShots();

@@ -41,6 +41,15 @@ namespace hapcine {
 
 class Diagnostics;
 
+// A placed frame's confidence (docs/estimate.md "Confidence"): the
+// interval's two-view inlier ratio x the frame's track quality (at least
+// 0.3) x the RMS likelihood exp(-0.5 (rms / 2 px)^2) (`rms_reference_px`:
+// pixels at 960 px width) x 0.8 where the window's focal is not observable
+// x the window's zoom-decision factor (ZoomConfidenceFactor,
+// zoom_evidence.h) x 0.3 if its bundle adjustment failed.
+double PlacedFrameConfidence(double inlier_ratio, double track_quality, double rms_reference_px,
+                             const WindowOutcome& w);
+
 struct TrackEstimatorOptions {
   double prior_hfov_deg = 50;        // focal prior (horizontal FOV) where focal is not observable
   int window_frames = 120;           // frames per bundle-adjustment window (long shots)

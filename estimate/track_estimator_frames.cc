@@ -10,6 +10,16 @@
 #include "estimate/track_estimator.h"
 
 namespace hapcine {
+
+double PlacedFrameConfidence(double inlier_ratio, double track_quality, double rms_reference_px,
+                             const WindowOutcome& w) {
+  double c = Clamp01(inlier_ratio) * Clamp01(std::max(track_quality, 0.3)) *
+             std::exp(-0.5 * std::pow(rms_reference_px / 2.0, 2)) * (w.focal_observable ? 1.0 : 0.8) *
+             ZoomConfidenceFactor(w.report.zoom_decisions);
+  if (!w.success) c *= 0.3;
+  return c;
+}
+
 // Units (camera-path spec): the shot's first translating window scales the
 // world about its first keyframe so that the median depth of the points it
 // sees is 1; every translating window leaves the median depth seen from its
@@ -67,10 +77,8 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
       out.cam = a.cam;
       out.model = ki == 0 && n > 1 ? keyframes_[1].model : a.model;
       if (a.fixed && ki == 0 && n > 1) out.model = keyframes_[1].model;
-      out.confidence = Clamp01(a.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
-                       std::exp(-0.5 * std::pow(w.rms_px * kReferenceWidthPx / width_ / 2.0, 2)) *
-                       (w.focal_observable ? 1.0 : 0.8);
-      if (!w.success) out.confidence *= 0.3;
+      out.confidence =
+          PlacedFrameConfidence(a.inlier_ratio, f.tracks.quality, w.rms_px * kReferenceWidthPx / width_, w);
       raw_.push_back(out);
       continue;
     }
@@ -117,10 +125,8 @@ void TrackCameraEstimator::EmitWindowFrames(const WindowOutcome& w, bool final) 
         rms_px = ps.rms_after * width_;
       }
     }
-    out.confidence = Clamp01(b.inlier_ratio) * Clamp01(std::max(f.tracks.quality, 0.3)) *
-                     std::exp(-0.5 * std::pow(rms_px * kReferenceWidthPx / width_ / 2.0, 2)) *
-                     (w.focal_observable ? 1.0 : 0.8);
-    if (!w.success) out.confidence *= 0.3;
+    out.confidence =
+        PlacedFrameConfidence(b.inlier_ratio, f.tracks.quality, rms_px * kReferenceWidthPx / width_, w);
     raw_.push_back(out);
   }
 }

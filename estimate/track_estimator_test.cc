@@ -85,6 +85,23 @@ SceneCamera PanCamera(int i, double total_deg, double focal_px) {
   return c;
 }
 
+// A window whose zoom decision sat on its threshold halves its frames'
+// confidence; a decisive one leaves it as the other factors make it.
+TEST(TrackEstimator, UndecidedZoomLowersAPlacedFramesConfidence) {
+  WindowOutcome w;
+  w.success = true;
+  w.focal_observable = true;
+  const double clean = PlacedFrameConfidence(0.9, 0.8, 0.0, w);
+  EXPECT_DOUBLE_EQ(clean, 0.9 * 0.8);
+  w.report.zoom_decisions.push_back({"focal", 250, 100, true, 0.2});  // 1.5 thresholds: decided
+  EXPECT_DOUBLE_EQ(PlacedFrameConfidence(0.9, 0.8, 0.0, w), clean);
+  w.report.zoom_decisions.push_back({"dolly_or_zoom", 100, 100, true, 0.2, 1.0});  // on the threshold
+  EXPECT_DOUBLE_EQ(PlacedFrameConfidence(0.9, 0.8, 0.0, w), clean * (1 - kAmbiguityDiscount));
+  w.focal_observable = false;
+  w.success = false;
+  EXPECT_DOUBLE_EQ(PlacedFrameConfidence(0.9, 0.8, 0.0, w), clean * (1 - kAmbiguityDiscount) * 0.8 * 0.3);
+}
+
 TEST(TrackEstimator, PanIsRotationWithZeroTranslationAndCalibratedFocal) {
   const auto pts = RandomPoints(1500, 3, 30, 1.6, 1);
   const SimRun run = Simulate(90, [](int i) { return PanCamera(i, 20, 800); }, pts, 0.3);

@@ -33,6 +33,19 @@ nlohmann::json CandidateJson(const WindowCandidate& c, int width) {
   return j;
 }
 
+nlohmann::json ZoomDecisionJson(const ZoomDecision& d) {
+  nlohmann::json j = {{"test", d.test},
+                      {"zoom_taken", d.zoom_taken},
+                      {"gain", d.gain},
+                      {"penalty", d.penalty},
+                      {"bic_margin", BicMargin(d)},
+                      {"zoom_change", d.zoom_change},
+                      {"decisiveness", Decisiveness(d)}};
+  if (d.relief >= 0) j["relief_margin"] = ReliefMargin(d);
+  if (d.decided_by_cue) j["decided_by_cue"] = true;
+  return j;
+}
+
 const char* const kCandidateNames[kNumCandidates] = {"static", "zoom", "rotation", "rotation+zoom", "essential",
                                                      "homography"};
 
@@ -75,8 +88,10 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     // them; the report keeps the tests' candidates.
     UpdateKeyframes(w.keyframe_cams, w.revised_labels);
     std::vector<WindowCandidate> tests = std::move(w.report.candidates);
+    std::vector<ZoomDecision> decisions = std::move(w.report.zoom_decisions);
     w = SolveWindow(WindowInputOf(true), window_options_, diagnostics_);
     w.report.candidates.insert(w.report.candidates.begin(), tests.begin(), tests.end());
+    w.report.zoom_decisions.insert(w.report.zoom_decisions.begin(), decisions.begin(), decisions.end());
   }
   UpdateKeyframes(w.keyframe_cams, w.labels);
   if (w.written_log_focal_shift)
@@ -117,6 +132,8 @@ void TrackCameraEstimator::Report(WindowReport r) {
     }
     nlohmann::json candidates = nlohmann::json::array();
     for (const WindowCandidate& c : r.candidates) candidates.push_back(CandidateJson(c, width_));
+    nlohmann::json zoom_decisions = nlohmann::json::array();
+    for (const ZoomDecision& d : r.zoom_decisions) zoom_decisions.push_back(ZoomDecisionJson(d));
     nlohmann::json timings = nlohmann::json::object();
     for (const auto& [step, s] : r.timings_s) timings[step] = s;
     diagnostics_->Record("window", {{"shot", r.shot},
@@ -135,6 +152,8 @@ void TrackCameraEstimator::Report(WindowReport r) {
                                     {"observations", r.observations},
                                     {"rms_px", r.rms_px},
                                     {"candidates", std::move(candidates)},
+                                    {"zoom_decisions", std::move(zoom_decisions)},
+                                    {"zoom_confidence_factor", ZoomConfidenceFactor(r.zoom_decisions)},
                                     {"ba", BaJson(r.ba, width_)},
                                     {"timings_s", std::move(timings)}});
   }

@@ -298,11 +298,16 @@ bool FreedomsPayOff(const WindowProblem& p, const Candidate& with, const Candida
   const FreedomEvidence ev = CompareFreedoms(with.cams, with.pts, without.cams, without.pts, p.obs,
                                              plan.drop_translation, plan.drop_zoom, p.opt->noise_floor,
                                              BlurSigmasOf(p));
+  bool pays_off = ev.PaysOff();
+  if (ev.translation_dropped == 0 && ev.zoom_dropped > 0) {  // a test of the zoom alone
+    ZoomDecision d{"freedoms", ev.chi2_without - ev.chi2_with, ev.penalty, pays_off, ev.zoom_change};
+    if (PreferNoZoom(d)) pays_off = d.zoom_taken = false;
+    report->zoom_decisions.push_back(d);
+  }
   report->candidates.push_back(
-      CandidateReport("freedoms", "with", with.summary, ev.chi2_with + ev.penalty, ev.PaysOff()));
-  report->candidates.push_back(
-      CandidateReport("freedoms", "without", without.summary, ev.chi2_without, !ev.PaysOff()));
-  return ev.PaysOff();
+      CandidateReport("freedoms", "with", with.summary, ev.chi2_with + ev.penalty, pays_off));
+  report->candidates.push_back(CandidateReport("freedoms", "without", without.summary, ev.chi2_without, !pays_off));
+  return pays_off;
 }
 
 // The other way (window_freedoms.h): intervals labelled as a zoom without
@@ -319,11 +324,16 @@ std::vector<MotionModel> PromotionPaysOff(const WindowProblem& p, const Candidat
   if (!c.summary.success) return {};
   const PromotionEvidence ev = ComparePromotion(c.cams, c.pts, current.cams, current.pts, p.obs, promoted,
                                                 p.opt->noise_floor, BlurSigmasOf(p));
-  report->candidates.push_back(CandidateReport("promotion", "current", current.summary, ev.chi2_current,
-                                               !ev.PaysOff()));
+  std::vector<char> promoted_intervals(labels.size());
+  for (size_t i = 0; i < labels.size(); ++i) promoted_intervals[i] = labels[i] != p.keyframes[i].model;
+  const ZoomDecision d{"promotion", ev.chi2_current - ev.chi2_promoted, ev.penalty, !ev.PaysOff(),
+                       TotalLogZoom(current.cams, promoted_intervals)};
+  report->zoom_decisions.push_back(d);
   report->candidates.push_back(
-      CandidateReport("promotion", "promoted", c.summary, ev.chi2_promoted + ev.penalty, ev.PaysOff()));
-  if (!ev.PaysOff()) return {};
+      CandidateReport("promotion", "current", current.summary, ev.chi2_current, d.zoom_taken));
+  report->candidates.push_back(
+      CandidateReport("promotion", "promoted", c.summary, ev.chi2_promoted + ev.penalty, !d.zoom_taken));
+  if (d.zoom_taken) return {};
   return labels;
 }
 
@@ -371,7 +381,10 @@ std::optional<std::pair<std::vector<MotionModel>, Candidate>> DollyPaysOff(const
                                        BlurSigmasOf(p));
   const std::vector<char> every_point(dolly.pts.size(), 1);
   const double relief = DepthRelief(InverseDepthsIn(dolly.cams[p.held], dolly.pts, every_point));
-  const bool is_dolly = b.GeneralPaysOff() && relief >= kMinDollyRelief;
+  const bool dolly_pays_off = b.GeneralPaysOff() && relief >= kMinDollyRelief;
+  report->zoom_decisions.push_back(
+      {"dolly_or_zoom", b.chi2_simpler - b.chi2_general, b.penalty, !dolly_pays_off, TotalLogZoom(zoom.cams), relief});
+  const bool is_dolly = dolly_pays_off;
   report->candidates.push_back(CandidateReport("dolly_or_zoom", "zoom", zoom.summary, b.chi2_simpler, !is_dolly));
   report->candidates.push_back(
       CandidateReport("dolly_or_zoom", "dolly", dolly.summary, b.chi2_general + b.penalty, is_dolly));
@@ -501,6 +514,30 @@ Candidate SolveMirroredBranch(const WindowProblem& p, const Candidate& constant,
   return SolveFrom(p, MirroredAxialBranch(solved, p.held, matches));
 }
 
+// The focal choice's zoom decision (zoom_evidence.h): the constant focal
+// against the best candidate not ruled out, the zoom it adds in the general
+// intervals; a zoom taken without deciding it clearly is given up
+// (scores->best = -1). None when every candidate is ruled out.
+void RecordFocalDecision(const WindowProblem& p, FocalCandidateScores* scores, const std::vector<char>& ruled_out,
+                         const std::vector<Candidate>& zoomed, WindowReport* report) {
+  const FocalCandidateScores& s = *scores;
+  int best = -1;
+  for (size_t c = 0; c < s.chi2.size() && c < zoomed.size(); ++c)
+    if (!(c + 1 < ruled_out.size() && ruled_out[c + 1]) && (best < 0 || s.chi2[c] < s.chi2[best]))
+      best = static_cast<int>(c);
+  if (best < 0) return;
+  std::vector<char> general(p.n, 0);
+  for (int i = 1; i < p.n; ++i) general[i] = p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
+  ZoomDecision d{"focal", s.chi2_constant - s.chi2[best], s.penalty, s.best >= 0,
+                 TotalLogZoom(zoomed[best].cams, general)};
+  d.decided_by_cue = !ruled_out.empty() && ruled_out[0];
+  if (PreferNoZoom(d)) {
+    scores->best = -1;
+    d.zoom_taken = false;
+  }
+  report->zoom_decisions.push_back(d);
+}
+
 // BIC: does a per-keyframe focal in the general intervals pay for itself?
 // Candidates: the per-keyframe-focal solve from the two-view chain (solving
 // on another thread) and, along the optical axis, from the other branch of
@@ -540,8 +577,9 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   for (const Candidate& c : zoomed) ez.push_back(ObservationErrors(c.cams, c.pts, p.obs, true));
   int extra = 0;
   for (int i = 1; i < p.n; ++i) extra += p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
-  const FocalCandidateScores s = ScoreFocalCandidates(ObservationErrors(chosen->cams, chosen->pts, p.obs, true),
-                                                      ez, ruled_out, extra, p.opt->noise_floor);
+  FocalCandidateScores s = ScoreFocalCandidates(ObservationErrors(chosen->cams, chosen->pts, p.obs, true), ez,
+                                                ruled_out, extra, p.opt->noise_floor);
+  RecordFocalDecision(p, &s, ruled_out, zoomed, report);  // may give up an undecided zoom
   for (size_t c = 0; c < solved_reports.size(); ++c) {
     solved_reports[c]->ruled_out = c < ruled_out.size() && ruled_out[c];
     solved_reports[c]->score = c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty;

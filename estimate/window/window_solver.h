@@ -33,6 +33,7 @@
 #include "estimate/geometry/motion_model.h"
 #include "estimate/geometry/reference_width.h"
 #include "estimate/window/window_points.h"
+#include "estimate/window/zoom_evidence.h"
 
 namespace hapcine {
 
@@ -117,6 +118,9 @@ struct WindowReport {
   // Two-view inliers and correspondences of the window's free keyframes
   // (set by the estimator; the shot quality summary, shot_quality.h).
   int inliers = 0, correspondences = 0;
+  // Every zoom decision the window's tests made, with its evidence
+  // (zoom_evidence.h; the first solve's too when the labels were revised).
+  std::vector<ZoomDecision> zoom_decisions;
   std::vector<std::pair<std::string, double>> timings_s;  // wall seconds per step
 };
 

@@ -1,0 +1,75 @@
+#include "estimate/window/zoom_evidence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "estimate/window/dolly_or_zoom.h"
+#include "estimate/window/window_freedoms.h"
+
+namespace hapcine {
+namespace {
+
+double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+
+}  // namespace
+
+double BicMargin(const ZoomDecision& d) {
+  const double excess = d.gain - d.penalty;
+  if (d.penalty > 0) return excess / d.penalty;
+  return excess >= 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+}
+
+double ReliefMargin(const ZoomDecision& d) {
+  if (d.relief < 0) return 0;
+  if (!(d.relief > 0)) return -std::numeric_limits<double>::infinity();
+  return std::log2(d.relief / kMinDollyRelief);
+}
+
+double Decisiveness(const ZoomDecision& d) {
+  if (d.zoom_change < kNegligibleLogZoom || d.decided_by_cue) return 1;
+  const double bic = BicMargin(d);
+  if (std::isnan(bic)) return 0;
+  if (d.relief < 0) return Clamp01(std::abs(bic));
+  // Two gates: the dolly needs both, the zoom stays when either fails.
+  const double relief = ReliefMargin(d);
+  if (!d.zoom_taken) return std::min(Clamp01(bic), Clamp01(relief));
+  return std::max(Clamp01(-bic), Clamp01(-relief));
+}
+
+bool IsDecisive(const ZoomDecision& d) { return Decisiveness(d) >= 1; }
+
+bool IsAmbiguous(const ZoomDecision& d) { return Decisiveness(d) < kAmbiguousBelow; }
+
+bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions) {
+  return WindowDecisiveness(decisions) < kAmbiguousBelow;
+}
+
+// Only where the zoom is the added freedom (the focal choice, the freedom
+// test): there the reading without zoom is also the simpler one. A dolly or
+// a promotion to general adds a centre and a depth per point instead, which
+// an ambiguous margin does not pay for (a telephoto zoom's tail taken as a
+// dolly invents a translation).
+bool PreferNoZoom(const ZoomDecision& d) {
+  return d.zoom_taken && IsAmbiguous(d) && (d.test == "focal" || d.test == "freedoms");
+}
+
+double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {
+  double least = 1;
+  for (const ZoomDecision& d : decisions) least = std::min(least, Decisiveness(d));
+  return least;
+}
+
+double ZoomConfidenceFactor(const std::vector<ZoomDecision>& decisions) {
+  return 1 - kAmbiguityDiscount * (1 - WindowDecisiveness(decisions));
+}
+
+double TotalLogZoom(const std::vector<BaCamera>& cams, const std::vector<char>& intervals) {
+  double sum = 0;
+  for (size_t i = 1; i < cams.size(); ++i)
+    if (intervals.empty() || (i < intervals.size() && intervals[i]))
+      sum += std::abs(cams[i].log_focal - cams[i - 1].log_focal);
+  return sum;
+}
+
+}  // namespace hapcine

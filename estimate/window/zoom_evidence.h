@@ -1,0 +1,90 @@
+#pragma once
+// How decisive a window's zoom decisions were (docs/estimate.md "Zoom or
+// dolly: how decisive").
+//
+// Every zoom decision of a window is a BIC comparison between a model with a
+// zoom and one without (window_freedoms.h, dolly_or_zoom.h): the freedoms of
+// the more general model buy `gain` = chi2_simpler - chi2_general (capped,
+// units of sigma^2) and cost `penalty` = k ln(2 m). The margin
+//   (gain - penalty) / penalty
+// is how far the evidence was from the threshold, in units of the threshold:
+// at 0 a small change of the tracks flips the decision; at +-1 the freedoms
+// buy twice their price, or nothing at all. The dolly-or-zoom test has a
+// second gate, the dolly's depth relief against kMinDollyRelief: its margin is
+// log2(relief / kMinDollyRelief), +-1 at twice or half the threshold.
+//
+// Decisiveness in [0, 1] is the margin of the gate that decided, clamped
+// (|margin| >= 1: 1). A decision whose two readings differ by less than a
+// visible zoom (sum |delta ln f| under kNegligibleLogZoom) is decisive
+// whatever its margin: either reading gives the same picture. A branch cue
+// (occlusion order, floor) that ruled the constant focal out decides too.
+//
+// A window's frames take the confidence factor 1 - kAmbiguityDiscount (1 - d),
+// d its least decisive decision: 1 for decisive ones, down to 1/2 at a
+// decision exactly on its threshold; continuous in the evidence, so the
+// confidence does not jump between two nearly equal windows.
+//
+// Ambiguous: decisiveness under kAmbiguousBelow, the evidence within half a
+// threshold of the other reading. There the reading without zoom is taken
+// where it is also the simpler one (PreferNoZoom), and the shot quality
+// summary counts the frames.
+
+#include <string>
+#include <vector>
+
+#include "estimate/bundle/bundle_adjustment.h"
+
+namespace hapcine {
+
+// The largest share of a frame's confidence an undecided zoom takes away.
+constexpr double kAmbiguityDiscount = 0.5;
+// A decision less decisive than this is ambiguous (above).
+constexpr double kAmbiguousBelow = 0.5;
+
+struct ZoomDecision {
+  std::string test;         // "dolly_or_zoom", "focal", "promotion" or "freedoms"
+  double gain = 0;          // chi2 the more general model's freedoms bought
+  double penalty = 0;       // their BIC penalty k ln(2 m)
+  bool zoom_taken = false;  // the window keeps (or takes) the zoom
+  double zoom_change = 0;   // sum |delta ln f| of the zooming reading over the window
+  double relief = -1;       // dolly_or_zoom: the dolly's depth relief (-1: no second gate)
+  bool decided_by_cue = false;  // focal: a branch cue ruled out the constant focal
+};
+
+// (gain - penalty) / penalty; +-infinity with no penalty.
+double BicMargin(const ZoomDecision& d);
+
+// log2(relief / kMinDollyRelief); 0 without a relief gate.
+double ReliefMargin(const ZoomDecision& d);
+
+// In [0, 1]: how far the deciding gate was from its threshold (above).
+double Decisiveness(const ZoomDecision& d);
+
+bool IsDecisive(const ZoomDecision& d);
+
+// Decisiveness < kAmbiguousBelow.
+bool IsAmbiguous(const ZoomDecision& d);
+
+// The least decisive of a window's decisions is ambiguous.
+bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions);
+
+// Where the evidence cannot tell, the reading without zoom is taken: true
+// for an ambiguous decision that kept (or took) the zoom where the zoom is
+// the added freedom (tests "focal" and "freedoms"; not "dolly_or_zoom" nor
+// "promotion", whose reading without zoom adds a centre and a depth per
+// point). The caller takes the other reading and records the decision with
+// zoom_taken false (it stays ambiguous: its confidence is lowered all the
+// same).
+bool PreferNoZoom(const ZoomDecision& d);
+
+// The least decisive of a window's decisions; 1 without any.
+double WindowDecisiveness(const std::vector<ZoomDecision>& decisions);
+
+// The factor a window's frames' confidence takes: in [1 - kAmbiguityDiscount, 1].
+double ZoomConfidenceFactor(const std::vector<ZoomDecision>& decisions);
+
+// sum_i |ln f_i - ln f_{i-1}| over the intervals i with `intervals[i]`
+// (empty: every interval).
+double TotalLogZoom(const std::vector<BaCamera>& cams, const std::vector<char>& intervals = {});
+
+}  // namespace hapcine

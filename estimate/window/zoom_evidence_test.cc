@@ -1,0 +1,131 @@
+#include "estimate/window/zoom_evidence.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "estimate/window/dolly_or_zoom.h"
+#include "estimate/window/window_freedoms.h"
+
+namespace hapcine {
+namespace {
+
+ZoomDecision Bic(double gain, double penalty, bool zoom_taken) {
+  return {"focal", gain, penalty, zoom_taken, /*zoom_change=*/0.2};
+}
+
+TEST(ZoomEvidence, BicMarginIsInUnitsOfThePenalty) {
+  EXPECT_DOUBLE_EQ(BicMargin(Bic(300, 100, true)), 2.0);
+  EXPECT_DOUBLE_EQ(BicMargin(Bic(100, 100, true)), 0.0);
+  EXPECT_DOUBLE_EQ(BicMargin(Bic(-50, 100, false)), -1.5);
+  EXPECT_TRUE(std::isinf(BicMargin(Bic(1, 0, true))));
+  EXPECT_LT(BicMargin(Bic(-1, 0, false)), 0);
+}
+
+TEST(ZoomEvidence, DecisiveAtOneThresholdFromTheThreshold) {
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(200, 100, true)), 1.0);   // buys twice its price
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(0, 100, false)), 1.0);    // buys nothing
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(150, 100, true)), 0.5);
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(89, 100, false)), 0.11);  // kitti07's last window: the zoom barely lost
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(100, 100, true)), 0.0);
+  EXPECT_TRUE(IsDecisive(Bic(250, 100, true)));
+  EXPECT_FALSE(IsDecisive(Bic(120, 100, true)));
+}
+
+TEST(ZoomEvidence, NaNEvidenceIsNotDecisive) {
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(NAN, 100, true)), 0.0);
+}
+
+TEST(ZoomEvidence, AnInvisibleZoomIsDecidedWhateverTheMargin) {
+  ZoomDecision d = Bic(100, 100, true);
+  d.zoom_change = 0.5 * kNegligibleLogZoom;
+  EXPECT_DOUBLE_EQ(Decisiveness(d), 1.0);
+}
+
+TEST(ZoomEvidence, ABranchCueDecides) {
+  ZoomDecision d = Bic(100, 100, true);
+  d.decided_by_cue = true;
+  EXPECT_DOUBLE_EQ(Decisiveness(d), 1.0);
+}
+
+ZoomDecision Dolly(double gain, double relief) {
+  const bool is_dolly = gain > 100 && relief >= kMinDollyRelief;
+  return {"dolly_or_zoom", gain, 100, !is_dolly, 0.2, relief};
+}
+
+TEST(ZoomEvidence, DollyNeedsBothGatesClear) {
+  EXPECT_DOUBLE_EQ(ReliefMargin(Dolly(500, 2 * kMinDollyRelief)), 1.0);
+  EXPECT_DOUBLE_EQ(Decisiveness(Dolly(500, 2 * kMinDollyRelief)), 1.0);
+  // Parallax well above the threshold, relief just above its own: not decisive.
+  EXPECT_NEAR(Decisiveness(Dolly(500, std::sqrt(2.0) * kMinDollyRelief)), 0.5, 1e-12);
+  EXPECT_NEAR(Decisiveness(Dolly(150, 4 * kMinDollyRelief)), 0.5, 1e-12);
+}
+
+TEST(ZoomEvidence, ZoomStaysDecisivelyWhenEitherGateFailsClearly) {
+  // A zoom on a deep scene: the dolly fits better by BIC but is flat (zoom_in: relief 0.02).
+  EXPECT_DOUBLE_EQ(Decisiveness(Dolly(10000, 0.02)), 1.0);
+  // The dolly buys nothing, whatever its relief (telephoto_zoom_pan: it fits worse).
+  EXPECT_DOUBLE_EQ(Decisiveness(Dolly(-500, 3 * kMinDollyRelief)), 1.0);
+  // Near both thresholds: undecided.
+  EXPECT_LT(Decisiveness(Dolly(90, 0.9 * kMinDollyRelief)), 0.2);
+  EXPECT_DOUBLE_EQ(Decisiveness(Dolly(10000, 0.0)), 1.0);
+}
+
+TEST(ZoomEvidence, WindowFactorIsBoundedAndFollowsTheLeastDecisive) {
+  EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({}), 1.0);
+  EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({Bic(300, 100, true)}), 1.0);
+  EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({Bic(300, 100, true), Bic(100, 100, true)}), 1 - kAmbiguityDiscount);
+  EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({Bic(150, 100, true)}), 1 - 0.5 * kAmbiguityDiscount);
+  for (double gain : {-1e9, -100.0, 0.0, 50.0, 100.0, 150.0, 1e9, double(NAN)}) {
+    const double f = ZoomConfidenceFactor({Bic(gain, 100, true)});
+    EXPECT_GE(f, 1 - kAmbiguityDiscount) << gain;
+    EXPECT_LE(f, 1.0) << gain;
+  }
+}
+
+TEST(ZoomEvidence, AmbiguousWithinHalfAThreshold) {
+  EXPECT_TRUE(IsAmbiguous(Bic(140, 100, true)));    // 0.4
+  EXPECT_FALSE(IsAmbiguous(Bic(160, 100, true)));   // 0.6: not decisive, not ambiguous
+  EXPECT_TRUE(IsAmbiguous(Bic(60, 100, false)));
+  EXPECT_FALSE(IsAmbiguous(Bic(40, 100, false)));
+  EXPECT_TRUE(WindowZoomAmbiguous({Bic(300, 100, true), Bic(110, 100, false)}));
+  EXPECT_FALSE(WindowZoomAmbiguous({Bic(300, 100, true), Bic(160, 100, true)}));
+  EXPECT_FALSE(WindowZoomAmbiguous({}));
+}
+
+// Where the evidence cannot tell, the reading without zoom: only an
+// ambiguous decision that kept the zoom is turned.
+TEST(ZoomEvidence, PreferNoZoomOnlyWhereAmbiguousAndZoomed) {
+  EXPECT_TRUE(PreferNoZoom(Bic(130, 100, true)));     // the zoom won narrowly
+  EXPECT_FALSE(PreferNoZoom(Bic(130, 100, false)));   // no zoom already
+  EXPECT_FALSE(PreferNoZoom(Bic(250, 100, true)));    // a clear zoom stays
+  EXPECT_FALSE(PreferNoZoom(Bic(160, 100, true)));    // not clear, not ambiguous: stays
+  ZoomDecision freedoms = Bic(130, 100, true);
+  freedoms.test = "freedoms";
+  EXPECT_TRUE(PreferNoZoom(freedoms));
+  // Not where the reading without zoom is the richer one: the dolly just
+  // failed the BIC gate (ambiguous, but a dolly buys a depth per point).
+  EXPECT_TRUE(IsAmbiguous(Dolly(90, 2 * kMinDollyRelief)));
+  EXPECT_FALSE(PreferNoZoom(Dolly(90, 2 * kMinDollyRelief)));
+  EXPECT_FALSE(PreferNoZoom(Dolly(10000, 0.02)));  // a flat dolly is the zoom
+  ZoomDecision promotion = Bic(60, 100, true);
+  promotion.test = "promotion";
+  EXPECT_FALSE(PreferNoZoom(promotion));
+  ZoomDecision cue = Bic(101, 100, true);
+  cue.decided_by_cue = true;
+  EXPECT_FALSE(PreferNoZoom(cue));
+}
+
+TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
+  std::vector<BaCamera> cams(3);
+  cams[0].log_focal = 0;
+  cams[1].log_focal = 0.1;
+  cams[2].log_focal = 0.05;
+  EXPECT_NEAR(TotalLogZoom(cams), 0.15, 1e-12);
+  EXPECT_NEAR(TotalLogZoom(cams, {0, 0, 1}), 0.05, 1e-12);
+  EXPECT_NEAR(TotalLogZoom(cams, {0, 1}), 0.1, 1e-12);  // short mask: the rest is out
+  EXPECT_EQ(TotalLogZoom({}), 0.0);
+}
+
+}  // namespace
+}  // namespace hapcine
