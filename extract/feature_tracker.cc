@@ -128,6 +128,10 @@ struct FeatureTracker::Impl {
   DescribedFrame good_described;  // the last well-linked one (or a shot's first)
   LinkResult last_link;           // the last link's motion: the next one's prediction
   std::deque<DescribedFrame> stills_views;  // the shot's last stills, oldest first
+  // Video: the shot's frames a jump frame is linked back to (LinkEarlierViews),
+  // oldest first: a frame KLT tracked per KLT window of motion (described
+  // only when a jump needs it) and the jump frames themselves.
+  std::deque<DescribedFrame> shot_views;
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -186,6 +190,7 @@ struct FeatureTracker::Impl {
     last_described = good_described = {};
     last_link = {};
     stills_views.clear();
+    shot_views.clear();
     descriptor_mode = Stills();
     shot_tracked_frames = 0;
   }
@@ -1052,10 +1057,11 @@ struct FeatureTracker::Impl {
     out->jump = true;
     descriptor_mode = true;
     cur.point_of_keypoint = link.point_of_keypoint;
+    if (!stills_by_evidence) LinkEarlierViews(&shot_views, key.gray, &cur, w, true);
     DescribedTopUp(&cur, w);
     last_described = good_described = cur;
     last_link = link;
-    if (stills_by_evidence) KeepStillsView(cur);
+    KeepView(stills_by_evidence ? &stills_views : &shot_views, cur);
   }
 
   // A video that is a sequence of stills: its shot's very first step already
@@ -1075,22 +1081,53 @@ struct FeatureTracker::Impl {
   // tracks one pair shares. Back from the last view (but `linked`, the
   // view already linked), until a view no longer links (those further
   // round share less); a current keypoint keeps the first track it joins.
-  void LinkEarlierViews(const cv::Mat& linked, DescribedFrame* cur, FrameWork* w) {
+  // A video's jump frame does the same with the shot's earlier views
+  // (`shot_views`, `guided`): a jump often returns the camera to where
+  // frames before it saw the scene (a cut-back, a lost stretch), and the
+  // points those frames triangulated place it; their tracks are KLT
+  // corners, carried by the guided KLT, taken where no track is yet.
+  void LinkEarlierViews(std::deque<DescribedFrame>* views, const cv::Mat& linked, DescribedFrame* cur,
+                        FrameWork* w, bool guided = false) {
     std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
-    for (size_t back = 1; back <= stills_views.size(); ++back) {
-      const DescribedFrame& view = stills_views[stills_views.size() - back];
+    for (size_t back = 1; back <= views->size(); ++back) {
+      DescribedFrame& view = (*views)[views->size() - back];
       if (view.gray.data == linked.data) continue;
+      if (view.point_of_keypoint.empty()) linker.Describe(&view);
       const LinkResult earlier = linker.Link(view, *cur);
       if (!earlier.ok()) break;
       for (size_t k = 0; k < earlier.point_of_keypoint.size(); ++k) {
         const int i = earlier.point_of_keypoint[k];
         if (i < 0 || cur->point_of_keypoint[k] >= 0 || taken.count(earlier.ids[i])) continue;
         cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
-        w->points.push_back(earlier.points[i]);
-        w->ids.push_back(earlier.ids[i]);
-        taken.insert(earlier.ids[i]);
-        ++w->relinked;
+        TakePoint(earlier, i, &taken, w);
       }
+      if (guided) TakeGuidedPoints(earlier, &taken, w);
+    }
+  }
+
+  void TakePoint(const LinkResult& link, int i, std::unordered_set<long>* taken, FrameWork* w) {
+    w->points.push_back(link.points[i]);
+    w->ids.push_back(link.ids[i]);
+    taken->insert(link.ids[i]);
+    ++w->relinked;
+  }
+
+  // The link's guided-KLT tracks (those on no keypoint) whose point is not
+  // within a pixel of a track the frame has (the same point, another id).
+  void TakeGuidedPoints(const LinkResult& link, std::unordered_set<long>* taken, FrameWork* w) {
+    std::vector<bool> on_keypoint(link.points.size(), false);
+    for (int i : link.point_of_keypoint)
+      if (i >= 0) on_keypoint[i] = true;
+    cv::Mat occupied(w->size, CV_8U, cv::Scalar(0));
+    const int radius = 1;
+    for (const cv::Point2f& p : w->points) cv::circle(occupied, p, radius, cv::Scalar(255), cv::FILLED);
+    for (size_t i = 0; i < link.points.size(); ++i) {
+      const cv::Point2f& p = link.points[i];
+      const cv::Point q(std::clamp(static_cast<int>(std::lround(p.x)), 0, w->size.width - 1),
+                        std::clamp(static_cast<int>(std::lround(p.y)), 0, w->size.height - 1));
+      if (on_keypoint[i] || taken->count(link.ids[i]) || occupied.at<unsigned char>(q)) continue;
+      TakePoint(link, static_cast<int>(i), taken, w);
+      cv::circle(occupied, p, radius, cv::Scalar(255), cv::FILLED);
     }
   }
 
@@ -1133,10 +1170,12 @@ struct FeatureTracker::Impl {
         AccumulateRun(w->before, w->relinked, std::move(disp), frame.gray.cols);
       }
     }
-    if (link.ok() && Stills()) LinkEarlierViews(linked, &cur, w);
+    if (link.ok() && Stills()) LinkEarlierViews(&stills_views, linked, &cur, w);
+    if (link.ok() && !Stills() && out->jump) LinkEarlierViews(&shot_views, linked, &cur, w, true);
     DescribedTopUp(&cur, w);
     last_described = cur;
-    if (Stills()) KeepStillsView(cur);
+    if (Stills()) KeepView(&stills_views, cur);
+    if (!Stills() && out->jump) KeepView(&shot_views, cur);
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
     // Frames as close as a video's (a folder of a video's frames too): KLT,
@@ -1148,9 +1187,33 @@ struct FeatureTracker::Impl {
     }
   }
 
-  void KeepStillsView(const DescribedFrame& view) {
-    stills_views.push_back(view);
-    if (stills_views.size() > kStillsViewsBack) stills_views.pop_front();
+  void KeepView(std::deque<DescribedFrame>* views, const DescribedFrame& view) {
+    views->push_back(view);
+    if (views->size() > kStillsViewsBack) views->pop_front();
+  }
+
+  // A frame KLT tracked becomes a shot view (undescribed, its picture
+  // copied: the pyramids' buffers are reused) once its tracks moved a KLT
+  // window from the last view's, or kept under half of them: frames closer
+  // than that see the same points, a later one sees new ones too.
+  void KeepKltView(const Frame& frame, const FrameWork& w) {
+    if (descriptor_mode || Stills() || w.points.empty()) return;
+    if (!shot_views.empty()) {
+      const DescribedFrame& last = shot_views.back();
+      std::unordered_map<long, cv::Point2f> at_view;
+      for (size_t i = 0; i < last.ids.size(); ++i) at_view.emplace(last.ids[i], last.points[i]);
+      std::vector<float> moved;
+      for (size_t i = 0; i < w.ids.size(); ++i) {
+        const auto it = at_view.find(w.ids[i]);
+        if (it != at_view.end()) moved.push_back(static_cast<float>(cv::norm(w.points[i] - it->second)));
+      }
+      if (2 * moved.size() >= last.ids.size() && Quantile(std::move(moved), 0.5) < options.klt_window) return;
+    }
+    DescribedFrame view;
+    view.gray = frame.gray.clone();
+    view.points = w.points;
+    view.ids = w.ids;
+    KeepView(&shot_views, view);
   }
 
   FrameTracks Process(const Frame& frame) {
@@ -1195,6 +1258,7 @@ struct FeatureTracker::Impl {
     if (healthy || (out.recovered && w.relinked >= kMinTracksForCollapse))
       relinker.SetKeyframe(frame.gray, w.points, w.ids);
     WriteTracks(frame, w, &out);
+    KeepKltView(frame, w);
     out.still = Stills();
     ++shot_tracked_frames;
     UpdateAnchors(frame.index, w);

@@ -575,6 +575,32 @@ TEST(FeatureTrackerTest, SuddenRollIsLinkedByDescriptors) {
   }
 }
 
+// A video that jumps away (60 degrees of roll and 250 px: KLT loses it)
+// and back near where KLT followed it: the frame back is linked to the jump
+// before it and to the shot's earlier frames, so the tracks the jump frame
+// did not see continue with their ids, on the true positions.
+TEST(FeatureTrackerTest, JumpBackContinuesTracksOfTheFramesBeforeTheJump) {
+  const cv::Mat texture = NoiseTexture({1600, 1200}, 49);
+  FeatureTracker tracker(SmallOptions());
+  FrameTracks last;
+  for (int i = 0; i < 3; ++i) last = tracker.Process(MakeFrame(Turned(texture, 0, 2.0 * i, 0), i, 0.5));
+  const FrameTracks away = tracker.Process(MakeFrame(Turned(texture, 60, 250, 0), 3, 0.5));
+  const FrameTracks back = tracker.Process(MakeFrame(Turned(texture, 0, 10, 0), 4, 0.5));
+  EXPECT_TRUE(away.jump);
+  EXPECT_TRUE(back.jump);
+  EXPECT_EQ(back.shot, 0);
+  const auto before = ById(last), seen_away = ById(away);
+  int continued = 0, off = 0;
+  for (const auto& p : back.points) {
+    const auto it = before.find(p.track_id);
+    if (it == before.end() || seen_away.count(p.track_id)) continue;
+    ++continued;
+    if ((it->second + Eigen::Vector2d(6.0, 0) - p.px).norm() > 2.0) ++off;
+  }
+  EXPECT_GE(continued, 40);
+  EXPECT_LE(off, continued / 20 + 1);
+}
+
 TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
   const cv::Mat a = NoiseTexture({1000, 800}, 7, {0.8, 0.0, -0.6});
   const cv::Mat b = NoiseTexture({1000, 800}, 8, {-0.6, 0.2, 0.8});
