@@ -124,15 +124,18 @@ std::vector<ShotQuality> ReadShotQuality(const CameraPath& path) {
       if (colon == std::string::npos) continue;
       const std::string name = field.substr(0, colon);
       const double v = std::strtod(field.c_str() + colon + 1, nullptr);
-      if (name == "first") q.first_frame = static_cast<int>(v);
-      else if (name == "last") q.last_frame = static_cast<int>(v);
-      else if (name == "frames") q.frames = static_cast<int>(v);
-      else if (name == "lost") q.lost = static_cast<int>(v);
+      // A count outside int (or NaN) in a hand-edited header is ignored:
+      // converting it would be undefined.
+      const bool int_ok = std::abs(v) < 2147483647.0;
+      if (name == "first") q.first_frame = int_ok ? static_cast<int>(v) : q.first_frame;
+      else if (name == "last") q.last_frame = int_ok ? static_cast<int>(v) : q.last_frame;
+      else if (name == "frames") q.frames = int_ok ? static_cast<int>(v) : q.frames;
+      else if (name == "lost") q.lost = int_ok ? static_cast<int>(v) : q.lost;
       else if (name == "median_confidence") q.median_confidence = v;
       else if (name == "inlier_ratio") q.inlier_ratio = v;
       else if (name == "rms_px") q.rms_px = v;
       else if (name == "focal_observable") q.focal_observable = v != 0;
-      else if (name == "zoom_ambiguous") q.zoom_ambiguous = static_cast<int>(v);
+      else if (name == "zoom_ambiguous" && int_ok) q.zoom_ambiguous = static_cast<int>(v);
       else if (name == "doubtful") q.doubtful = v != 0;
     }
     out.push_back(q);
