@@ -103,6 +103,8 @@ std::string BatchSummary::ToText() const {
     if (f.doubtful_shots > 0)
       out << "  " << f.doubtful_shots << " of " << f.shots << " shots doubtful, " << f.lost_frames
           << " frames lost";
+    if (f.zoom_ambiguous_shots > 0)
+      out << "  " << f.zoom_ambiguous_shots << " of " << f.shots << " shots zoom ambiguous";
     if (!f.edits.empty()) out << "  edits " << f.edits;
     if (!f.reason.empty()) out << "  " << f.reason;
     out << "\n";

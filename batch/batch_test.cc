@@ -455,21 +455,65 @@ TEST(FilmRunnerTest, ShotQualityCountsFromTheCameraPathHeader) {
     std::ofstream out(file);
     out << "# fps=24\n# shot_quality.0=first:0 last:9 frames:10 lost:0 median_confidence:0.300 doubtful:0\n"
            "# shot_quality.1=first:10 last:29 frames:20 lost:3 median_confidence:0.100 doubtful:1\n"
-           "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n# shot_quality.2=not a header: after the column row\n";
+           "# shot_quality.2=first:30 last:49 frames:20 lost:0 median_confidence:0.400 zoom_ambiguous:12 "
+           "doubtful:0\n"
+           "# shot_quality.3=first:50 last:59 frames:10 lost:0 median_confidence:0.400 zoom_ambiguous:0 "
+           "doubtful:0\n"
+           "# shot_quality.4=first:60 last:69 frames:10 lost:0 median_confidence:0.400 zoom_ambiguous:-5 "
+           "doubtful:0\n"
+           "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n# shot_quality.5=not a header: after the column row\n";
   }
   FilmOutcome o;
   ReadShotQualityCounts(file, &o);
-  EXPECT_EQ(o.shots, 2);
+  EXPECT_EQ(o.shots, 5);
   EXPECT_EQ(o.doubtful_shots, 1);
   EXPECT_EQ(o.lost_frames, 3);
+  EXPECT_EQ(o.zoom_ambiguous_shots, 1);  // 0 (every decision clear) and a negative count are not
   const FilmOutcome back = OutcomeFromJson(OutcomeToJson(o));
-  EXPECT_EQ(back.shots, 2);
+  EXPECT_EQ(back.shots, 5);
   EXPECT_EQ(back.doubtful_shots, 1);
   EXPECT_EQ(back.lost_frames, 3);
+  EXPECT_EQ(back.zoom_ambiguous_shots, 1);
+  // A summary written before the count existed reads as none.
+  nlohmann::json old_json = OutcomeToJson(o);
+  old_json.erase("zoom_ambiguous_shots");
+  EXPECT_EQ(OutcomeFromJson(old_json).zoom_ambiguous_shots, 0);
   FilmOutcome none;
   ReadShotQualityCounts(file + ".missing", &none);
   EXPECT_EQ(none.shots, -1);
+  EXPECT_EQ(none.zoom_ambiguous_shots, 0);
   std::filesystem::remove(file);
+}
+
+// summary.txt names a film's doubtful and zoom-ambiguous shots, and only
+// those films.
+TEST(BatchSummaryTest, TextNamesDoubtfulAndZoomAmbiguousShots) {
+  BatchSummary s;
+  FilmOutcome both, zoom_only, clean;
+  both.id = "both";
+  both.status = zoom_only.status = clean.status = FilmStatus::kDone;
+  both.shots = 4;
+  both.doubtful_shots = 1;
+  both.lost_frames = 7;
+  both.zoom_ambiguous_shots = 2;
+  zoom_only.id = "zoom_only";
+  zoom_only.shots = 3;
+  zoom_only.zoom_ambiguous_shots = 1;
+  clean.id = "clean";
+  clean.shots = 2;
+  s.films = {both, zoom_only, clean};
+  const std::string text = s.ToText();
+  auto line_of = [&](const std::string& id) {
+    const size_t at = text.find("  " + id);
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_NE(line_of("both").find("1 of 4 shots doubtful, 7 frames lost  2 of 4 shots zoom ambiguous"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(line_of("zoom_only").find("1 of 3 shots zoom ambiguous"), std::string::npos) << text;
+  EXPECT_EQ(line_of("zoom_only").find("doubtful"), std::string::npos) << text;
+  EXPECT_EQ(line_of("clean").find("shots"), std::string::npos) << text;
+  EXPECT_EQ(s.ToJson()["films"][1]["zoom_ambiguous_shots"], 1);
 }
 
 }  // namespace

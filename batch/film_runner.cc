@@ -165,6 +165,10 @@ void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* o) {
     if (line.find(" doubtful:1") != std::string::npos) ++o->doubtful_shots;
     const size_t lost = line.find(" lost:");
     if (lost != std::string::npos) o->lost_frames += std::atoi(line.c_str() + lost + 6);
+    const std::string ambiguous = " zoom_ambiguous:";
+    const size_t z = line.find(ambiguous);
+    if (z != std::string::npos && std::strtol(line.c_str() + z + ambiguous.size(), nullptr, 10) > 0)
+      ++o->zoom_ambiguous_shots;
   }
 }
 
@@ -182,7 +186,8 @@ nlohmann::json OutcomeToJson(const FilmOutcome& o) {
                       {"steps", steps},
                       {"shots", o.shots},
                       {"doubtful_shots", o.doubtful_shots},
-                      {"lost_frames", o.lost_frames}};
+                      {"lost_frames", o.lost_frames},
+                      {"zoom_ambiguous_shots", o.zoom_ambiguous_shots}};
   if (!o.edits.empty()) j["edits"] = JsonFromBytes(o.edits);
   return j;
 }
@@ -202,6 +207,7 @@ FilmOutcome OutcomeFromJson(const nlohmann::json& j) {
   o.shots = j.value("shots", -1);
   o.doubtful_shots = j.value("doubtful_shots", 0);
   o.lost_frames = j.value("lost_frames", 0);
+  o.zoom_ambiguous_shots = j.value("zoom_ambiguous_shots", 0);
   if (j.contains("edits")) o.edits = BytesFromJson(j.at("edits"));
   for (const auto& js : j.value("steps", nlohmann::json::array())) {
     o.steps.push_back({js.value("name", ""), js.value("seconds", 0.0), js.value("reused", false)});

@@ -46,6 +46,8 @@ struct FilmOutcome {
   // (docs/formats.md): shots, those flagged doubtful, lost frames; -1 when
   // the film has no camera path or its header has no summary.
   int shots = -1, doubtful_shots = 0, lost_frames = 0;
+  // Shots with frames whose zoom decision was ambiguous (zoom_ambiguous > 0).
+  int zoom_ambiguous_shots = 0;
   std::string edits;  // the edits file its haptics used; empty: none
 };
 
@@ -87,7 +89,7 @@ class FilmObserver {
   virtual void StepStarted(const std::string& step, const std::string& log_path, bool reused) = 0;
 };
 
-// Fills the three counts above from a camera path's header lines.
+// Fills the four counts above from a camera path's header lines.
 void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* outcome);
 
 nlohmann::json OutcomeToJson(const FilmOutcome& o);
