@@ -23,6 +23,13 @@ CameraPath TwoShots() {
   return path;
 }
 
+// The shot quality `path`'s header carries, written to a file and read back.
+std::vector<ShotQuality> ThroughTheFile(const CameraPath& path) {
+  std::stringstream file;
+  WriteCameraPath(path, file);
+  return ReadShotQuality(ReadCameraPath(file, "test"));
+}
+
 TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
   CameraPath path = TwoShots();
   WindowReport w;
@@ -52,9 +59,7 @@ TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
   EXPECT_EQ(path.metadata.at("shot_quality.1"),
             "first:20 last:39 frames:20 lost:3 median_confidence:0.100 doubtful:1");
   // Through the file and back.
-  std::stringstream file;
-  WriteCameraPath(path, file);
-  const std::vector<ShotQuality> back = ReadShotQuality(ReadCameraPath(file, "test"));
+  const std::vector<ShotQuality> back = ThroughTheFile(path);
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(ShotQualityJson(back[0]), ShotQualityJson(q[0]));
   EXPECT_EQ(ShotQualityJson(back[1]), ShotQualityJson(q[1]));
@@ -88,9 +93,7 @@ TEST(ShotQuality, ZoomAmbiguousFramesOfUndecidedWindows) {
   WriteShotQuality(q, &path);
   EXPECT_EQ(path.metadata.at("shot_quality.0"),
             "first:0 last:19 frames:20 lost:0 median_confidence:0.300 focal_observable:0 zoom_ambiguous:10 doubtful:0");
-  std::stringstream file;
-  WriteCameraPath(path, file);
-  const std::vector<ShotQuality> back = ReadShotQuality(ReadCameraPath(file, "test"));
+  const std::vector<ShotQuality> back = ThroughTheFile(path);
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(ShotQualityJson(back[0]), ShotQualityJson(q[0]));
   EXPECT_EQ(ShotQualityJson(back[0])["zoom_ambiguous"], 10);
