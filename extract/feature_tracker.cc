@@ -14,7 +14,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -132,6 +131,11 @@ struct FeatureTracker::Impl {
   // oldest first: a frame KLT tracked per KLT window of motion (described
   // only when a jump needs it) and the jump frames themselves.
   std::deque<DescribedFrame> shot_views;
+  long shot_views_kept = 0;  // views ever kept in shot_views: the last one's serial
+  // The last shot view's points by track id (KeepKltView measures each KLT
+  // frame's motion from them): built once per view, not once per frame.
+  std::unordered_map<long, cv::Point2f> last_view_points;
+  long last_view_points_of = -1;  // the serial they were built for
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -1057,11 +1061,13 @@ struct FeatureTracker::Impl {
     out->jump = true;
     descriptor_mode = true;
     cur.point_of_keypoint = link.point_of_keypoint;
-    if (!stills_by_evidence) LinkEarlierViews(&shot_views, key.gray, &cur, w, true);
+    // Stills by evidence: the shot's first link, no earlier still to link.
+    std::deque<DescribedFrame>* views = ViewsToLink(stills_by_evidence, true);
+    LinkEarlierViews(views, key.gray, &cur, w);
     DescribedTopUp(&cur, w);
     last_described = good_described = cur;
     last_link = link;
-    KeepView(stills_by_evidence ? &stills_views : &shot_views, cur);
+    KeepView(views, cur);
   }
 
   // A video that is a sequence of stills: its shot's very first step already
@@ -1087,7 +1093,8 @@ struct FeatureTracker::Impl {
   // points those frames triangulated place it; their tracks are KLT
   // corners, carried by the guided KLT, taken where no track is yet.
   void LinkEarlierViews(std::deque<DescribedFrame>* views, const cv::Mat& linked, DescribedFrame* cur,
-                        FrameWork* w, bool guided = false) {
+                        FrameWork* w) {
+    const bool guided = views == &shot_views;
     std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
     for (size_t back = 1; back <= views->size(); ++back) {
       DescribedFrame& view = (*views)[views->size() - back];
@@ -1170,12 +1177,11 @@ struct FeatureTracker::Impl {
         AccumulateRun(w->before, w->relinked, std::move(disp), frame.gray.cols);
       }
     }
-    if (link.ok() && Stills()) LinkEarlierViews(&stills_views, linked, &cur, w);
-    if (link.ok() && !Stills() && out->jump) LinkEarlierViews(&shot_views, linked, &cur, w, true);
+    std::deque<DescribedFrame>* views = ViewsToLink(Stills(), out->jump);
+    if (link.ok() && views) LinkEarlierViews(views, linked, &cur, w);
     DescribedTopUp(&cur, w);
     last_described = cur;
-    if (Stills()) KeepView(&stills_views, cur);
-    if (!Stills() && out->jump) KeepView(&shot_views, cur);
+    if (views) KeepView(views, cur);
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
     // Frames as close as a video's (a folder of a video's frames too): KLT,
@@ -1187,9 +1193,18 @@ struct FeatureTracker::Impl {
     }
   }
 
+  // The views a described frame is linked back to and kept among: the
+  // shot's stills when linked as stills, a video shot's views on a jump
+  // (frames within KLT's reach add nothing KLT did not link), else none.
+  std::deque<DescribedFrame>* ViewsToLink(bool as_stills, bool jump) {
+    if (as_stills) return &stills_views;
+    return jump ? &shot_views : nullptr;
+  }
+
   void KeepView(std::deque<DescribedFrame>* views, const DescribedFrame& view) {
     views->push_back(view);
     if (views->size() > kStillsViewsBack) views->pop_front();
+    if (views == &shot_views) ++shot_views_kept;
   }
 
   // A frame KLT tracked becomes a shot view (undescribed, its picture
@@ -1197,15 +1212,19 @@ struct FeatureTracker::Impl {
   // window from the last view's, or kept under half of them: frames closer
   // than that see the same points, a later one sees new ones too.
   void KeepKltView(const Frame& frame, const FrameWork& w) {
-    if (descriptor_mode || Stills() || w.points.empty()) return;
+    // Only a jump, found by descriptor linking, links back to these views.
+    if (!options.descriptor_linking || descriptor_mode || Stills() || w.points.empty()) return;
     if (!shot_views.empty()) {
       const DescribedFrame& last = shot_views.back();
-      std::unordered_map<long, cv::Point2f> at_view;
-      for (size_t i = 0; i < last.ids.size(); ++i) at_view.emplace(last.ids[i], last.points[i]);
+      if (last_view_points_of != shot_views_kept) {
+        last_view_points.clear();
+        for (size_t i = 0; i < last.ids.size(); ++i) last_view_points.emplace(last.ids[i], last.points[i]);
+        last_view_points_of = shot_views_kept;
+      }
       std::vector<float> moved;
       for (size_t i = 0; i < w.ids.size(); ++i) {
-        const auto it = at_view.find(w.ids[i]);
-        if (it != at_view.end()) moved.push_back(static_cast<float>(cv::norm(w.points[i] - it->second)));
+        const auto it = last_view_points.find(w.ids[i]);
+        if (it != last_view_points.end()) moved.push_back(static_cast<float>(cv::norm(w.points[i] - it->second)));
       }
       if (2 * moved.size() >= last.ids.size() && Quantile(std::move(moved), 0.5) < options.klt_window) return;
     }
