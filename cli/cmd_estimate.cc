@@ -262,7 +262,7 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
 int Estimate(const EstimateArgs& a, EstimatorOptions opt) {
   OutputSet outputs({{a.video, "VIDEO"}}, {{a.output, "-o"}, {a.report, "--report"}});
   std::set<std::string> kinds{"stage", "window", "lens_distortion"};
-  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links"});
+  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile"});
   JsonDiagnostics diagnostics(kinds);
   if (!a.report.empty()) opt.diagnostics = &diagnostics;
   Progress progress(std::cerr, ProgressModeFor(a.quiet), "estimate", "frames");

@@ -19,6 +19,7 @@
 #include "core/statistics.h"
 #include "estimate/window/axial_ambiguity.h"
 #include "estimate/window/dolly_or_zoom.h"
+#include "estimate/window/focal_profile.h"
 #include "estimate/window/focal_search.h"
 #include "estimate/window/jump_resection.h"
 #include "estimate/window/occlusion_order.h"
@@ -638,6 +639,25 @@ void ApplyPlanePriorToWindow(const WindowProblem& p, Candidate* c, WindowReport*
                                                  r.taken));
 }
 
+// How well the solution pins its focal ("focal_profile" records, on request:
+// one solve per shift, focal_profile.h).
+void RecordFocalProfile(const WindowProblem& p, const Candidate& c, Diagnostics* diagnostics) {
+  const FocalProfile prof = ProfileFocal(p.ba, c.cams, c.pts, c.ob, DefaultFocalProfileShifts());
+  nlohmann::json chi2 = nlohmann::json::array();
+  for (double v : prof.chi2) chi2.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json());
+  const bool pinned = std::isfinite(prof.sigma_log_focal);
+  Record(diagnostics, "focal_profile",
+         {{"first_frame", p.in->first_frame},
+          {"last_frame", p.keyframes.back().pos + p.in->first_frame - p.keyframes.front().pos},
+          {"held_keyframes", p.held + (p.keyframes.front().fixed ? 1 : 0)},
+          {"focal_px", std::exp(c.cams.front().log_focal) * p.in->width},
+          {"observations", c.ob.size()},
+          {"log_shifts", prof.log_shifts},
+          {"chi2", std::move(chi2)},
+          {"sigma_pct", pinned ? nlohmann::json(100 * prof.sigma_log_focal) : nlohmann::json()},
+          {"minimum_pct", pinned ? nlohmann::json(100 * prof.minimum_log_shift) : nlohmann::json()}});
+}
+
 // The window's result for the caller, from the solution taken.
 void FillOutcome(const WindowProblem& p, Candidate&& c, WindowOutcome* out) {
   const bool success = c.summary.success;
@@ -866,6 +886,8 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   if (chosen.summary.success && report.zoom_by_bic && !p.scale_pinned && opt.motion_plane_prior &&
       IsAxialMotion(chosen.cams, p.held))
     ApplyPlanePriorToWindow(p, &chosen, &report);
+  if (chosen.summary.success && p.focal_observable && Wants(diagnostics, "focal_profile"))
+    RecordFocalProfile(p, chosen, diagnostics);
   WindowOutcome out;
   out.report = std::move(report);
   FillOutcome(p, std::move(chosen), &out);
