@@ -204,6 +204,11 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
       ->check(FiniteRange(0, 1));
   app.add_option("--ba-iterations", opt->estimator.ba_iterations, "Ceres iterations per window")
       ->check(FiniteRange(1, 10000));
+  app.add_option("--focal-min-turn", opt->estimator.min_rotation_for_focal_deg,
+                 "optical-axis turn (degrees) a window needs to self-calibrate the focal; above any turn "
+                 "the focal stays at --prior-fov")
+      ->check(FiniteRange(0, 360))
+      ->capture_default_str();
   app.add_option("--colmap-binary", opt->colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
 }
@@ -225,7 +230,7 @@ void GroupTuningOptions(CLI::App& app) {
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
                            "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
-                           "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations"})
+                           "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }
 

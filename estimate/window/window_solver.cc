@@ -640,7 +640,8 @@ void ApplyPlanePriorToWindow(const WindowProblem& p, Candidate* c, WindowReport*
 }
 
 // How well the solution pins its focal ("focal_profile" records, on request:
-// one solve per shift, focal_profile.h).
+// one solve per shift, focal_profile.h); also where the focal is held (not
+// observable, or held at the prior): the profile says what the tracks want.
 void RecordFocalProfile(const WindowProblem& p, const Candidate& c, Diagnostics* diagnostics) {
   const FocalProfile prof = ProfileFocal(p.ba, c.cams, c.pts, c.ob, DefaultFocalProfileShifts());
   nlohmann::json chi2 = nlohmann::json::array();
@@ -651,6 +652,7 @@ void RecordFocalProfile(const WindowProblem& p, const Candidate& c, Diagnostics*
           {"last_frame", p.keyframes.back().pos + p.in->first_frame - p.keyframes.front().pos},
           {"held_keyframes", p.held + (p.keyframes.front().fixed ? 1 : 0)},
           {"focal_px", std::exp(c.cams.front().log_focal) * p.in->width},
+          {"focal_observable", p.focal_observable},
           {"observations", c.ob.size()},
           {"log_shifts", prof.log_shifts},
           {"chi2", std::move(chi2)},
@@ -886,7 +888,7 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   if (chosen.summary.success && report.zoom_by_bic && !p.scale_pinned && opt.motion_plane_prior &&
       IsAxialMotion(chosen.cams, p.held))
     ApplyPlanePriorToWindow(p, &chosen, &report);
-  if (chosen.summary.success && p.focal_observable && Wants(diagnostics, "focal_profile"))
+  if (chosen.summary.success && Wants(diagnostics, "focal_profile"))
     RecordFocalProfile(p, chosen, diagnostics);
   WindowOutcome out;
   out.report = std::move(report);
