@@ -220,7 +220,8 @@ void AddOutputOptions(CLI::App& app, EstimateArgs* a) {
                  "candidate solves and their scores, the model taken, inliers, the bundle adjustment's "
                  "summary and timings; per run the stage timings; written atomically");
   app.add_flag("--report-detail", a->report_detail,
-               "the report also lists every window track's RMS and every frame's shot-cut cues");
+               "the report also lists every window track's RMS, every frame's shot-cut cues and each window's "
+               "focal profile (slower: one solve per profile shift)");
 }
 
 // What most users need stays on top of --help; the algorithm's knobs
@@ -267,7 +268,7 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
 int Estimate(const EstimateArgs& a, EstimatorOptions opt) {
   OutputSet outputs({{a.video, "VIDEO"}}, {{a.output, "-o"}, {a.report, "--report"}});
   std::set<std::string> kinds{"stage", "window", "lens_distortion"};
-  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile"});
+  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile", "focal_pull"});
   JsonDiagnostics diagnostics(kinds);
   if (!a.report.empty()) opt.diagnostics = &diagnostics;
   Progress progress(std::cerr, ProgressModeFor(a.quiet), "estimate", "frames");

@@ -54,7 +54,8 @@ FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& came
       c.fixed_focal = true;
     }
     const BaSummary s = SolveBundle(&cams, &pts, observations, ba);
-    const double ss = SumOfSquares(ObservationErrors(cams, pts, observations, ba.use_depth));
+    prof.errors.push_back(ObservationErrors(cams, pts, observations, ba.use_depth));
+    const double ss = SumOfSquares(prof.errors.back());
     prof.chi2.push_back(s.success && var0 > 0 ? ss / var0 : std::numeric_limits<double>::quiet_NaN());
   }
   // The parabola on the inner shifts only: farther out the solve can fall

@@ -103,6 +103,8 @@ TEST(FocalProfile, TurningWindowPinsTheFocal) {
   const Window w = SolvedWindow(3.0, 1.0, 5);
   const FocalProfile prof = ProfileOf(w);
   ASSERT_EQ(prof.chi2.size(), DefaultFocalProfileShifts().size());
+  ASSERT_EQ(prof.errors.size(), prof.chi2.size());
+  for (const auto& e : prof.errors) EXPECT_EQ(e.size(), w.obs.size());
   ASSERT_TRUE(std::isfinite(prof.sigma_log_focal));
   EXPECT_GT(prof.sigma_log_focal, 1e-4);
   EXPECT_LT(prof.sigma_log_focal, 0.02);
