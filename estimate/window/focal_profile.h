@@ -41,7 +41,9 @@ std::vector<double> DefaultFocalProfileShifts();
 // The profile of a solved window (`cameras`, `points` solved on
 // `observations`). Every camera's log focal is shifted and held (shared
 // blocks move together, the held lead-in's too); the poses that were held
-// stay held. `ba`: the window's solve options.
+// stay held. `ba`: the window's solve options. The chi2 unit is the solve's
+// own mean square residual (the textbook estimate of the noise variance; no
+// floor: exact tracks pin the focal exactly).
 FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& cameras,
                           const std::vector<BaPoint>& points, const std::vector<BaObservation>& observations,
                           const std::vector<double>& log_shifts);
