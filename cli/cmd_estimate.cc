@@ -204,6 +204,11 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
       ->check(FiniteRange(0, 1));
   app.add_option("--ba-iterations", opt->estimator.ba_iterations, "Ceres iterations per window")
       ->check(FiniteRange(1, 10000));
+  app.add_option("--focal-min-turn", opt->estimator.min_rotation_for_focal_deg,
+                 "optical-axis turn (degrees) a window needs to self-calibrate the focal; above any turn "
+                 "the focal stays at --prior-fov")
+      ->check(FiniteRange(0, 360))
+      ->capture_default_str();
   app.add_option("--colmap-binary", opt->colmap_binary, "COLMAP executable (--backend colmap)")
       ->capture_default_str();
 }
@@ -215,7 +220,8 @@ void AddOutputOptions(CLI::App& app, EstimateArgs* a) {
                  "candidate solves and their scores, the model taken, inliers, the bundle adjustment's "
                  "summary and timings; per run the stage timings; written atomically");
   app.add_flag("--report-detail", a->report_detail,
-               "the report also lists every window track's RMS and every frame's shot-cut cues");
+               "the report also lists every window track's RMS, every frame's shot-cut cues and each window's "
+               "focal profile (slower: one solve per profile shift)");
 }
 
 // What most users need stays on top of --help; the algorithm's knobs
@@ -225,7 +231,7 @@ void GroupTuningOptions(CLI::App& app) {
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
                            "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
-                           "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations"})
+                           "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }
 
@@ -262,7 +268,7 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
 int Estimate(const EstimateArgs& a, EstimatorOptions opt) {
   OutputSet outputs({{a.video, "VIDEO"}}, {{a.output, "-o"}, {a.report, "--report"}});
   std::set<std::string> kinds{"stage", "window", "lens_distortion"};
-  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links"});
+  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile", "focal_pull"});
   JsonDiagnostics diagnostics(kinds);
   if (!a.report.empty()) opt.diagnostics = &diagnostics;
   Progress progress(std::cerr, ProgressModeFor(a.quiet), "estimate", "frames");

@@ -19,6 +19,7 @@
 #include "core/statistics.h"
 #include "estimate/window/axial_ambiguity.h"
 #include "estimate/window/dolly_or_zoom.h"
+#include "estimate/window/focal_profile.h"
 #include "estimate/window/focal_search.h"
 #include "estimate/window/jump_resection.h"
 #include "estimate/window/occlusion_order.h"
@@ -638,6 +639,64 @@ void ApplyPlanePriorToWindow(const WindowProblem& p, Candidate* c, WindowReport*
                                                  r.taken));
 }
 
+// Per track of a profiled window ("focal_pull" records): its pull on the
+// focal, the change of its squared residuals (over the window's mean square)
+// from the -1 % to the +1 % shift (positive: it wants a shorter focal), where
+// it starts and ends in the image and over how many frames.
+nlohmann::json FocalPullOfTracks(const WindowProblem& p, const Candidate& c, const FocalProfile& prof) {
+  nlohmann::json tracks = nlohmann::json::array();
+  const auto& s = prof.log_shifts;
+  const auto lo = std::find(s.begin(), s.end(), -0.01), hi = std::find(s.begin(), s.end(), 0.01),
+             zero = std::find(s.begin(), s.end(), 0.0);
+  if (lo == s.end() || hi == s.end() || zero == s.end()) return tracks;
+  const auto& e_lo = prof.errors[lo - s.begin()];
+  const auto& e_hi = prof.errors[hi - s.begin()];
+  const auto& e0 = prof.errors[zero - s.begin()];
+  double mean_sq = 0;
+  for (double v : e0) mean_sq += std::isfinite(v) ? v * v : 0;
+  mean_sq /= std::max<size_t>(1, e0.size());
+  std::map<int, long> track_of_point;
+  for (const auto& [id, k] : p.window_tracks.point_of_track) track_of_point[k] = id;
+  struct Pull { double d = 0; int n = 0; Eigen::Vector2d first, last; int first_cam = 1 << 30, last_cam = -1; };
+  std::map<int, Pull> pulls;
+  for (size_t i = 0; i < c.ob.size(); ++i) {
+    if (!std::isfinite(e_lo[i]) || !std::isfinite(e_hi[i]) || !(mean_sq > 0)) continue;
+    Pull& q = pulls[c.ob[i].point];
+    q.d += (e_hi[i] * e_hi[i] - e_lo[i] * e_lo[i]) / mean_sq;
+    ++q.n;
+    if (c.ob[i].camera < q.first_cam) q.first_cam = c.ob[i].camera, q.first = c.ob[i].u;
+    if (c.ob[i].camera > q.last_cam) q.last_cam = c.ob[i].camera, q.last = c.ob[i].u;
+  }
+  for (const auto& [k, q] : pulls)
+    tracks.push_back({{"track", track_of_point[k]}, {"pull", q.d}, {"observations", q.n},
+                      {"first", {q.first.x(), q.first.y()}}, {"last", {q.last.x(), q.last.y()}},
+                      {"frames", p.keyframes[q.last_cam].pos - p.keyframes[q.first_cam].pos}});
+  return tracks;
+}
+
+// How well the solution pins its focal ("focal_profile" records, on request:
+// one solve per shift, focal_profile.h); also where the focal is held (not
+// observable, or held at the prior): the profile says what the tracks want.
+void RecordFocalProfile(const WindowProblem& p, const Candidate& c, Diagnostics* diagnostics) {
+  const FocalProfile prof = ProfileFocal(p.ba, c.cams, c.pts, c.ob, DefaultFocalProfileShifts());
+  nlohmann::json chi2 = nlohmann::json::array();
+  for (double v : prof.chi2) chi2.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json());
+  const bool pinned = std::isfinite(prof.sigma_log_focal);
+  if (Wants(diagnostics, "focal_pull"))
+    Record(diagnostics, "focal_pull", {{"first_frame", p.in->first_frame}, {"tracks", FocalPullOfTracks(p, c, prof)}});
+  Record(diagnostics, "focal_profile",
+         {{"first_frame", p.in->first_frame},
+          {"last_frame", p.keyframes.back().pos + p.in->first_frame - p.keyframes.front().pos},
+          {"held_keyframes", p.held + (p.keyframes.front().fixed ? 1 : 0)},
+          {"focal_px", std::exp(c.cams.front().log_focal) * p.in->width},
+          {"focal_observable", p.focal_observable},
+          {"observations", c.ob.size()},
+          {"log_shifts", prof.log_shifts},
+          {"chi2", std::move(chi2)},
+          {"sigma_pct", pinned ? nlohmann::json(100 * prof.sigma_log_focal) : nlohmann::json()},
+          {"minimum_pct", pinned ? nlohmann::json(100 * prof.minimum_log_shift) : nlohmann::json()}});
+}
+
 // The window's result for the caller, from the solution taken.
 void FillOutcome(const WindowProblem& p, Candidate&& c, WindowOutcome* out) {
   const bool success = c.summary.success;
@@ -866,6 +925,8 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   if (chosen.summary.success && report.zoom_by_bic && !p.scale_pinned && opt.motion_plane_prior &&
       IsAxialMotion(chosen.cams, p.held))
     ApplyPlanePriorToWindow(p, &chosen, &report);
+  if (chosen.summary.success && Wants(diagnostics, "focal_profile"))
+    RecordFocalProfile(p, chosen, diagnostics);
   WindowOutcome out;
   out.report = std::move(report);
   FillOutcome(p, std::move(chosen), &out);

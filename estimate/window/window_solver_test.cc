@@ -235,6 +235,37 @@ TEST(SolveWindow, ARotatingWindowKeepsItsLabelsAndRecoversThePoses) {
   EXPECT_EQ(out.point_kept.size(), out.points.size());
 }
 
+// The focal profile (focal_profile.h) is a diagnostic: recorded when asked
+// for, the outcome unchanged.
+TEST(SolveWindow, TheFocalProfileIsRecordedOnRequestAndChangesNothing) {
+  using M = MotionModel;
+  const std::vector<BaCamera> truth{Camera(0, {0, 0, 0}), Camera(2, {0, 0, 0}), Camera(4, {0, 0, 0}),
+                                    Camera(6, {0, 0, 0})};
+  SyntheticWindow w = MakeWindow(truth, {M::kStatic, M::kRotation, M::kRotation, M::kRotation});
+  JsonDiagnostics wanted({"focal_profile", "focal_pull"});
+  const WindowOutcome profiled = SolveWindow(w.input, WindowOptions{}, &wanted);
+  const WindowOutcome plain = SolveWindow(w.input, WindowOptions{}, nullptr);
+  ASSERT_TRUE(profiled.success);
+  for (size_t i = 0; i < plain.keyframe_cams.size(); ++i) {
+    EXPECT_EQ(profiled.keyframe_cams[i].log_focal, plain.keyframe_cams[i].log_focal);
+    EXPECT_EQ(profiled.keyframe_cams[i].world_from_cam.coeffs(), plain.keyframe_cams[i].world_from_cam.coeffs());
+  }
+  const nlohmann::json doc = wanted.Document();
+  ASSERT_EQ(doc["focal_profiles"].size(), 1u);
+  const nlohmann::json& prof = doc["focal_profiles"][0];
+  EXPECT_TRUE(prof["focal_observable"].get<bool>());
+  // Exact tracks: the focal is pinned, at the solution.
+  ASSERT_TRUE(prof["sigma_pct"].is_number());
+  EXPECT_LT(prof["sigma_pct"].get<double>(), 0.01);
+  EXPECT_NEAR(prof["minimum_pct"].get<double>(), 0, 0.05);
+  ASSERT_EQ(doc["focal_pulls"].size(), 1u);
+  EXPECT_GT(doc["focal_pulls"][0]["tracks"].size(), 100u);
+  // Nothing asked, nothing recorded.
+  JsonDiagnostics other({"window"});
+  SolveWindow(w.input, WindowOptions{}, &other);
+  EXPECT_FALSE(other.Document().contains("focal_profiles"));
+}
+
 TEST(SolveWindow, ATranslationThePairsMisreadIsDroppedThroughRevisedLabels) {
   using M = MotionModel;
   // A pan; one interval among four labelled general: over the window one
