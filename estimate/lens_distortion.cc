@@ -71,12 +71,12 @@ double MedianMotion(const Pair& pair) {
 
 // Pairs of frames far enough apart, consecutive (each starts where the last
 // ended), within the first shot of `frames`. Each pair spans as much motion
-// as it can, up to kMaxPairMotionShare: a distortion's signature grows with
-// the motion (the change of r^2 under it), the noise does not.
-std::vector<Pair> SelectPairs(const std::vector<FrameTracks>& frames, int width, int height) {
+// as it can, up to `max_motion_share` of the width.
+std::vector<Pair> SelectPairs(const std::vector<FrameTracks>& frames, int width, int height,
+                              double max_motion_share) {
   std::vector<Pair> pairs;
   const double min_motion = kPairMotionShare * width / HalfDiagonal(width, height);
-  const double max_motion = kMaxPairMotionShare * width / HalfDiagonal(width, height);
+  const double max_motion = max_motion_share * width / HalfDiagonal(width, height);
   size_t from = 0;
   while (from + 1 < frames.size() && static_cast<int>(pairs.size()) < kMaxPairs) {
     Pair longest;
@@ -237,7 +237,11 @@ RadialDistortionEstimate EstimateRadialDistortion(const std::vector<FrameTracks>
                                                   int width, int height, double max_abs_k1) {
   RadialDistortionEstimate out;
   if (width <= 0 || height <= 0) return out;
-  std::vector<Pair> pairs = SelectPairs(frames, width, height);
+  // Long pairs: a distortion's signature grows with the motion (the change
+  // of r^2 under it), the noise does not. Footage too slow for 3 of them
+  // gets 3 % pairs instead: weaker, but a strong lens still shows.
+  std::vector<Pair> pairs = SelectPairs(frames, width, height, kMaxPairMotionShare);
+  if (static_cast<int>(pairs.size()) < kMinPairs) pairs = SelectPairs(frames, width, height, kPairMotionShare);
   out.pairs = static_cast<int>(pairs.size());
   if (out.pairs < kMinPairs) return out;
   const double px = 1 / HalfDiagonal(width, height) * width / kReferenceWidthPx;  // 1 ref px
