@@ -8,18 +8,22 @@
 // distortion (straight lines bow outwards) is k1 > 0 in this convention.
 //
 // Estimation (EstimateRadialDistortion): frame pairs of the first frames of
-// a shot, each far enough apart (median track motion >= 3 % of the width);
-// each pair's model is chosen at k1 = 0 by GRIC: a homography (pan, roll,
-// zoom, plane) or, where parallax makes it win, a fundamental matrix. For
-// each candidate k1 every pair's tracks are undistorted and refitted (least
-// squares on the inliers RANSAC found at k1 = 0; sigma fixed from k1 = 0).
-// k1 is kept only if it lowers the summed GRIC by more than the price of one
-// more parameter, ln(4 n) (n correspondences in all), lowers the cost of at
-// least 3/4 of the pairs (a lens is the same in every pair), moves the
+// a shot, each far enough apart (median track motion >= 3 % of the width).
+// For each candidate k1 every pair's tracks are undistorted and a homography
+// refitted (least squares on the inliers RANSAC found at k1 = 0; sigma fixed
+// from k1 = 0); the pair costs the better by GRIC of that homography and the
+// fundamental matrix of the tracks as they are. Radial distortion is not
+// projective, so a homography does not absorb it: k1 is measured on the
+// pairs a homography explains (pan, roll, zoom, plane). F's 7 degrees of
+// freedom absorb a distortion in either direction (rotation, near-planar
+// scenes, forward motion's radial epipolar lines), so parallax pairs do not
+// vote; and a distorted pan, which F fits better at k1 = 0, is given back to
+// the homography at its k1. k1 is kept only if it lowers the summed GRIC by
+// more than the price of one more parameter, ln(4 n) (n correspondences in
+// all), lowers the cost of at least 3/4 of the pairs that measure it (a lens
+// is the same in every pair), with at least 3 such pairs, moves the
 // picture's corner by more than the noise, and is not at the end of the
-// search range; otherwise 0. At least 3 pairs. Radial distortion is not
-// projective, so a homography does not absorb it; F on a pair a homography
-// explains is degenerate and would, hence the model fixed at k1 = 0.
+// search range; otherwise 0.
 
 #include <Eigen/Core>
 #include <vector>

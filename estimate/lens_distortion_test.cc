@@ -24,18 +24,18 @@ Eigen::Vector2d DistortRadial(const Eigen::Vector2d& u, double k1) {
   return d;
 }
 
-// 60 frames of a pan (turning 0.3 deg a frame) or a sideways traveling
+// 144 frames (what the estimator holds back) of a pan (turning 0.3 deg a frame) or a sideways traveling
 // past points 3..12 units deep, tracks distorted by k1, 0.3 px noise and
 // 2 % outliers.
 std::vector<FrameTracks> Shot(bool traveling, double k1, unsigned seed) {
   std::mt19937 rng(seed);
   const auto pts = RandomPoints(600, 3, 12, 0.9, seed);
   std::vector<FrameTracks> frames;
-  for (int i = 0; i < 60; ++i) {
+  for (int i = 0; i < 144; ++i) {
     SceneCamera cam;
     cam.focal_px = 1000;
     if (traveling)
-      cam.center = Eigen::Vector3d(0.02 * i, 0, 0);
+      cam.center = Eigen::Vector3d(0.04 * i, 0, 0);
     else
       cam.world_from_cam = Eigen::AngleAxisd(0.3 * M_PI / 180 * i, Eigen::Vector3d::UnitY());
     FrameTracks t = MakeFrameTracks(i, 24, cam, pts, kW, kH, 0.3, 0.02, &rng);
@@ -56,16 +56,46 @@ TEST(LensDistortionTest, UndistortionFollowsFfmpegsLenscorrection) {
   EXPECT_LT((UndistortRadial(DistortRadial(corner, -0.04), -0.04, kW, kH) - corner).norm(), 1e-6);
 }
 
-TEST(LensDistortionTest, FindsK1OnAPanAndATraveling) {
-  for (bool traveling : {false, true}) {
-    for (double k1 : {-0.03, 0.05}) {
-      const auto e = EstimateRadialDistortion(Shot(traveling, k1, 7), kW, kH);
-      EXPECT_GT(e.pairs, 2) << traveling;
-      // A pan's k1 comes out short: the 8-parameter homography absorbs
-      // part of it (measured 0.038 for 0.05).
-      EXPECT_NEAR(e.k1, k1, traveling ? 0.01 : 0.3 * std::abs(k1)) << (traveling ? "traveling" : "pan") << " k1 " << k1
-                                  << " gain " << e.gric_gain << " penalty " << e.penalty;
-    }
+TEST(LensDistortionTest, FindsK1OnAPan) {
+  for (double k1 : {-0.03, 0.05}) {
+    const auto e = EstimateRadialDistortion(Shot(false, k1, 7), kW, kH);
+    EXPECT_GT(e.pairs, 2);
+    // A pan's k1 comes out short: the 8-parameter homography absorbs part
+    // of it (measured 0.038 for 0.05).
+    EXPECT_NEAR(e.k1, k1, 0.3 * std::abs(k1)) << " k1 " << k1 << " gain " << e.gric_gain
+                                              << " penalty " << e.penalty;
+  }
+}
+
+// The distortion of a 50 deg lens at synth's k1 = -0.04 (x_d = x_n (1 + k1
+// r_n^2), r_n in focal units) is 0.04 (half-diagonal / focal)^2 = 0.0115
+// here: barely above the floor, yet worth a degree of rotation on footage.
+TEST(LensDistortionTest, FindsAMildBarrelOnAPan) {
+  const double focal = 0.5 * kW / std::tan(25 * M_PI / 180);
+  const double k1 = 0.04 * std::pow(std::hypot(kW, kH) / 2 / focal, 2);
+  std::mt19937 rng(5);
+  const auto pts = RandomPoints(600, 3, 12, 0.9, 5);
+  std::vector<FrameTracks> frames;
+  for (int i = 0; i < 60; ++i) {
+    SceneCamera cam;
+    cam.focal_px = focal;
+    cam.world_from_cam = Eigen::AngleAxisd(0.3 * M_PI / 180 * i, Eigen::Vector3d::UnitY());
+    FrameTracks t = MakeFrameTracks(i, 24, cam, pts, kW, kH, 0.3, 0.02, &rng);
+    for (TrackPoint& p : t.points) p.px = DistortRadial(p.px, k1);
+    frames.push_back(std::move(t));
+  }
+  const auto e = EstimateRadialDistortion(frames, kW, kH);
+  EXPECT_NEAR(e.k1, k1, 0.3 * k1) << " best " << e.best_k1 << " gain " << e.gric_gain;
+}
+
+// Parallax goes to the fundamental matrix, whose 7 degrees of freedom
+// absorb a radial distortion in either direction: a traveling does not
+// measure k1 (not even a strong one), it keeps none rather than a wrong one.
+TEST(LensDistortionTest, ParallaxDoesNotMeasureIt) {
+  for (double k1 : {0.0, 0.05}) {
+    const auto e = EstimateRadialDistortion(Shot(true, k1, 7), kW, kH);
+    EXPECT_GT(e.pairs, 2);
+    EXPECT_EQ(e.k1, 0) << " k1 " << k1 << " best " << e.best_k1 << " gain " << e.gric_gain;
   }
 }
 
