@@ -197,7 +197,15 @@ struct TrackFits {
 // near parallel).
 Eigen::Vector3d NearestPointToRays(const Clip& c, const std::vector<Obs>& obs, const Eigen::Vector3d& X0) {
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero(), mean_dir = Eigen::Vector3d::Zero();
+  double baseline = 0;
+  for (const Obs& o : obs) {
+    mean_dir += RayDirection(c.views[o.frame], o.px, c.W, c.H).normalized();
+    baseline = std::max(baseline, (c.views[o.frame].center - c.views[obs[0].frame].center).norm());
+  }
+  // Rays from one centre (a rotation or zoom) meet there: any depth explains
+  // them, so the point is put 10 units out along their mean direction.
+  if (baseline < 1e-9) return c.views[obs[0].frame].center + 10 * mean_dir.normalized();
   for (const Obs& o : obs) {
     const synth::CameraView& v = c.views[o.frame];
     const Eigen::Vector3d d = RayDirection(v, o.px, c.W, c.H).normalized();

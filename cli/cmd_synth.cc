@@ -41,6 +41,10 @@ void AddPresetOptions(CLI::App& app, SynthArgs* a, SynthOptions* opt) {
                  "'test': the test-split look (other textures and lighting, grain, motion blur, "
                  "compression, vignetting, lens distortion, far walkers) over the same camera "
                  "paths");
+  app.add_option("--variant-without", opt->variant_without,
+                 "with --variant test: parts of its look left out, to measure one at a time: "
+                 "textures, lighting, grade, vignette, grain, blur, compression, walkers")
+      ->delimiter(',');
   a->distortion = app.add_option("--distortion", a->distortion_k1,
                                  "radial lens distortion k1: x_d = x_n (1 + k1 r_n^2), x_n = (x - "
                                  "W/2) / focal_px (OpenCV k1, COLMAP SIMPLE_RADIAL); < 0 = barrel")

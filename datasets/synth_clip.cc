@@ -40,6 +40,7 @@ struct Look {
   double k1 = 0;
   synth::MoverKind movers = synth::MoverKind::kNone;
   bool variant = false;
+  bool lighting = false, grade = false, vignette = false, grain = false;  // the variant's treatment
   int max_blur_views = 48;  // sub-frames of a motion-blurred frame at most
   bool blur = false;        // average sub-frames over the shutter
   int crf = 18;
@@ -52,18 +53,28 @@ constexpr float kVariantGrainSigma = 3.0f;         // film grain, 8-bit levels
 constexpr float kVariantVignette = 0.3f;           // light fall-off at the corners
 constexpr int kVariantBlurViews = 4;               // bounded cost of the variant's motion blur
 
+// Is this part of the variant's look in the clip (the variant, not left out)?
+bool VariantHas(const SynthOptions& o, const std::string& factor) {
+  const auto& w = o.variant_without;
+  return o.variant == "test" && std::find(w.begin(), w.end(), factor) == w.end();
+}
+
 Look ClipLook(const PresetInfo& p, const SynthOptions& o) {
   Look look;
   look.variant = o.variant == "test";
-  look.scene_seed = look.variant ? o.seed + kVariantSeedOffset : o.seed;
+  look.scene_seed = VariantHas(o, "textures") ? o.seed + kVariantSeedOffset : o.seed;
+  look.lighting = VariantHas(o, "lighting");
+  look.grade = VariantHas(o, "grade");
+  look.vignette = VariantHas(o, "vignette");
+  look.grain = VariantHas(o, "grain");
   look.movers = p.movers;
-  if (look.variant && look.movers == synth::MoverKind::kNone) {
+  if (VariantHas(o, "walkers") && look.movers == synth::MoverKind::kNone) {
     look.movers = synth::MoverKind::kFarWalkers;
   }
   look.k1 = o.has_distortion ? o.distortion_k1 : look.variant ? kVariantK1 : 0;
-  look.blur = p.motion_blur || look.variant;
+  look.blur = p.motion_blur || VariantHas(o, "blur");
   look.max_blur_views = p.motion_blur ? 48 : kVariantBlurViews;
-  look.crf = p.high_crf ? o.noisy_crf : look.variant ? std::max(o.crf, kVariantCrf) : o.crf;
+  look.crf = p.high_crf ? o.noisy_crf : VariantHas(o, "compression") ? std::max(o.crf, kVariantCrf) : o.crf;
   return look;
 }
 
@@ -150,6 +161,15 @@ void SynthOptions::Check() const {
   if (variant != "" && variant != "test") {
     throw UsageError("unknown variant '" + variant + "' (known: test)");
   }
+  for (const std::string& f : variant_without) {
+    const auto& known = VariantFactorNames();
+    if (std::find(known.begin(), known.end(), f) == known.end()) {
+      throw UsageError("unknown variant factor '" + f + "' (see --help)");
+    }
+  }
+  if (!variant_without.empty() && variant != "test") {
+    throw UsageError("--variant-without needs --variant test");
+  }
   if (has_distortion && !(distortion_k1 >= -0.2 && distortion_k1 <= 0.2)) {
     throw UsageError("distortion k1 must be in [-0.2, 0.2]");
   }
@@ -158,6 +178,12 @@ void SynthOptions::Check() const {
   if (std::find(std::begin(kX264), std::end(kX264), x264_preset) == std::end(kX264)) {
     throw UsageError("unknown x264 preset '" + x264_preset + "'");
   }
+}
+
+const std::vector<std::string>& VariantFactorNames() {
+  static const std::vector<std::string> names = {"textures", "lighting", "grade",       "vignette",
+                                                 "grain",    "blur",     "compression", "walkers"};
+  return names;
 }
 
 std::vector<std::string> SynthPresetNames() {
@@ -229,9 +255,14 @@ CameraPath SynthGroundTruth(const std::string& preset, const SynthOptions& optio
   if (look.variant) {
     m["variant"] = options.variant;
     m["scene_seed"] = std::to_string(look.scene_seed);
-    m["grain_sigma"] = Num(kVariantGrainSigma);
-    m["vignette"] = Num(kVariantVignette);
+    m["grain_sigma"] = Num(look.grain ? kVariantGrainSigma : 0.0f);
+    m["vignette"] = Num(look.vignette ? kVariantVignette : 0.0f);
     m["crf"] = std::to_string(look.crf);
+    if (!options.variant_without.empty()) {
+      std::string w;
+      for (const std::string& f : options.variant_without) w += (w.empty() ? "" : " ") + f;
+      m["variant_without"] = w;
+    }
   }
   if (look.k1 != 0) m["distortion_k1"] = Num(look.k1);  // render.h DistortNormalised
   if (look.movers != synth::MoverKind::kNone) m["movers"] = synth::MoverKindName(look.movers);
@@ -310,12 +341,16 @@ cv::Mat VignetteGain(int width, int height) {
 // The variant's picture treatment of a rendered frame (BGR, 0..255 floats):
 // a warm grade with a slight gamma, vignetting, and luminance film grain
 // seeded per frame.
-void VariantTreatment(const cv::Mat& vignette, uint32_t seed, int frame, cv::Mat* img) {
-  cv::multiply(*img, cv::Scalar(0.9, 1.0, 1.08), *img);  // B, G, R gains
-  cv::multiply(*img, vignette, *img);
+void VariantTreatment(const Look& look, const cv::Mat& vignette, int frame, cv::Mat* img) {
+  if (look.grade) cv::multiply(*img, cv::Scalar(0.9, 1.0, 1.08), *img);  // B, G, R gains
+  if (look.vignette) cv::multiply(*img, vignette, *img);
   cv::max(*img, 0.0, *img);
-  cv::pow(*img * (1.0 / 255), 0.9, *img);
-  *img *= 255.0;
+  if (look.grade) {
+    cv::pow(*img * (1.0 / 255), 0.9, *img);
+    *img *= 255.0;
+  }
+  if (!look.grain) return;
+  const uint32_t seed = look.scene_seed;
   cv::Mat grain(img->size(), CV_32FC1);
   cv::RNG rng((static_cast<uint64_t>(seed) << 32) ^ (0x85EBCA6BULL * (frame + 7)));
   rng.fill(grain, cv::RNG::NORMAL, 0, kVariantGrainSigma);
@@ -343,8 +378,8 @@ SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
   writer.Open(result.video_path, options.width, options.height, options.fps, vopt);
 
   auto scene = SynthScene(look.scene_seed, p.scene, options.jobs);
-  if (look.variant) scene = VariantLighting(*scene);
-  const cv::Mat vignette = look.variant ? VignetteGain(options.width, options.height) : cv::Mat();
+  if (look.lighting) scene = VariantLighting(*scene);
+  const cv::Mat vignette = look.vignette ? VignetteGain(options.width, options.height) : cv::Mat();
   synth::RenderOptions ropt;
   ropt.supersample = options.supersample;
   ropt.adaptive = options.adaptive;
@@ -367,7 +402,7 @@ SynthResult SynthClip(const std::string& preset, const SynthOptions& options,
     frame_f = gain == 1.0 ? clean : clean * gain;
     if (look.variant) {
       if (frame_f.data == clean.data) frame_f = clean.clone();
-      VariantTreatment(vignette, look.scene_seed, i, &frame_f);
+      VariantTreatment(look, vignette, i, &frame_f);
     }
     if (p.noise_sigma > 0) {
       noise.create(frame_f.size(), CV_32FC3);

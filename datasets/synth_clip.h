@@ -41,6 +41,10 @@ struct SynthOptions {
   // textures and lighting, grain, motion blur, compression, vignetting, lens
   // distortion, far walkers) over the same camera paths (docs/synth.md).
   std::string variant;
+  // Parts of the variant's look left out, to measure one factor at a time
+  // (kVariantFactors: textures, lighting, grade, vignette, grain, blur,
+  // compression, walkers); empty = the whole look.
+  std::vector<std::string> variant_without;
   // Called after every frame with (preset, frames done, frames total).
   std::function<void(const std::string&, int, int)> progress;
 
@@ -61,6 +65,8 @@ std::vector<std::string> SynthTable1PresetNames();
 std::vector<std::string> SynthHardPresetNames();
 // The presets with independently moving objects (not part of SynthPresetNames()).
 std::vector<std::string> SynthMoverPresetNames();
+// The names variant_without accepts.
+const std::vector<std::string>& VariantFactorNames();
 // One-line description of a preset (throws UsageError for unknown names).
 std::string SynthPresetDescription(const std::string& preset);
 

@@ -128,6 +128,37 @@ TEST(SynthClip, VariantIsDeterministicAndDiffersFromTheOriginal) {
   fs::remove_all(dir);
 }
 
+// One factor of the variant's look can be left out (to measure it alone):
+// without grain two renders of the variant differ only by the grain, and the
+// header says what was left out. An unknown factor, or one without the
+// variant, is a usage error.
+TEST(SynthClip, VariantWithoutGrainDiffersOnlyByTheGrain) {
+  SynthOptions o = Tiny();
+  o.duration_s = 2 / 24.0;
+  o.variant = "test";
+  const fs::path dir = TempDir("variant_without");
+  const SynthResult full = SynthClip("dutch_angle", o, (dir / "full").string());
+  o.variant_without = {"grain"};
+  const SynthResult clean = SynthClip("dutch_angle", o, (dir / "clean").string());
+  const auto vf = testing::DecodeVideo(full.video_path), vc = testing::DecodeVideo(clean.video_path);
+  ASSERT_EQ(vc.frames.size(), 2u);
+  ASSERT_EQ(vf.frames.size(), 2u);
+  cv::Mat diff;
+  cv::absdiff(vf.frames[0], vc.frames[0], diff);
+  const double mean_diff = cv::mean(diff)[0];
+  EXPECT_GT(mean_diff, 1.0);  // grain sigma 3 (and its compression)
+  EXPECT_LT(mean_diff, 6.0);  // the same scene, light and grade
+  const CameraPath gt = ReadCameraPathFile(clean.camera_path);
+  EXPECT_EQ(gt.metadata.at("grain_sigma"), "0");
+  EXPECT_EQ(gt.metadata.at("variant_without"), "grain");
+  o.variant_without = {"sharpness"};
+  EXPECT_THROW(o.Check(), UsageError);
+  o.variant_without = {"grain"};
+  o.variant = "";
+  EXPECT_THROW(o.Check(), UsageError);
+  fs::remove_all(dir);
+}
+
 // A shutter opens and closes within one take: the motion-blurred variant's
 // first frame after a hard cut shows the new shot only, not a blend of both
 // (an edit joins whole frames).
