@@ -15,7 +15,8 @@ double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 }  // namespace
 
 double BicMargin(const ZoomDecision& d) {
-  const double excess = d.gain - d.penalty;
+  // Two branches with the same freedoms: no penalty to pay, the zoom's threshold is the unit.
+  const double excess = d.test == "branch" ? d.gain : d.gain - d.penalty;
   if (d.penalty > 0) return excess / d.penalty;
   return excess >= 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
 }
@@ -27,7 +28,8 @@ double ReliefMargin(const ZoomDecision& d) {
 }
 
 double Decisiveness(const ZoomDecision& d) {
-  if (d.zoom_change < kNegligibleLogZoom || d.decided_by_cue) return 1;
+  // Two branches always differ (they move opposite ways), however little they zoom.
+  if ((d.zoom_change < kNegligibleLogZoom && d.test != "branch") || d.decided_by_cue) return 1;
   const double bic = BicMargin(d);
   if (std::isnan(bic)) return 0;
   if (d.relief < 0) return Clamp01(std::abs(bic));
@@ -52,6 +54,12 @@ bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions) {
 // dolly invents a translation).
 bool PreferNoZoom(const ZoomDecision& d) {
   return d.zoom_taken && IsAmbiguous(d) && (d.test == "focal" || d.test == "freedoms");
+}
+
+// Less zoom is the reading closer to the fixed lens, the simpler account of
+// the shot (docs/estimate.md "Zoom or dolly: how decisive").
+bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change) {
+  return d.test == "branch" && IsAmbiguous(d) && other_zoom_change < d.zoom_change;
 }
 
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {
