@@ -541,10 +541,11 @@ void RecordFocalDecision(const WindowProblem& p, FocalCandidateScores* scores, c
 // Along the axis, where no cue ruled a branch out, the fit chose the branch:
 // how clearly (ZoomDecision "branch") against the best reading of the other
 // branch, and where it cannot tell, the reading with less zoom
-// (PreferOtherBranch). `constant_cams`: candidate 0, zoomed[c]: c + 1.
+// (PreferOtherBranch). `constant_cams`: candidate 0, zoomed[c]: c + 1;
+// `votes[c]`: candidate c's report with its occlusion votes.
 void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, const std::vector<char>& ruled_out,
                           const std::vector<BaCamera>& constant_cams, const std::vector<Candidate>& zoomed,
-                          WindowReport* report) {
+                          const std::vector<WindowCandidate*>& votes, WindowReport* report) {
   FocalCandidateScores& s = *scores;
   std::vector<char> general(p.n, 0);
   for (int i = 1; i < p.n; ++i) general[i] = p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
@@ -561,7 +562,12 @@ void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, 
   }
   if (direction == 0 || other < 0) return;
   ZoomDecision d{"branch", score_of(other) - score_of(taken), s.penalty, taken > 0, zoom_of(taken)};
-  if (PreferOtherBranch(d, zoom_of(other))) {
+  auto count = [&](int c, bool agree) {  // -1: not counted
+    if (c >= static_cast<int>(votes.size())) return 0;
+    return std::max(0, agree ? votes[c]->occlusion_agree : votes[c]->occlusion_disagree);
+  };
+  const double z = PairedBranchZ(count(taken, true), count(taken, false), count(other, true), count(other, false));
+  if (PreferOtherBranch(d, zoom_of(other), z)) {
     s.best = other - 1;
     d.zoom_taken = other > 0;
   }
@@ -610,7 +616,7 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   FocalCandidateScores s = ScoreFocalCandidates(ObservationErrors(chosen->cams, chosen->pts, p.obs, true), ez,
                                                 ruled_out, extra, p.opt->noise_floor);
   RecordFocalDecision(p, &s, ruled_out, zoomed, report);  // may give up an undecided zoom
-  if (axial) RecordBranchDecision(p, &s, ruled_out, chosen->cams, zoomed, report);
+  if (axial) RecordBranchDecision(p, &s, ruled_out, chosen->cams, zoomed, solved_reports, report);
   for (size_t c = 0; c < solved_reports.size(); ++c) {
     solved_reports[c]->ruled_out = c < ruled_out.size() && ruled_out[c];
     solved_reports[c]->score = c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty;

@@ -56,10 +56,18 @@ bool PreferNoZoom(const ZoomDecision& d) {
   return d.zoom_taken && IsAmbiguous(d) && (d.test == "focal" || d.test == "freedoms");
 }
 
-// Less zoom is the reading closer to the fixed lens, the simpler account of
-// the shot (docs/estimate.md "Zoom or dolly: how decisive").
-bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change) {
-  return d.test == "branch" && IsAmbiguous(d) && other_zoom_change < d.zoom_change;
+double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int other_disagree) {
+  const double for_taken = taken_agree + other_disagree, against = taken_disagree + other_agree;
+  return for_taken + against > 0 ? (for_taken - against) / std::sqrt(for_taken + against) : 0;
+}
+
+// The fit left the branch open: a cue under the gate it needs to overrule a
+// fit still outweighs a tie. Without one, less zoom is the reading closer
+// to the fixed lens, the simpler account of the shot.
+bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z) {
+  if (d.test != "branch" || !IsAmbiguous(d)) return false;
+  if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;
+  return other_zoom_change < d.zoom_change;
 }
 
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {

@@ -84,10 +84,21 @@ bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions);
 // same).
 bool PreferNoZoom(const ZoomDecision& d);
 
-// Where the evidence cannot tell the branch, the reading with less zoom is
-// taken: true for an ambiguous branch decision whose taken reading zooms more
-// (sum |delta ln f|) than the other branch's best, `other_zoom_change`.
-bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change);
+// A cue under its own gate still tells a branch the fit left open: the
+// occlusion order's paired sign test at one sigma (kBranchTieBreakZ).
+constexpr double kBranchTieBreakZ = 1.0;
+
+// Paired sign test of the occlusion votes of the two branches' readings
+// (occlusion_order.h): the taken reading's agreeing and the other's
+// disagreeing votes count for the taken branch, the rest against;
+// (for - against) / sqrt(for + against), 0 without votes.
+double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int other_disagree);
+
+// Whether an ambiguous branch decision takes the other branch's best
+// reading: where the paired occlusion test reaches kBranchTieBreakZ either
+// way, the branch it favours; else the reading with less zoom (sum |delta
+// ln f|; `other_zoom_change` the other's). Decided branches stay.
+bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z);
 
 // The least decisive of a window's decisions; 1 without any.
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions);

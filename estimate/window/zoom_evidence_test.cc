@@ -135,11 +135,23 @@ TEST(ZoomEvidence, BranchIsNotDecidedByANegligibleZoom) {
   EXPECT_TRUE(IsAmbiguous(Branch(1, 100, 0.5 * kNegligibleLogZoom)));
 }
 
-TEST(ZoomEvidence, AmbiguousBranchTakesTheReadingWithLessZoom) {
-  EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04));
-  EXPECT_FALSE(PreferOtherBranch(Branch(10, 100, 0.04), 0.5));   // already the lesser zoom
-  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04));  // decided by the fit
-  EXPECT_FALSE(PreferOtherBranch(Bic(100, 100, true), 0.0));     // not a branch decision
+TEST(ZoomEvidence, AmbiguousBranchWithoutCueTakesTheReadingWithLessZoom) {
+  EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.0));
+  EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.99));   // the cue under one sigma
+  EXPECT_FALSE(PreferOtherBranch(Branch(10, 100, 0.04), 0.5, 0.0));   // already the lesser zoom
+  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04, -3));   // decided by the fit
+  EXPECT_FALSE(PreferOtherBranch(Bic(100, 100, true), 0.0, -3));      // not a branch decision
+}
+
+TEST(ZoomEvidence, AmbiguousBranchFollowsTheOcclusionOrderAtOneSigma) {
+  // dev2 vertigo's first window: taken 6 agree / 8 disagree, other 13 / 5.
+  const double z = PairedBranchZ(6, 8, 13, 5);
+  EXPECT_NEAR(z, (11.0 - 21.0) / std::sqrt(32.0), 1e-12);
+  EXPECT_TRUE(PreferOtherBranch(Branch(0.4, 140.6, 0.04), 0.47, z));   // more zoom, but the cue says so
+  EXPECT_FALSE(PreferOtherBranch(Branch(0.4, 140.6, 0.47), 0.04, -z)); // the cue keeps the taken one
+  EXPECT_DOUBLE_EQ(PairedBranchZ(0, 0, 0, 0), 0.0);
+  // The two branches' votes swap (the test is affine-equivariant): the pair counts each event twice.
+  EXPECT_NEAR(PairedBranchZ(3, 1, 1, 3), 6.0 / std::sqrt(8.0) - 2.0 / std::sqrt(8.0), 1e-12);
 }
 
 TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
