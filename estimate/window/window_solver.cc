@@ -539,6 +539,42 @@ void RecordFocalDecision(const WindowProblem& p, FocalCandidateScores* scores, c
   report->zoom_decisions.push_back(d);
 }
 
+// Along the axis, where no cue ruled a branch out, the fit chose the branch:
+// how clearly (ZoomDecision "branch") against the best reading of the other
+// branch, and where it cannot tell, the reading with less zoom
+// (PreferOtherBranch). `constant_cams`: candidate 0, zoomed[c]: c + 1;
+// `votes[c]`: candidate c's report with its occlusion votes.
+void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, const std::vector<char>& ruled_out,
+                          const std::vector<BaCamera>& constant_cams, const std::vector<Candidate>& zoomed,
+                          const std::vector<WindowCandidate*>& votes, WindowReport* report) {
+  FocalCandidateScores& s = *scores;
+  std::vector<char> general(p.n, 0);
+  for (int i = 1; i < p.n; ++i) general[i] = p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
+  auto cams_of = [&](int c) -> const std::vector<BaCamera>& { return c == 0 ? constant_cams : zoomed[c - 1].cams; };
+  auto score_of = [&](int c) { return c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty; };
+  auto zoom_of = [&](int c) { return c == 0 ? 0.0 : TotalLogZoom(zoomed[c - 1].cams, general); };
+  const int taken = s.best + 1;
+  const int direction = AxialDirection(cams_of(taken), p.held);
+  int other = -1;
+  for (int c = 0; c <= static_cast<int>(zoomed.size()) && c <= static_cast<int>(s.chi2.size()); ++c) {
+    const bool out = c < static_cast<int>(ruled_out.size()) && ruled_out[c];
+    const int d = AxialDirection(cams_of(c), p.held);
+    if (!out && d != 0 && d != direction && (other < 0 || score_of(c) < score_of(other))) other = c;
+  }
+  if (direction == 0 || other < 0) return;
+  ZoomDecision d{"branch", score_of(other) - score_of(taken), s.penalty, taken > 0, zoom_of(taken)};
+  auto count = [&](int c, bool agree) {  // -1: not counted
+    if (c >= static_cast<int>(votes.size())) return 0;
+    return std::max(0, agree ? votes[c]->occlusion_agree : votes[c]->occlusion_disagree);
+  };
+  const double z = PairedBranchZ(count(taken, true), count(taken, false), count(other, true), count(other, false));
+  if (PreferOtherBranch(d, zoom_of(other), z)) {
+    s.best = other - 1;
+    d.zoom_taken = other > 0;
+  }
+  report->zoom_decisions.push_back(d);
+}
+
 // BIC: does a per-keyframe focal in the general intervals pay for itself?
 // Candidates: the per-keyframe-focal solve from the two-view chain (solving
 // on another thread) and, along the optical axis, from the other branch of
@@ -581,6 +617,7 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   FocalCandidateScores s = ScoreFocalCandidates(ObservationErrors(chosen->cams, chosen->pts, p.obs, true), ez,
                                                 ruled_out, extra, p.opt->noise_floor);
   RecordFocalDecision(p, &s, ruled_out, zoomed, report);  // may give up an undecided zoom
+  if (axial) RecordBranchDecision(p, &s, ruled_out, chosen->cams, zoomed, solved_reports, report);
   for (size_t c = 0; c < solved_reports.size(); ++c) {
     solved_reports[c]->ruled_out = c < ruled_out.size() && ruled_out[c];
     solved_reports[c]->score = c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty;

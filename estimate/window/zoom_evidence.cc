@@ -15,7 +15,8 @@ double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 }  // namespace
 
 double BicMargin(const ZoomDecision& d) {
-  const double excess = d.gain - d.penalty;
+  // Two branches with the same freedoms: no penalty to pay, the zoom's threshold is the unit.
+  const double excess = d.test == "branch" ? d.gain : d.gain - d.penalty;
   if (d.penalty > 0) return excess / d.penalty;
   return excess >= 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
 }
@@ -27,7 +28,8 @@ double ReliefMargin(const ZoomDecision& d) {
 }
 
 double Decisiveness(const ZoomDecision& d) {
-  if (d.zoom_change < kNegligibleLogZoom || d.decided_by_cue) return 1;
+  // Two branches always differ (they move opposite ways), however little they zoom.
+  if ((d.zoom_change < kNegligibleLogZoom && d.test != "branch") || d.decided_by_cue) return 1;
   const double bic = BicMargin(d);
   if (std::isnan(bic)) return 0;
   if (d.relief < 0) return Clamp01(std::abs(bic));
@@ -52,6 +54,20 @@ bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions) {
 // dolly invents a translation).
 bool PreferNoZoom(const ZoomDecision& d) {
   return d.zoom_taken && IsAmbiguous(d) && (d.test == "focal" || d.test == "freedoms");
+}
+
+double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int other_disagree) {
+  const double for_taken = taken_agree + other_disagree, against = taken_disagree + other_agree;
+  return for_taken + against > 0 ? (for_taken - against) / std::sqrt(for_taken + against) : 0;
+}
+
+// The fit left the branch open: a cue under the gate it needs to overrule a
+// fit still outweighs a tie. Without one, less zoom is the reading closer
+// to the fixed lens, the simpler account of the shot.
+bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z) {
+  if (d.test != "branch" || !IsAmbiguous(d)) return false;
+  if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;
+  return other_zoom_change < d.zoom_change;
 }
 
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {

@@ -24,6 +24,13 @@
 // decision exactly on its threshold; continuous in the evidence, so the
 // confidence does not jump between two nearly equal windows.
 //
+// The branch of the axial dolly/zoom ambiguity (test "branch"): where no cue
+// ruled a branch out, the window's fit chose between readings that move
+// opposite ways along the axis with the same freedoms, so there is no
+// penalty to pay; `gain` is the capped chi2 by which the best reading of the
+// other branch fits worse, and `penalty` the window's focal decision's
+// (its zoom's threshold) as the unit: margin gain / penalty, 0 at a tie.
+//
 // Ambiguous: decisiveness under kAmbiguousBelow, the evidence within half a
 // threshold of the other reading. There the reading without zoom is taken
 // where it is also the simpler one (PreferNoZoom), and the shot quality
@@ -42,7 +49,7 @@ constexpr double kAmbiguityDiscount = 0.5;
 constexpr double kAmbiguousBelow = 0.5;
 
 struct ZoomDecision {
-  std::string test;         // "dolly_or_zoom", "focal", "promotion" or "freedoms"
+  std::string test;         // "dolly_or_zoom", "focal", "promotion", "freedoms" or "branch"
   double gain = 0;          // chi2 the more general model's freedoms bought
   double penalty = 0;       // their BIC penalty k ln(2 m)
   bool zoom_taken = false;  // the window keeps (or takes) the zoom
@@ -51,7 +58,7 @@ struct ZoomDecision {
   bool decided_by_cue = false;  // focal: a branch cue ruled out the constant focal
 };
 
-// (gain - penalty) / penalty; +-infinity with no penalty.
+// (gain - penalty) / penalty (a branch: gain / penalty); +-infinity with no penalty.
 double BicMargin(const ZoomDecision& d);
 
 // log2(relief / kMinDollyRelief); 0 without a relief gate.
@@ -76,6 +83,22 @@ bool WindowZoomAmbiguous(const std::vector<ZoomDecision>& decisions);
 // zoom_taken false (it stays ambiguous: its confidence is lowered all the
 // same).
 bool PreferNoZoom(const ZoomDecision& d);
+
+// A cue under its own gate still tells a branch the fit left open: the
+// occlusion order's paired sign test at one sigma (kBranchTieBreakZ).
+constexpr double kBranchTieBreakZ = 1.0;
+
+// Paired sign test of the occlusion votes of the two branches' readings
+// (occlusion_order.h): the taken reading's agreeing and the other's
+// disagreeing votes count for the taken branch, the rest against;
+// (for - against) / sqrt(for + against), 0 without votes.
+double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int other_disagree);
+
+// Whether an ambiguous branch decision takes the other branch's best
+// reading: where the paired occlusion test reaches kBranchTieBreakZ either
+// way, the branch it favours; else the reading with less zoom (sum |delta
+// ln f|; `other_zoom_change` the other's). Decided branches stay.
+bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z);
 
 // The least decisive of a window's decisions; 1 without any.
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions);

@@ -116,6 +116,44 @@ TEST(ZoomEvidence, PreferNoZoomOnlyWhereAmbiguousAndZoomed) {
   EXPECT_FALSE(PreferNoZoom(cue));
 }
 
+ZoomDecision Branch(double gain, double penalty, double zoom_change) {
+  return {"branch", gain, penalty, true, zoom_change};
+}
+
+// Two branches have the same freedoms: a tie is margin 0, not -1.
+TEST(ZoomEvidence, BranchMarginIsTheChi2GapInUnitsOfTheZoomThreshold) {
+  EXPECT_DOUBLE_EQ(BicMargin(Branch(0, 100, 0.4)), 0.0);
+  EXPECT_DOUBLE_EQ(BicMargin(Branch(50, 100, 0.4)), 0.5);
+  EXPECT_DOUBLE_EQ(Decisiveness(Branch(0.4, 140.6, 0.04)), 0.4 / 140.6);  // dev2 vertigo's first window
+  EXPECT_TRUE(IsAmbiguous(Branch(0.4, 140.6, 0.04)));
+  EXPECT_TRUE(IsDecisive(Branch(150, 100, 0.4)));
+  EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({Branch(0, 100, 0.4)}), 1 - kAmbiguityDiscount);
+}
+
+// Two branches move opposite ways: never "the same picture", however small the zoom.
+TEST(ZoomEvidence, BranchIsNotDecidedByANegligibleZoom) {
+  EXPECT_TRUE(IsAmbiguous(Branch(1, 100, 0.5 * kNegligibleLogZoom)));
+}
+
+TEST(ZoomEvidence, AmbiguousBranchWithoutCueTakesTheReadingWithLessZoom) {
+  EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.0));
+  EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.99));   // the cue under one sigma
+  EXPECT_FALSE(PreferOtherBranch(Branch(10, 100, 0.04), 0.5, 0.0));   // already the lesser zoom
+  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04, -3));   // decided by the fit
+  EXPECT_FALSE(PreferOtherBranch(Bic(100, 100, true), 0.0, -3));      // not a branch decision
+}
+
+TEST(ZoomEvidence, AmbiguousBranchFollowsTheOcclusionOrderAtOneSigma) {
+  // dev2 vertigo's first window: taken 6 agree / 8 disagree, other 13 / 5.
+  const double z = PairedBranchZ(6, 8, 13, 5);
+  EXPECT_NEAR(z, (11.0 - 21.0) / std::sqrt(32.0), 1e-12);
+  EXPECT_TRUE(PreferOtherBranch(Branch(0.4, 140.6, 0.04), 0.47, z));   // more zoom, but the cue says so
+  EXPECT_FALSE(PreferOtherBranch(Branch(0.4, 140.6, 0.47), 0.04, -z)); // the cue keeps the taken one
+  EXPECT_DOUBLE_EQ(PairedBranchZ(0, 0, 0, 0), 0.0);
+  // The two branches' votes swap (the test is affine-equivariant): the pair counts each event twice.
+  EXPECT_NEAR(PairedBranchZ(3, 1, 1, 3), 6.0 / std::sqrt(8.0) - 2.0 / std::sqrt(8.0), 1e-12);
+}
+
 TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
   std::vector<BaCamera> cams(3);
   cams[0].log_focal = 0;
