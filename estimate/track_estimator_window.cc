@@ -70,6 +70,7 @@ WindowInput TrackCameraEstimator::WindowInputOf(bool labels_revised) const {
   in.frames_written = !raw_.empty();
   in.scene_depth = scene_depth_;
   in.labels_revised = labels_revised;
+  in.stills = shot_of_stills_;
   return in;
 }
 

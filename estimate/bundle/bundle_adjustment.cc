@@ -368,7 +368,7 @@ void HoldGauge(Blocks* b, const std::vector<BaCamera>& cameras, const BaOptions&
   if (ca != cb && problem->HasParameterBlock(ca) && problem->HasParameterBlock(cb) &&
       !(problem->IsParameterBlockConstant(ca) && problem->IsParameterBlockConstant(cb))) {
     auto* cost = new ceres::DynamicAutoDiffCostFunction<ScaleCost>(
-        new ScaleCost(options.scale_distance, 1e3 / options.scale_distance, b->CenterOffset(options.scale_a),
+        new ScaleCost(options.scale_distance, options.scale_weight / options.scale_distance, b->CenterOffset(options.scale_a),
                       b->CenterOffset(options.scale_b)));
     cost->AddParameterBlock(b->CenterBlockSize(options.scale_a));
     cost->AddParameterBlock(b->CenterBlockSize(options.scale_b));

@@ -55,9 +55,13 @@ struct BaOptions {
   double focal_prior_log = 0;         // log normalised focal of the prior
   bool fix_first_focal = false;       // focal not observable: hold the first focal block
   bool use_depth = true;              // false: bearings only (no translation in the window)
-  // Soft scale gauge: |c[scale_b] - c[scale_a]| = scale_distance (skip if scale_a < 0).
+  // Soft scale gauge: |c[scale_b] - c[scale_a]| = scale_distance (skip if scale_a < 0),
+  // with a sigma of scale_distance / scale_weight: tight by default (0.1 %);
+  // loose, it only removes the gauge freedom and lets that interval's length
+  // follow the rest of the window (shots of stills, window_solver.cc).
   int scale_a = -1, scale_b = -1;
   double scale_distance = 1;
+  double scale_weight = 1e3;
   int max_iterations = 50;
   // Ceres' relative cost decrease at which the solve stops.
   double function_tolerance = 1e-7;

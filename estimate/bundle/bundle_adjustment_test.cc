@@ -182,6 +182,33 @@ TEST(BundleAdjustment, MixedSharingWithMergedAndSplitPoseBlocks) {
   }
 }
 
+// The soft scale gauge on an interval whose length is wrong (half the
+// truth), in a window whose scale the held first and last cameras pin:
+// tight (the default) it holds that length against the observations; loose
+// (scale_weight 1, shots of stills) the interval follows the window.
+TEST(BundleAdjustment, LooseScaleGaugeLetsTheIntervalFollowTheWindow) {
+  const double focal = 1.1;
+  const Window w = Pan(8, 0.5, focal, 0.0, true, 7);
+  const double truth = (w.truth[1].center - w.truth[0].center).norm();
+  auto solved_length = [&](double scale_weight) {
+    std::vector<BaCamera> cams = w.truth;
+    std::vector<BaPoint> pts = w.points_truth;
+    cams[0].fixed = cams[7].fixed = true;
+    BaOptions opt;
+    opt.use_depth = true;
+    opt.fix_first_focal = true;
+    opt.scale_a = 0;
+    opt.scale_b = 1;
+    opt.scale_distance = 0.5 * truth;
+    opt.scale_weight = scale_weight;
+    const BaSummary s = SolveBundle(&cams, &pts, w.obs, opt);
+    EXPECT_TRUE(s.success);
+    return (cams[1].center - cams[0].center).norm();
+  };
+  EXPECT_NEAR(solved_length(1e3), 0.5 * truth, 0.05 * truth);
+  EXPECT_NEAR(solved_length(1.0), truth, 0.02 * truth);
+}
+
 TEST(BundleAdjustment, PoseOnlyRespectsFreedoms) {
   Window w = Pan(3, 2, 1.2, 1.0, false, 5);
   BaCamera cam = w.truth[2];

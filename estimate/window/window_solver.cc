@@ -35,6 +35,14 @@ namespace {
 // Tracks the plane prior searches a floor among.
 constexpr int kMaxPlanePoints = 2000;
 
+// The scale gauge's weight in a shot of stills: a sigma of the whole
+// interval's length (BaOptions::scale_weight). Stills are whole steps apart,
+// and under a long lens a pair's two-view step is ambiguous against the
+// depth relief (bas-relief): its length, held tight, held the window in that
+// wrong basin. Loose, the gauge still removes the scale freedom (the solve
+// stays well posed) and the interval's length follows the rest of the window.
+constexpr double kStillsScaleWeight = 1.0;
+
 // Everything the window's candidate solves share, derived once from the input.
 struct WindowProblem {
   const WindowInput* in = nullptr;
@@ -127,6 +135,7 @@ void SetSolveOptions(WindowProblem* p) {
   ba.use_depth = p->has_translation;
   ba.max_iterations = opt.ba_iterations;
   ba.num_threads = opt.num_threads;
+  if (p->in->stills) ba.scale_weight = kStillsScaleWeight;
   const auto& kf = p->keyframes;
   const auto& cams = p->cams;
   p->scale_pinned =

@@ -64,6 +64,7 @@ struct WindowInput {
   bool frames_written = false;     // the shot has frames before this window
   double scene_depth = 1;          // the median depth the shot's scale is in
   bool labels_revised = false;     // a second solve with revised labels: the label tests do not run again
+  bool stills = false;             // a shot of stills (FrameTracks::still): keyframes whole steps apart
 };
 
 struct WindowOptions {
