@@ -177,20 +177,16 @@ void CostFundamentals(std::vector<Pair>* pairs, double sigma) {
   for (Pair& p : *pairs) p.f_cost = Gric(FundamentalResiduals(p.a, p.b, p.f_inliers), sigma, 3);
 }
 
-// True when a homography explains the pair (better than F) at k1 or at 0:
-// only those pairs measure k1.
-bool Measures(const Pair& p, double k1, double sigma) {
-  return PairCost(p, k1, sigma) < p.f_cost || PairCost(p, 0, sigma) < p.f_cost;
-}
-
 // Of the pairs that measure k1, how many it improves, and how many there
-// are: a lens is the same in every pair, noise is not.
+// are: a lens is the same in every pair, noise is not. A pair measures k1
+// when a homography explains it (better than F) at k1 or at 0.
 std::pair<int, int> PairsImproved(const std::vector<Pair>& pairs, double k1, double sigma) {
   int improved = 0, measuring = 0;
   for (const Pair& p : pairs) {
-    if (!Measures(p, k1, sigma)) continue;
+    const double at_k1 = PairCost(p, k1, sigma), at_zero = PairCost(p, 0, sigma);
+    if (!(at_k1 < p.f_cost || at_zero < p.f_cost)) continue;
     ++measuring;
-    improved += PairCost(p, k1, sigma) < PairCost(p, 0, sigma);
+    improved += at_k1 < at_zero;
   }
   return {improved, measuring};
 }
