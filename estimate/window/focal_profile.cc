@@ -5,15 +5,12 @@
 #include <limits>
 
 namespace hapcine {
-namespace {
 
-double SumOfSquares(const std::vector<double>& e) {
+double SumOfFiniteSquares(const std::vector<double>& e) {
   double s = 0;
   for (double v : e) s += std::isfinite(v) ? v * v : 0.0;
   return s;
 }
-
-}  // namespace
 
 std::vector<double> DefaultFocalProfileShifts() { return {-0.04, -0.02, -0.01, 0.0, 0.01, 0.02, 0.03, 0.04}; }
 
@@ -45,7 +42,7 @@ FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& came
   prof.log_shifts = log_shifts;
   // One sigma for every shift: the residual variance of the window as solved.
   const double m = static_cast<double>(observations.size());
-  const double var0 = m > 0 ? SumOfSquares(ObservationErrors(cameras, points, observations, ba.use_depth)) / m : 0;
+  const double var0 = m > 0 ? SumOfFiniteSquares(ObservationErrors(cameras, points, observations, ba.use_depth)) / m : 0;
   for (double shift : log_shifts) {
     std::vector<BaCamera> cams = cameras;
     std::vector<BaPoint> pts = points;
@@ -55,7 +52,7 @@ FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& came
     }
     const BaSummary s = SolveBundle(&cams, &pts, observations, ba);
     prof.errors.push_back(ObservationErrors(cams, pts, observations, ba.use_depth));
-    const double ss = SumOfSquares(prof.errors.back());
+    const double ss = SumOfFiniteSquares(prof.errors.back());
     prof.chi2.push_back(s.success && var0 > 0 ? ss / var0 : std::numeric_limits<double>::quiet_NaN());
   }
   // The parabola on the inner shifts only: farther out the solve can fall

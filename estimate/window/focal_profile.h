@@ -48,6 +48,10 @@ FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& came
                           const std::vector<BaPoint>& points, const std::vector<BaObservation>& observations,
                           const std::vector<double>& log_shifts);
 
+// Sum of the squares of the finite values of `e` (a failed residual, NaN
+// or infinite, counts 0): the chi2 numerator of a profile shift.
+double SumOfFiniteSquares(const std::vector<double>& e);
+
 // The parabola through (x, y) by least squares: a, b (and c) of y = a x^2 + b x + c.
 // Needs three distinct x; returns false otherwise.
 bool FitParabola(const std::vector<double>& x, const std::vector<double>& y, double* a, double* b, double* c);

@@ -698,9 +698,7 @@ nlohmann::json FocalPullOfTracks(const WindowProblem& p, const Candidate& c, con
   const auto& e_lo = prof.errors[lo - s.begin()];
   const auto& e_hi = prof.errors[hi - s.begin()];
   const auto& e0 = prof.errors[zero - s.begin()];
-  double mean_sq = 0;
-  for (double v : e0) mean_sq += std::isfinite(v) ? v * v : 0;
-  mean_sq /= std::max<size_t>(1, e0.size());
+  const double mean_sq = SumOfFiniteSquares(e0) / std::max<size_t>(1, e0.size());
   std::map<int, long> track_of_point;
   for (const auto& [id, k] : p.window_tracks.point_of_track) track_of_point[k] = id;
   struct Pull { double d = 0; int n = 0; Eigen::Vector2d first, last; int first_cam = 1 << 30, last_cam = -1; };
