@@ -131,11 +131,6 @@ struct FeatureTracker::Impl {
   // oldest first: a frame KLT tracked per KLT window of motion (described
   // only when a jump needs it) and the jump frames themselves.
   std::deque<DescribedFrame> shot_views;
-  long shot_views_kept = 0;  // views ever kept in shot_views: the last one's serial
-  // The last shot view's points by track id (KeepKltView measures each KLT
-  // frame's motion from them): built once per view, not once per frame.
-  std::unordered_map<long, cv::Point2f> last_view_points;
-  long last_view_points_of = -1;  // the serial they were built for
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -1204,7 +1199,6 @@ struct FeatureTracker::Impl {
   void KeepView(std::deque<DescribedFrame>* views, const DescribedFrame& view) {
     views->push_back(view);
     if (views->size() > kStillsViewsBack) views->pop_front();
-    if (views == &shot_views) ++shot_views_kept;
   }
 
   // A frame KLT tracked becomes a shot view (undescribed, its picture
@@ -1216,15 +1210,12 @@ struct FeatureTracker::Impl {
     if (!options.descriptor_linking || descriptor_mode || Stills() || w.points.empty()) return;
     if (!shot_views.empty()) {
       const DescribedFrame& last = shot_views.back();
-      if (last_view_points_of != shot_views_kept) {
-        last_view_points.clear();
-        for (size_t i = 0; i < last.ids.size(); ++i) last_view_points.emplace(last.ids[i], last.points[i]);
-        last_view_points_of = shot_views_kept;
-      }
+      std::unordered_map<long, cv::Point2f> at_view;
+      for (size_t i = 0; i < last.ids.size(); ++i) at_view.emplace(last.ids[i], last.points[i]);
       std::vector<float> moved;
       for (size_t i = 0; i < w.ids.size(); ++i) {
-        const auto it = last_view_points.find(w.ids[i]);
-        if (it != last_view_points.end()) moved.push_back(static_cast<float>(cv::norm(w.points[i] - it->second)));
+        const auto it = at_view.find(w.ids[i]);
+        if (it != at_view.end()) moved.push_back(static_cast<float>(cv::norm(w.points[i] - it->second)));
       }
       if (2 * moved.size() >= last.ids.size() && Quantile(std::move(moved), 0.5) < options.klt_window) return;
     }
