@@ -1,11 +1,13 @@
 #include "batch/batch.h"
 
 #include <gtest/gtest.h>
+
 #include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "batch/content_hash.h"
@@ -448,23 +450,25 @@ TEST(BatchOptionsTest, StepKeysSeparateEstimateFromHapticsSettings) {
 namespace hapcine::batch {
 namespace {
 
-// The summary's doubtful shots come from the camera path's header alone.
-TEST(FilmRunnerTest, ShotQualityCountsFromTheCameraPathHeader) {
+// The counts batch reads from a camera path file holding `text`.
+FilmOutcome CountsOfFile(const std::string& text) {
   const std::string file = (std::filesystem::temp_directory_path() / "hapcine_batch_quality.camera.csv").string();
-  {
-    std::ofstream out(file);
-    out << "# fps=24\n# shot_quality.0=first:0 last:9 frames:10 lost:0 median_confidence:0.300 doubtful:0\n"
-           "# shot_quality.1=first:10 last:29 frames:20 lost:3 median_confidence:0.100 doubtful:1\n"
-           "# shot_quality.2=first:30 last:49 frames:20 lost:0 median_confidence:0.400 zoom_ambiguous:12 "
-           "doubtful:0\n"
-           "# shot_quality.3=first:50 last:59 frames:10 lost:0 median_confidence:0.400 zoom_ambiguous:0 "
-           "doubtful:0\n"
-           "# shot_quality.4=first:60 last:69 frames:10 lost:0 median_confidence:0.400 zoom_ambiguous:-5 "
-           "doubtful:0\n"
-           "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n# shot_quality.5=not a header: after the column row\n";
-  }
+  { std::ofstream(file) << text; }
   FilmOutcome o;
   ReadShotQualityCounts(file, &o);
+  std::filesystem::remove(file);
+  return o;
+}
+
+// The summary's doubtful shots come from the camera path's header alone.
+TEST(FilmRunnerTest, ShotQualityCountsFromTheCameraPathHeader) {
+  const FilmOutcome o = CountsOfFile(
+      "# fps=24\n# shot_quality.0=first:0 last:9 frames:10 lost:0 median_confidence:0.300 doubtful:0\n"
+      "# shot_quality.1=first:10 last:29 frames:20 lost:3 median_confidence:0.100 doubtful:1\n"
+      "# shot_quality.2=first:30 last:49 frames:20 lost:0 median_confidence:0.400 zoom_ambiguous:12 doubtful:0\n"
+      "# shot_quality.3=first:50 last:59 frames:10 lost:0 median_confidence:0.400 zoom_ambiguous:0 doubtful:0\n"
+      "# shot_quality.4=first:60 last:69 frames:10 lost:0 median_confidence:0.400 zoom_ambiguous:-5 doubtful:0\n"
+      "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n# shot_quality.5=not a header: after the column row\n");
   EXPECT_EQ(o.shots, 5);
   EXPECT_EQ(o.doubtful_shots, 1);
   EXPECT_EQ(o.lost_frames, 3);
@@ -479,10 +483,21 @@ TEST(FilmRunnerTest, ShotQualityCountsFromTheCameraPathHeader) {
   old_json.erase("zoom_ambiguous_shots");
   EXPECT_EQ(OutcomeFromJson(old_json).zoom_ambiguous_shots, 0);
   FilmOutcome none;
-  ReadShotQualityCounts(file + ".missing", &none);
+  ReadShotQualityCounts((std::filesystem::temp_directory_path() / "hapcine_no_such.camera.csv").string(), &none);
   EXPECT_EQ(none.shots, -1);
   EXPECT_EQ(none.zoom_ambiguous_shots, 0);
-  std::filesystem::remove(file);
+  EXPECT_EQ(CountsOfFile("# fps=24\nframe,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n").shots, -1);  // no summary
+}
+
+// A hand-edited header: a count no int holds is ignored (core's parser), and
+// the sum of counts that each fit stops at the largest int.
+TEST(FilmRunnerTest, ShotQualityCountsOfAHandEditedHeader) {
+  const FilmOutcome o = CountsOfFile("# shot_quality.0=lost:2147483647\n# shot_quality.1=lost:2147483647\n"
+                                     "# shot_quality.2=lost:1e30 zoom_ambiguous:99999999999\n"
+                                     "frame,time_s,x,y,z,qw,qx,qy,qz,fov_deg\n");
+  EXPECT_EQ(o.shots, 3);
+  EXPECT_EQ(o.lost_frames, std::numeric_limits<int>::max());
+  EXPECT_EQ(o.zoom_ambiguous_shots, 0);
 }
 
 // summary.txt names a film's doubtful and zoom-ambiguous shots, and only

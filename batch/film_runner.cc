@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <limits>
 
 #include "batch/content_hash.h"
 #include "batch/json_bytes.h"
@@ -16,6 +16,7 @@
 #include "batch/subprocess.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/shot_quality_header.h"
 
 namespace hapcine::batch {
 namespace fs = std::filesystem;
@@ -156,20 +157,19 @@ const char* FilmStatusName(FilmStatus s) {
 }
 
 void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* o) {
-  std::ifstream in(camera_csv);
-  std::string line;
-  const std::string key = "# shot_quality.";
-  while (std::getline(in, line) && line.rfind("#", 0) == 0) {
-    if (line.rfind(key, 0) != 0) continue;
-    o->shots = std::max(o->shots, 0) + 1;
-    if (line.find(" doubtful:1") != std::string::npos) ++o->doubtful_shots;
-    const size_t lost = line.find(" lost:");
-    if (lost != std::string::npos) o->lost_frames += std::atoi(line.c_str() + lost + 6);
-    const std::string ambiguous = " zoom_ambiguous:";
-    const size_t z = line.find(ambiguous);
-    if (z != std::string::npos && std::strtol(line.c_str() + z + ambiguous.size(), nullptr, 10) > 0)
-      ++o->zoom_ambiguous_shots;
+  const std::vector<ShotQuality> shots = ReadShotQualityOfFile(camera_csv);
+  if (shots.empty()) return;
+  int doubtful = 0, zoom_ambiguous = 0;
+  long long lost = 0;  // each count is an int; their sum may not be
+  for (const ShotQuality& q : shots) {
+    doubtful += q.doubtful ? 1 : 0;
+    zoom_ambiguous += q.zoom_ambiguous.value_or(0) > 0 ? 1 : 0;
+    lost += q.lost;
   }
+  o->shots = static_cast<int>(shots.size());
+  o->doubtful_shots = doubtful;
+  o->zoom_ambiguous_shots = zoom_ambiguous;
+  o->lost_frames = static_cast<int>(std::min<long long>(lost, std::numeric_limits<int>::max()));
 }
 
 nlohmann::json OutcomeToJson(const FilmOutcome& o) {

@@ -89,7 +89,8 @@ class FilmObserver {
   virtual void StepStarted(const std::string& step, const std::string& log_path, bool reused) = 0;
 };
 
-// Fills the four counts above from a camera path's header lines.
+// Sets the four counts above from a camera path's header lines
+// (core/shot_quality_header.h reads them); leaves them when there are none.
 void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* outcome);
 
 nlohmann::json OutcomeToJson(const FilmOutcome& o);

@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -102,19 +101,6 @@ void CheckArguments(int (*run)(int, char**), const std::string& command,
   run(static_cast<int>(words.size()), argv.data());
 }
 
-// The `# shot_quality.<shot>=` header lines of a camera path (docs/formats.md).
-std::vector<ShotQuality> ShotQualityOf(const std::string& camera_csv) {
-  CameraPath header;
-  std::ifstream in(camera_csv);
-  const std::string key = "# shot_quality.";
-  for (std::string line; std::getline(in, line) && line.rfind("#", 0) == 0;) {
-    const size_t eq = line.find('=');
-    if (line.rfind(key, 0) == 0 && eq != std::string::npos)
-      header.metadata[line.substr(2, eq - 2)] = line.substr(eq + 1);
-  }
-  return ReadShotQuality(header);
-}
-
 std::string ShotLine(const ShotQuality& q) {
   if (q.doubtful) return DoubtfulShotLine(q);
   std::ostringstream s;
@@ -129,7 +115,7 @@ std::string ShotLine(const ShotQuality& q) {
 void PrintSummary(const batch::MakeOptions& options, const batch::MakeResult& r, std::ostream& out) {
   const batch::FilmLayout& l = r.layout;
   const fs::path dir(l.output_dir);
-  const std::vector<ShotQuality> shots = ShotQualityOf((dir / l.camera).string());
+  const std::vector<ShotQuality> shots = ReadShotQualityOfFile((dir / l.camera).string());
   int doubtful = 0;
   for (const ShotQuality& q : shots) doubtful += q.doubtful ? 1 : 0;
   out << "make: " << options.film << ": " << shots.size() << " shot(s)";

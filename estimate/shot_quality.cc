@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <sstream>
 
 #include "core/csv.h"
 #include "core/statistics.h"
@@ -13,8 +12,6 @@
 
 namespace hapcine {
 namespace {
-
-constexpr const char* kKeyPrefix = "shot_quality.";
 
 std::string Fixed(double v, int digits) {
   char buf[48];
@@ -94,53 +91,6 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
     }
     q.doubtful = q.lost > kDoubtfulLostShare * q.frames || q.median_confidence < kDoubtfulMedianConfidence;
   }
-  return out;
-}
-
-void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path) {
-  for (const ShotQuality& q : shots) {
-    std::ostringstream v;
-    v << "first:" << q.first_frame << " last:" << q.last_frame << " frames:" << q.frames << " lost:" << q.lost
-      << " median_confidence:" << Fixed(q.median_confidence, 3);
-    if (q.inlier_ratio) v << " inlier_ratio:" << Fixed(*q.inlier_ratio, 3);
-    if (q.rms_px) v << " rms_px:" << Fixed(*q.rms_px, 3);
-    if (q.focal_observable) v << " focal_observable:" << (*q.focal_observable ? 1 : 0);
-    if (q.zoom_ambiguous) v << " zoom_ambiguous:" << *q.zoom_ambiguous;
-    v << " doubtful:" << (q.doubtful ? 1 : 0);
-    path->metadata[kKeyPrefix + std::to_string(q.shot)] = v.str();
-  }
-}
-
-std::vector<ShotQuality> ReadShotQuality(const CameraPath& path) {
-  std::vector<ShotQuality> out;
-  for (const auto& [key, value] : path.metadata) {
-    if (key.rfind(kKeyPrefix, 0) != 0) continue;
-    ShotQuality q;
-    q.shot = std::atoi(key.c_str() + std::string(kKeyPrefix).size());
-    std::istringstream in(value);
-    std::string field;
-    while (in >> field) {
-      const size_t colon = field.find(':');
-      if (colon == std::string::npos) continue;
-      const std::string name = field.substr(0, colon);
-      const double v = std::strtod(field.c_str() + colon + 1, nullptr);
-      // A count outside int (or NaN) in a hand-edited header is ignored:
-      // converting it would be undefined.
-      const bool int_ok = std::abs(v) < 2147483647.0;
-      if (name == "first") q.first_frame = int_ok ? static_cast<int>(v) : q.first_frame;
-      else if (name == "last") q.last_frame = int_ok ? static_cast<int>(v) : q.last_frame;
-      else if (name == "frames") q.frames = int_ok ? static_cast<int>(v) : q.frames;
-      else if (name == "lost") q.lost = int_ok ? static_cast<int>(v) : q.lost;
-      else if (name == "median_confidence") q.median_confidence = v;
-      else if (name == "inlier_ratio") q.inlier_ratio = v;
-      else if (name == "rms_px") q.rms_px = v;
-      else if (name == "focal_observable") q.focal_observable = v != 0;
-      else if (name == "zoom_ambiguous" && int_ok) q.zoom_ambiguous = static_cast<int>(v);
-      else if (name == "doubtful") q.doubtful = v != 0;
-    }
-    out.push_back(q);
-  }
-  std::sort(out.begin(), out.end(), [](const ShotQuality& a, const ShotQuality& b) { return a.shot < b.shot; });
   return out;
 }
 

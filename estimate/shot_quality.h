@@ -2,7 +2,8 @@
 // How far to trust each shot of an estimated camera path: a per-shot
 // summary written in the path's header (`# shot_quality.<shot>=...`,
 // docs/formats.md), in the --report file and as one warning line per
-// doubtful shot by `hapcine estimate`.
+// doubtful shot by `hapcine estimate`. The struct and the header lines' text:
+// core/shot_quality_header.h.
 //
 // Doubtful (the rule, docs/estimate.md "Shot quality"): more than 5 % of
 // the shot's frames lost (one frame in twenty has no pose), or a median
@@ -21,27 +22,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/camera_path.h"
+#include "core/shot_quality_header.h"
 #include "estimate/window/window_solver.h"
 
 namespace hapcine {
-
-struct ShotQuality {
-  int shot = 0;
-  int first_frame = 0, last_frame = 0;  // frame indices
-  int frames = 0;                       // rows of the shot
-  int lost = 0;                         // of them, model `lost`
-  double median_confidence = 0;         // over all its frames (lost ones count 0)
-  // From the shot's bundle-adjustment windows (none with --backend colmap):
-  std::optional<double> inlier_ratio;      // two-view inliers / correspondences of its keyframes
-  std::optional<double> rms_px;            // reprojection RMS, pixels at 960 px width
-  std::optional<bool> focal_observable;    // some window turned enough to calibrate the focal
-  // Frames written by windows whose zoom decision was ambiguous
-  // (zoom_evidence.h: the evidence within half a threshold of the other
-  // reading; the confidence lowered, the reading without zoom taken where it
-  // is the simpler one); 0: no ambiguous decision, or none to make.
-  std::optional<int> zoom_ambiguous;
-  bool doubtful = false;
-};
 
 constexpr double kDoubtfulLostShare = 0.05;
 constexpr double kDoubtfulMedianConfidence = 0.12;
@@ -49,13 +33,6 @@ constexpr double kDoubtfulMedianConfidence = 0.12;
 // One entry per shot of `path`, in order. `width`: the decoded width.
 std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vector<WindowReport>& windows,
                                         int width);
-
-// `# shot_quality.<shot>=first:F last:L frames:N lost:K median_confidence:C
-// inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z doubtful:0|1`
-// (I, R, focal, Z absent when unknown) into the path's metadata, and the
-// reverse.
-void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path);
-std::vector<ShotQuality> ReadShotQuality(const CameraPath& path);
 
 nlohmann::json ShotQualityJson(const ShotQuality& q);
 // "shot 2 (frames 120-260): doubtful: 14 frames lost, median confidence 0.21"

@@ -99,21 +99,6 @@ TEST(ShotQuality, ZoomAmbiguousFramesOfUndecidedWindows) {
   EXPECT_EQ(ShotQualityJson(back[0])["zoom_ambiguous"], 10);
 }
 
-// A hand-edited header with counts no int holds (or NaN): those fields are
-// ignored, the others read (no undefined conversion).
-TEST(ShotQuality, CountsOutsideIntAreIgnored) {
-  CameraPath path;
-  path.metadata["shot_quality.0"] = "first:1e300 last:7 frames:nan lost:-1e20 zoom_ambiguous:inf doubtful:1";
-  const std::vector<ShotQuality> q = ReadShotQuality(path);
-  ASSERT_EQ(q.size(), 1u);
-  EXPECT_EQ(q[0].first_frame, ShotQuality{}.first_frame);
-  EXPECT_EQ(q[0].last_frame, 7);
-  EXPECT_EQ(q[0].frames, ShotQuality{}.frames);
-  EXPECT_EQ(q[0].lost, ShotQuality{}.lost);
-  EXPECT_FALSE(q[0].zoom_ambiguous);
-  EXPECT_TRUE(q[0].doubtful);
-}
-
 // One lost frame in 20 is the limit; a single weak frame is not a weak shot.
 TEST(ShotQuality, DoubtfulRuleAtItsEdges) {
   CameraPath path = TwoShots();

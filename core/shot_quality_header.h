@@ -1,0 +1,51 @@
+#pragma once
+// The camera path's per-shot quality header lines (docs/formats.md,
+// `# shot_quality.<shot>=first:F last:L frames:N lost:K ...`): the one
+// writer and reader of their text. The estimator fills them
+// (estimate/shot_quality.h: the summary and the doubtful rule); `hapcine
+// estimate`, `make` and `batch` read them back.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera_path.h"
+
+namespace hapcine {
+
+struct ShotQuality {
+  int shot = 0;
+  int first_frame = 0, last_frame = 0;  // frame indices
+  int frames = 0;                       // rows of the shot
+  int lost = 0;                         // of them, model `lost`
+  double median_confidence = 0;         // over all its frames (lost ones count 0)
+  // From the shot's bundle-adjustment windows (none with --backend colmap):
+  std::optional<double> inlier_ratio;      // two-view inliers / correspondences of its keyframes
+  std::optional<double> rms_px;            // reprojection RMS, pixels at 960 px width
+  std::optional<bool> focal_observable;    // some window turned enough to calibrate the focal
+  // Frames written by windows whose zoom decision was ambiguous
+  // (zoom_evidence.h: the evidence within half a threshold of the other
+  // reading; the confidence lowered, the reading without zoom taken where it
+  // is the simpler one); 0: no ambiguous decision, or none to make.
+  std::optional<int> zoom_ambiguous;
+  bool doubtful = false;
+};
+
+// `# shot_quality.<shot>=first:F last:L frames:N lost:K median_confidence:C
+// inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z doubtful:0|1`
+// (I, R, focal, Z absent when unknown) into the path's metadata.
+void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path);
+
+// The reverse, ordered by shot. A hand-edited value that is not what the
+// writer writes (a frame index or count that is negative, fractional or
+// beyond int, a non-finite number, a flag other than 0 or 1, trailing
+// text) is ignored: the field keeps its default, as when it is absent (an
+// older header without `zoom_ambiguous`). A key whose shot is not an int
+// is not a shot line. Unknown names are ignored.
+std::vector<ShotQuality> ReadShotQuality(const CameraPath& path);
+
+// The same from a camera path file's header lines alone (the rows are not
+// read): empty when the file cannot be read or its header has no summary.
+std::vector<ShotQuality> ReadShotQualityOfFile(const std::string& camera_csv);
+
+}  // namespace hapcine
