@@ -101,14 +101,21 @@ void CheckArguments(int (*run)(int, char**), const std::string& command,
   run(static_cast<int>(words.size()), argv.data());
 }
 
+// The shot's quality; a zoom-ambiguous one also says in how many frames (as
+// `hapcine estimate` warns and the batch summary counts).
 std::string ShotLine(const ShotQuality& q) {
-  if (q.doubtful) return DoubtfulShotLine(q);
   std::ostringstream s;
-  s << std::fixed << std::setprecision(2) << "shot " << q.shot << " (frames " << q.first_frame << "-"
-    << q.last_frame << "): ok, " << q.lost << " of " << q.frames << " frames lost, median confidence "
-    << q.median_confidence;
-  if (q.inlier_ratio) s << ", inlier ratio " << *q.inlier_ratio;
-  if (q.rms_px) s << ", rms " << *q.rms_px << " px";
+  if (q.doubtful) {
+    s << DoubtfulShotLine(q);
+  } else {
+    s << std::fixed << std::setprecision(2) << "shot " << q.shot << " (frames " << q.first_frame << "-"
+      << q.last_frame << "): ok, " << q.lost << " of " << q.frames << " frames lost, median confidence "
+      << q.median_confidence;
+    if (q.inlier_ratio) s << ", inlier ratio " << *q.inlier_ratio;
+    if (q.rms_px) s << ", rms " << *q.rms_px << " px";
+  }
+  if (q.zoom_ambiguous.value_or(0) > 0)
+    s << ", zoom ambiguous in " << *q.zoom_ambiguous << " of " << q.frames << " frames";
   return s.str();
 }
 
@@ -116,10 +123,14 @@ void PrintSummary(const batch::MakeOptions& options, const batch::MakeResult& r,
   const batch::FilmLayout& l = r.layout;
   const fs::path dir(l.output_dir);
   const std::vector<ShotQuality> shots = ReadShotQualityOfFile((dir / l.camera).string());
-  int doubtful = 0;
-  for (const ShotQuality& q : shots) doubtful += q.doubtful ? 1 : 0;
+  int doubtful = 0, zoom_ambiguous = 0;
+  for (const ShotQuality& q : shots) {
+    doubtful += q.doubtful ? 1 : 0;
+    zoom_ambiguous += q.zoom_ambiguous.value_or(0) > 0 ? 1 : 0;
+  }
   out << "make: " << options.film << ": " << shots.size() << " shot(s)";
   if (doubtful > 0) out << ", " << doubtful << " doubtful";
+  if (zoom_ambiguous > 0) out << ", " << zoom_ambiguous << " zoom ambiguous";
   out << ", model " << options.model << ", " << FormatDuration(r.outcome.seconds) << "\n";
   for (const batch::StepRecord& s : r.outcome.steps) {
     out << "  " << std::left << std::setw(20) << s.name

@@ -182,6 +182,28 @@ TEST_F(MakeTest, AnEditsFileReRendersTheHapticsButNeverReEstimates) {
   EXPECT_EQ(Slurp(film_dir_ / "direct.haptic.csv"), halved);
 }
 
+// The summary names zoom-ambiguous shots, as batch's does: the camera path's
+// header edited to say so (same size, so the film stays up to date and the
+// summary reads the edited header).
+TEST_F(MakeTest, SummaryNamesZoomAmbiguousShots) {
+  const RunResult first = Make("--draft");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_EQ(first.err.find("zoom ambiguous"), std::string::npos) << first.err;
+  const fs::path camera = film_dir_ / "clip.camera.csv";
+  std::string text = Slurp(camera);
+  const size_t at = text.find(" zoom_ambiguous:0 ");
+  ASSERT_NE(at, std::string::npos) << text.substr(0, 2000);
+  text.replace(at, 18, " zoom_ambiguous:9 ");
+  { std::ofstream(camera, std::ios::binary) << text; }
+
+  const RunResult second = Make("--draft");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_NE(second.err.find("every output up to date"), std::string::npos) << second.err;
+  EXPECT_NE(second.err.find(" shot(s), 1 zoom ambiguous, model cinematic"), std::string::npos) << second.err;
+  EXPECT_NE(second.err.find("frames lost, median confidence "), std::string::npos) << second.err;
+  EXPECT_NE(second.err.find(", zoom ambiguous in 9 of "), std::string::npos) << second.err;
+}
+
 TEST_F(MakeTest, OutputFolderHoldsEverything) {
   const fs::path out = film_dir_ / "out dir";
   const RunResult r = Make("--draft -o " + Quote(out));
