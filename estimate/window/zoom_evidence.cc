@@ -10,7 +10,12 @@
 namespace hapcine {
 namespace {
 
-double Clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+// A margin as decisiveness: clamped to [0, 1], an infinite margin (no
+// penalty to pay; no relief at all) saturating at 0 or 1. Not core's
+// Clamp01, which maps every non-finite value to 0: a decision that costs
+// nothing would read as undecided. NaN does not reach here (Decisiveness
+// returns 0 for a NaN BIC margin; ReliefMargin maps a NaN relief to -inf).
+double SaturatedMargin(double margin) { return std::clamp(margin, 0.0, 1.0); }
 
 }  // namespace
 
@@ -32,11 +37,11 @@ double Decisiveness(const ZoomDecision& d) {
   if ((d.zoom_change < kNegligibleLogZoom && d.test != "branch") || d.decided_by_cue) return 1;
   const double bic = BicMargin(d);
   if (std::isnan(bic)) return 0;
-  if (d.relief < 0) return Clamp01(std::abs(bic));
+  if (d.relief < 0) return SaturatedMargin(std::abs(bic));
   // Two gates: the dolly needs both, the zoom stays when either fails.
   const double relief = ReliefMargin(d);
-  if (!d.zoom_taken) return std::min(Clamp01(bic), Clamp01(relief));
-  return std::max(Clamp01(-bic), Clamp01(-relief));
+  if (!d.zoom_taken) return std::min(SaturatedMargin(bic), SaturatedMargin(relief));
+  return std::max(SaturatedMargin(-bic), SaturatedMargin(-relief));
 }
 
 bool IsDecisive(const ZoomDecision& d) { return Decisiveness(d) >= 1; }

@@ -71,6 +71,14 @@ TEST(ZoomEvidence, ZoomStaysDecisivelyWhenEitherGateFailsClearly) {
   EXPECT_DOUBLE_EQ(Decisiveness(Dolly(10000, 0.0)), 1.0);
 }
 
+// An infinite margin is as decisive as it gets (core's Clamp01, which maps
+// every non-finite value to 0, would call these undecided).
+TEST(ZoomEvidence, InfiniteMarginsSaturate) {
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(1, 0, true)), 1.0);    // no penalty: the zoom costs nothing
+  EXPECT_DOUBLE_EQ(Decisiveness(Bic(-1, 0, false)), 1.0);  // nor does it buy anything
+  EXPECT_DOUBLE_EQ(Decisiveness(Dolly(150, 0.0)), 1.0);    // no relief: the dolly is ruled out
+}
+
 TEST(ZoomEvidence, WindowFactorIsBoundedAndFollowsTheLeastDecisive) {
   EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({}), 1.0);
   EXPECT_DOUBLE_EQ(ZoomConfidenceFactor({Bic(300, 100, true)}), 1.0);
