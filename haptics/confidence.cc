@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <set>
 
+#include "core/shot_quality_header.h"
 #include "haptics/washout.h"
 
 namespace hapcine {
@@ -20,10 +22,12 @@ double Median(std::vector<double> v) {
   return v[mid];
 }
 
-// `doubtful:1` in the header's shot_quality.<shot> (docs/formats.md).
-bool HeaderSaysDoubtful(const CameraPath& path, int shot) {
-  const auto it = path.metadata.find("shot_quality." + std::to_string(shot));
-  return it != path.metadata.end() && it->second.find("doubtful:1") != std::string::npos;
+// The shots whose `shot_quality.<shot>` header line says doubtful:1 (docs/formats.md).
+std::set<int> DoubtfulInHeader(const CameraPath& path) {
+  std::set<int> doubtful;
+  for (const ShotQuality& q : ReadShotQuality(path))
+    if (q.doubtful) doubtful.insert(q.shot);
+  return doubtful;
 }
 
 }  // namespace
@@ -77,6 +81,7 @@ double ShotQualityGain(const std::vector<double>& gains) { return Median(gains);
 std::vector<ShotConfidence> AssessShotConfidence(const CameraPath& path,
                                                  const std::vector<ShotRange>& shots) {
   std::vector<ShotConfidence> out;
+  const std::set<int> doubtful_in_header = DoubtfulInHeader(path);
   for (const ShotRange& r : shots) {
     ShotConfidence c;
     c.shot = r.shot;
@@ -90,7 +95,7 @@ std::vector<ShotConfidence> AssessShotConfidence(const CameraPath& path,
     }
     c.median_confidence = Median(conf);
     c.gain = ShotQualityGain(FrameConfidenceGains(path, r));
-    c.header_doubtful = HeaderSaysDoubtful(path, r.shot);
+    c.header_doubtful = doubtful_in_header.count(r.shot) > 0;
     c.low = c.header_doubtful || c.lost > kLowLostShare * c.frames ||
             c.median_confidence < kLowMedianConfidence;
     out.push_back(c);

@@ -103,6 +103,10 @@ TEST(Confidence, LowQualityShots) {
   EXPECT_FALSE(q[0].low);
   EXPECT_TRUE(q[1].low);
   EXPECT_TRUE(q[1].header_doubtful);
+  // Only the flag's own value: not a longer number, not another name ending in it.
+  p.metadata["shot_quality.1"] = "first:105 last:209 frames:105 lost:0 not_doubtful:1 doubtful:10";
+  EXPECT_FALSE(AssessShotConfidence(p, SplitShots(p))[1].header_doubtful);
+  p.metadata["shot_quality.1"] = "first:105 last:209 frames:105 lost:0 median_confidence:0.5 doubtful:1";
   // 5.7 % of shot 0 lost (6 frames of 105): low.
   for (int i = 40; i < 46; ++i) {
     p.frames[i].model = kLostModel;
