@@ -69,6 +69,7 @@ void ReadField(const std::string& name, const std::string& text, ShotQuality* q)
   else if (name == "rms_px") SetIfValid(CheckedDouble(text), &q->rms_px);
   else if (name == "focal_observable") SetIfValid(CheckedFlag(text), &q->focal_observable);
   else if (name == "zoom_ambiguous") SetIfValid(CheckedCount(text), &q->zoom_ambiguous);
+  else if (name == "ambiguous_zoom_kept") SetIfValid(CheckedCount(text), &q->ambiguous_zoom_kept);
   else if (name == "doubtful") SetIfValid(CheckedFlag(text), &q->doubtful);
 }
 
@@ -83,6 +84,8 @@ void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path) {
     if (q.rms_px) v << " rms_px:" << Fixed(*q.rms_px, 3);
     if (q.focal_observable) v << " focal_observable:" << (*q.focal_observable ? 1 : 0);
     if (q.zoom_ambiguous) v << " zoom_ambiguous:" << *q.zoom_ambiguous;
+    if (q.zoom_ambiguous.value_or(0) > 0 && q.ambiguous_zoom_kept)
+      v << " ambiguous_zoom_kept:" << *q.ambiguous_zoom_kept;
     v << " doubtful:" << (q.doubtful ? 1 : 0);
     path->metadata[kKeyPrefix + std::to_string(q.shot)] = v.str();
   }

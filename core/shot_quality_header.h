@@ -28,12 +28,17 @@ struct ShotQuality {
   // reading; the confidence lowered, the reading without zoom taken where it
   // is the simpler one); 0: no ambiguous decision, or none to make.
   std::optional<int> zoom_ambiguous;
+  // Of those frames, the ones whose window kept the zoom (the rest: the
+  // reading without zoom, a dolly or a fixed lens). Written only where
+  // zoom_ambiguous is above 0; unknown in headers written before it.
+  std::optional<int> ambiguous_zoom_kept;
   bool doubtful = false;
 };
 
 // `# shot_quality.<shot>=first:F last:L frames:N lost:K median_confidence:C
-// inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z doubtful:0|1`
-// (I, R, focal, Z absent when unknown) into the path's metadata.
+// inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z
+// ambiguous_zoom_kept:K doubtful:0|1` (I, R, focal, Z absent when unknown;
+// K only where Z is above 0) into the path's metadata.
 void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path);
 
 // The reverse, ordered by shot. A hand-edited value that is not what the

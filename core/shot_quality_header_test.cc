@@ -27,12 +27,13 @@ TEST(ShotQualityHeader, WrittenAndReadBack) {
   q.rms_px = 0.5;
   q.focal_observable = false;
   q.zoom_ambiguous = 7;
+  q.ambiguous_zoom_kept = 3;
   q.doubtful = true;
   CameraPath path;
   WriteShotQuality({q}, &path);
   EXPECT_EQ(path.metadata.at("shot_quality.3"),
             "first:10 last:29 frames:20 lost:2 median_confidence:0.250 inlier_ratio:0.875 rms_px:0.500 "
-            "focal_observable:0 zoom_ambiguous:7 doubtful:1");
+            "focal_observable:0 zoom_ambiguous:7 ambiguous_zoom_kept:3 doubtful:1");
   const std::vector<ShotQuality> back = ReadShotQuality(path);
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].shot, 3);
@@ -45,7 +46,12 @@ TEST(ShotQualityHeader, WrittenAndReadBack) {
   EXPECT_EQ(back[0].rms_px, 0.5);
   EXPECT_EQ(back[0].focal_observable, false);
   EXPECT_EQ(back[0].zoom_ambiguous, 7);
+  EXPECT_EQ(back[0].ambiguous_zoom_kept, 3);
   EXPECT_TRUE(back[0].doubtful);
+  // Which reading was kept is written only where a decision was ambiguous.
+  q.zoom_ambiguous = 0;
+  WriteShotQuality({q}, &path);
+  EXPECT_EQ(path.metadata.at("shot_quality.3").find("ambiguous_zoom_kept"), std::string::npos);
 }
 
 // Shots in number order, not in the key's text order ("10" < "2").

@@ -9,6 +9,7 @@
 #include "core/csv.h"
 #include "core/statistics.h"
 #include "estimate/geometry/reference_width.h"
+#include "estimate/window/zoom_evidence.h"
 
 namespace hapcine {
 namespace {
@@ -35,17 +36,31 @@ double ConfidenceAsWritten(const CameraFrame& f) {
   return std::strtod(FormatFloat((*f.confidence).raw()).c_str(), nullptr);
 }
 
-// Frames of shot `q` written by windows with an ambiguous zoom decision: each
+// Whether the decision that left the window ambiguous, its least decisive,
+// kept the zoom (after PreferNoZoom / PreferOtherBranch: what was written).
+bool AmbiguityKeptZoom(const std::vector<ZoomDecision>& decisions) {
+  const auto least = std::min_element(decisions.begin(), decisions.end(), [](const auto& a, const auto& b) {
+    return Decisiveness(a) < Decisiveness(b);
+  });
+  return least != decisions.end() && least->zoom_taken;
+}
+
+// Frames of shot `q` written by windows with an ambiguous zoom decision
+// (q->zoom_ambiguous), and of them those whose window kept the zoom: each
 // window writes the frames after the previous window's last, up to its own.
-int ZoomAmbiguousFrames(const ShotQuality& q, const std::vector<WindowReport>& windows) {
-  int frames = 0, written_up_to = q.first_frame - 1;
+void CountZoomAmbiguousFrames(const std::vector<WindowReport>& windows, ShotQuality* q) {
+  int frames = 0, kept_zoom = 0, written_up_to = q->first_frame - 1;
   for (const WindowReport& w : windows) {
-    if (w.shot != q.shot) continue;
-    const int first = std::max(written_up_to + 1, q.first_frame), last = std::min(w.last_frame, q.last_frame);
-    if (WindowZoomAmbiguous(w.zoom_decisions) && last >= first) frames += last - first + 1;
+    if (w.shot != q->shot) continue;
+    const int first = std::max(written_up_to + 1, q->first_frame), last = std::min(w.last_frame, q->last_frame);
+    if (WindowZoomAmbiguous(w.zoom_decisions) && last >= first) {
+      frames += last - first + 1;
+      kept_zoom += AmbiguityKeptZoom(w.zoom_decisions) ? last - first + 1 : 0;
+    }
     written_up_to = std::max(written_up_to, w.last_frame);
   }
-  return frames;
+  q->zoom_ambiguous = frames;
+  if (frames > 0) q->ambiguous_zoom_kept = kept_zoom;
 }
 
 }  // namespace
@@ -87,7 +102,7 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
       if (t.observations > 0 && width > 0)
         q.rms_px = std::sqrt(t.sum_sq_px / t.observations) * kReferenceWidthPx / width;
       q.focal_observable = t.focal_observable;
-      q.zoom_ambiguous = ZoomAmbiguousFrames(q, windows);
+      CountZoomAmbiguousFrames(windows, &q);
     }
     q.doubtful = q.lost > kDoubtfulLostShare * q.frames || q.median_confidence < kDoubtfulMedianConfidence;
   }
@@ -106,6 +121,7 @@ nlohmann::json ShotQualityJson(const ShotQuality& q) {
           {"rms_px", opt(q.rms_px)},
           {"focal_observable", opt(q.focal_observable)},
           {"zoom_ambiguous", opt(q.zoom_ambiguous)},
+          {"ambiguous_zoom_kept", opt(q.ambiguous_zoom_kept)},
           {"doubtful", q.doubtful}};
 }
 
@@ -117,9 +133,18 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
 }
 
 std::string AmbiguousZoomLine(const ShotQuality& q) {
-  return "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
-         std::to_string(q.last_frame) + "): zoom ambiguous in " + std::to_string(q.zoom_ambiguous.value_or(0)) +
-         " of " + std::to_string(q.frames) + " frames (zoom or dolly, zoom or none): confidence lowered";
+  const int frames = q.zoom_ambiguous.value_or(0);
+  std::string s = "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
+                  std::to_string(q.last_frame) + "): zoom ambiguous in " + std::to_string(frames) + " of " +
+                  std::to_string(q.frames) + " frames (zoom or dolly, zoom or none): ";
+  if (q.ambiguous_zoom_kept) {
+    const int zoom = std::clamp(*q.ambiguous_zoom_kept, 0, frames);
+    if (zoom == frames) s += "the zoom kept, ";
+    else if (zoom == 0) s += "the reading without zoom kept, ";
+    else s += "the zoom kept in " + std::to_string(zoom) + ", the reading without zoom in " +
+              std::to_string(frames - zoom) + ", ";
+  }
+  return s + "confidence lowered";
 }
 
 }  // namespace hapcine

@@ -38,7 +38,9 @@ nlohmann::json ShotQualityJson(const ShotQuality& q);
 // "shot 2 (frames 120-260): doubtful: 14 frames lost, median confidence 0.21"
 std::string DoubtfulShotLine(const ShotQuality& q);
 // "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly,
-// zoom or none): confidence lowered"
+// zoom or none): the reading without zoom kept, confidence lowered" (or "the
+// zoom kept", or "the zoom kept in 10, the reading without zoom in 31"; no
+// reading named from a header written before ambiguous_zoom_kept).
 std::string AmbiguousZoomLine(const ShotQuality& q);
 
 }  // namespace hapcine

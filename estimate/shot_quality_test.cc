@@ -67,36 +67,60 @@ TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
 
 // Each window writes the frames after the previous one's; those of a window
 // whose zoom decision sat within half a threshold of the other reading are
-// counted, the others not.
+// counted, the others not, and of them those whose window kept the zoom.
 TEST(ShotQuality, ZoomAmbiguousFramesOfUndecidedWindows) {
   CameraPath path = TwoShots();
-  WindowReport decided, not_clear, undecided, other_shot;
+  WindowReport decided, not_clear, undecided_zoom, undecided_none, other_shot;
   decided.last_frame = 5;
   decided.zoom_decisions.push_back({"focal", 300, 100, true, 0.2});  // twice the penalty
   not_clear.last_frame = 9;
   not_clear.zoom_decisions.push_back({"focal", 175, 100, true, 0.2});  // decisiveness 0.75: not ambiguous
-  undecided.first_frame = 8;                                           // its held lead-in
-  undecided.last_frame = 19;
-  undecided.zoom_decisions.push_back({"focal", 110, 100, true, 0.2});
+  undecided_zoom.first_frame = 8;                                      // its held lead-in
+  undecided_zoom.last_frame = 14;
+  undecided_zoom.zoom_decisions.push_back({"freedoms", 140, 100, false, 0.2});  // decisiveness 0.4: zoom dropped
+  undecided_zoom.zoom_decisions.push_back({"focal", 110, 100, true, 0.2});  // 0.1, the least decisive: kept
+  undecided_none.last_frame = 19;
+  undecided_none.zoom_decisions.push_back({"branch", 10, 100, false, 0.2});  // the fixed lens kept
   other_shot.shot = 1;
   other_shot.first_frame = 20;
   other_shot.last_frame = 39;
-  std::vector<ShotQuality> q = SummariseShots(path, {decided, not_clear, undecided, other_shot}, 960);
+  std::vector<ShotQuality> q =
+      SummariseShots(path, {decided, not_clear, undecided_zoom, undecided_none, other_shot}, 960);
   ASSERT_EQ(q.size(), 2u);
-  EXPECT_EQ(*q[0].zoom_ambiguous, 10);  // frames 10-19
-  EXPECT_EQ(*q[1].zoom_ambiguous, 0);   // no zoom decision to make
+  EXPECT_EQ(*q[0].zoom_ambiguous, 10);      // frames 10-19
+  EXPECT_EQ(*q[0].ambiguous_zoom_kept, 5);  // frames 10-14
+  EXPECT_EQ(*q[1].zoom_ambiguous, 0);       // no zoom decision to make
   EXPECT_EQ(AmbiguousZoomLine(q[0]),
-            "shot 0 (frames 0-19): zoom ambiguous in 10 of 20 frames (zoom or dolly, zoom or none): confidence "
-            "lowered");
+            "shot 0 (frames 0-19): zoom ambiguous in 10 of 20 frames (zoom or dolly, zoom or none): the zoom kept "
+            "in 5, the reading without zoom in 5, confidence lowered");
   EXPECT_FALSE(SummariseShots(path, {}, 960)[0].zoom_ambiguous);  // no windows (COLMAP): unknown
 
   WriteShotQuality(q, &path);
   EXPECT_EQ(path.metadata.at("shot_quality.0"),
-            "first:0 last:19 frames:20 lost:0 median_confidence:0.300 focal_observable:0 zoom_ambiguous:10 doubtful:0");
+            "first:0 last:19 frames:20 lost:0 median_confidence:0.300 focal_observable:0 zoom_ambiguous:10 "
+            "ambiguous_zoom_kept:5 doubtful:0");
+  EXPECT_EQ(path.metadata.at("shot_quality.1").find("ambiguous_zoom_kept"), std::string::npos);  // none ambiguous
   const std::vector<ShotQuality> back = ThroughTheFile(path);
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(ShotQualityJson(back[0]), ShotQualityJson(q[0]));
   EXPECT_EQ(ShotQualityJson(back[0])["zoom_ambiguous"], 10);
+  EXPECT_EQ(ShotQualityJson(back[0])["ambiguous_zoom_kept"], 5);
+}
+
+// The warning names the reading kept where every ambiguous frame kept the
+// same one, and none where the header predates the count.
+TEST(ShotQuality, AmbiguousZoomLineNamesTheReadingKept) {
+  CameraPath older;  // before ambiguous_zoom_kept
+  older.metadata["shot_quality.0"] = "first:0 last:159 frames:160 lost:0 zoom_ambiguous:41 doubtful:0";
+  ShotQuality q = ReadShotQuality(older).at(0);
+  const std::string head = "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly, zoom or none): ";
+  EXPECT_EQ(AmbiguousZoomLine(q), head + "confidence lowered");
+  q.ambiguous_zoom_kept = 0;
+  EXPECT_EQ(AmbiguousZoomLine(q), head + "the reading without zoom kept, confidence lowered");
+  q.ambiguous_zoom_kept = 41;
+  EXPECT_EQ(AmbiguousZoomLine(q), head + "the zoom kept, confidence lowered");
+  q.ambiguous_zoom_kept = 500;  // a hand-edited header: no more than the ambiguous frames
+  EXPECT_EQ(AmbiguousZoomLine(q), head + "the zoom kept, confidence lowered");
 }
 
 // One lost frame in 20 is the limit; a single weak frame is not a weak shot.
