@@ -104,7 +104,9 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
                         tracks.boundary == ShotBoundary::kCut ||
                         tracks.boundary == ShotBoundary::kFade;
   if (new_shot) {
+    const bool stills_split = SplitOfStills(tracks);
     if (shot_ >= 0) FinishShot();
+    if (!stills_split) stills_log_focal_.reset();
     StartShot(shot_ < 0 ? tracks.shot : std::max(tracks.shot, shot_ + 1));
     source_shot_ = tracks.shot;
   }
@@ -296,9 +298,32 @@ TrackCameraEstimator::RawPose TrackCameraEstimator::LostPose(const FrameTracks& 
   return out;
 }
 
+// Stills split where no view links (DecideBoundary leaves the stills' cuts to
+// the descriptor link), not where the picture cut: the same footage.
+bool TrackCameraEstimator::SplitOfStills(const FrameTracks& tracks) const {
+  return shot_ >= 0 && shot_of_stills_ && tracks.still && tracks.boundary == ShotBoundary::kCut;
+}
+
+// A still linked to no other view (a shot of one view) has nothing to
+// observe its focal with: the lens the stills before it calibrated (the
+// same footage, no cut seen) is a better guess than the prior. Not for
+// shots of several views: their start sits in their own basin (a focal
+// carried into a short shot of stills moved it into a worse one,
+// docs/estimate.md).
+void TrackCameraEstimator::BorrowStillsFocal() {
+  const bool one_view = shot_frames_ == 1 && keyframes_.size() == 1 && raw_.empty();
+  if (one_view && shot_of_stills_ && stills_log_focal_) keyframes_.front().cam.log_focal = *stills_log_focal_;
+}
+
+// The focal stills footage calibrated, kept for the next stills shot.
+void TrackCameraEstimator::KeepStillsFocal() {
+  if (shot_of_stills_ && focal_observed_ && last_log_focal_) stills_log_focal_ = last_log_focal_;
+}
+
 void TrackCameraEstimator::FinishShot() {
   if (shot_ < 0) return;
   if (!keyframes_.empty()) {
+    BorrowStillsFocal();
     ProcessWindow(true);
   } else {
     // No usable frame in the whole shot: nothing is placed; the placeholder
@@ -342,6 +367,7 @@ void TrackCameraEstimator::FinishShot() {
     path_.frames.push_back(cf);
   }
   raw_.clear();
+  KeepStillsFocal();
 }
 
 // A lost frame's pose is the last placed pose as written (after smoothing);

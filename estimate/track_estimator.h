@@ -151,6 +151,9 @@ class TrackCameraEstimator {
   // the last keyframe): the shot ends and a new one starts at `tracks`.
   void SplitShot(const FrameTracks& tracks);
   void RestartChain();
+  bool SplitOfStills(const FrameTracks& tracks) const;
+  void BorrowStillsFocal();
+  void KeepStillsFocal();
   void SmoothShot(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
                   std::vector<double>* lf) const;
   void HoldPlaceholders(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
@@ -188,6 +191,9 @@ class TrackCameraEstimator {
   // After a split: the focal the new shot starts from, and whether it was observed.
   std::optional<double> split_log_focal_;
   std::optional<double> last_log_focal_;  // the last placed frame's, set by FinishShot
+  // The focal the stills footage's last calibrated shot reached (shots of
+  // stills split where no view links; reset at a cut).
+  std::optional<double> stills_log_focal_;
   int shot_frames_ = 0;              // frames seen in the shot
   int shot_video_frames_ = 0;        // the same in frames of the video (skipped ones too)
   bool shot_of_stills_ = false;      // a frame of the shot was linked as a still: no smoothing

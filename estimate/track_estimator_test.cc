@@ -567,6 +567,56 @@ TEST(TrackEstimator, ShotsOfStillsAreNotSmoothed) {
   EXPECT_GT(smoothing_moved, 0.01);
 }
 
+// Stills of a pan (focal 800 px, calibrated by the turn), then views the
+// tracker split off where nothing linked: shot 1 is `lone` views long, shot
+// 2 the rest. `still`: the frames are stills (a split of the same footage),
+// else video frames after a cut. `first_lone`: the footage starts with the
+// lone view. Returns the path.
+CameraPath StillsWithASplit(bool still, int lone, bool first_lone = false) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 21);
+  TrackCameraEstimator est(kW, kH, {});
+  std::mt19937 rng(3);
+  const int first_split = first_lone ? 1 : 20, second_split = first_split + lone;
+  for (int i = 0; i < second_split + 12; ++i) {
+    SceneCamera cam;
+    cam.world_from_cam = Eigen::AngleAxisd(kPi / 180 * i, Eigen::Vector3d::UnitY());
+    cam.focal_px = 800;
+    FrameTracks t = MakeFrameTracks(i, 25, cam, pts, kW, kH, 0.3, 0.0, &rng);
+    t.still = still;
+    t.shot = i < first_split ? 0 : i < second_split ? 1 : 2;
+    if (i == first_split || i == second_split) t.boundary = ShotBoundary::kCut;
+    est.AddFrame(t);
+  }
+  return est.Finish();
+}
+
+// A still linked to no other view has nothing to observe its focal with:
+// it takes the focal the stills before it calibrated, not the prior; after
+// a cut in video, or with no calibrated stills before it, the prior stays.
+TEST(TrackEstimator, ALoneStillTakesTheFocalOfTheStillsBeforeIt) {
+  const double prior_px = FocalPxFromFovDeg(TrackEstimatorOptions{}.prior_hfov_deg, kW);
+  const CameraPath stills = StillsWithASplit(true, 1);
+  ASSERT_EQ(stills.frames.size(), 33u);
+  EXPECT_EQ(*stills.frames[20].shot, 1);
+  EXPECT_NEAR(*stills.frames[19].focal_px / 800, 1.0, 0.02);
+  EXPECT_DOUBLE_EQ(*stills.frames[20].focal_px, *stills.frames[19].focal_px);
+  EXPECT_LT(AngleBetweenDeg(stills.frames[20].world_from_cam, Eigen::Quaterniond::Identity()), 1e-9);
+  const CameraPath video = StillsWithASplit(false, 1);
+  EXPECT_NEAR(*video.frames[20].focal_px, prior_px, 1e-6 * prior_px);
+  const CameraPath first = StillsWithASplit(true, 1, true);
+  EXPECT_NEAR(*first.frames[0].focal_px, prior_px, 1e-6 * prior_px);
+}
+
+// A shot of two stills or more keeps its own focal: the borrowed one is not
+// its start (the frames after the split do not change with the rule).
+TEST(TrackEstimator, AShotOfSeveralStillsKeepsItsOwnFocalStart) {
+  const CameraPath two = StillsWithASplit(true, 2);
+  const CameraPath as_video_cut = StillsWithASplit(false, 2);
+  ASSERT_EQ(two.frames.size(), 34u);
+  for (int i = 20; i < 22; ++i)
+    EXPECT_NEAR(*two.frames[i].focal_px, *as_video_cut.frames[i].focal_px, 1e-9 * *two.frames[i].focal_px) << i;
+}
+
 // A pan with a jump of 8 degrees before frame 20 that the tracker flagged
 // (FrameTracks::jump: linked by descriptors beyond KLT's reach): the
 // smoothing does not blur the step. A Gaussian of sigma 1.5 frames across it
