@@ -132,6 +132,10 @@ void AddModelOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
                "(the farthest points at infinity) instead of those that make a floor or wall "
                "parallel to the move, and the floor does not help choose between a forward and a "
                "backward move (docs/estimate.md, step 4)");
+  app.add_flag("--drift-weights", opt->estimator.drift_weights,
+               "weight each observation by the KLT drift expected at its track's age (frames since "
+               "the point's first observation in the window), where a window's residuals grow with "
+               "it; off by default: measured not to help (docs/estimate.md, \"Track drift weights\")");
   app.add_option("--blur-noise", opt->estimator.blur_noise_per_speed,
                  "those window-level tests count tracking noise growing with the image speed "
                  "(motion blur): px of noise per px/frame of motion, added in quadrature "
@@ -228,7 +232,7 @@ void AddOutputOptions(CLI::App& app, EstimateArgs* a) {
 // (docs/estimate.md, "Options") are listed after them.
 void GroupTuningOptions(CLI::App& app) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
-                           "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--blur-noise",
+                           "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
                            "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
@@ -268,7 +272,8 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
 int Estimate(const EstimateArgs& a, EstimatorOptions opt) {
   OutputSet outputs({{a.video, "VIDEO"}}, {{a.output, "-o"}, {a.report, "--report"}});
   std::set<std::string> kinds{"stage", "window", "lens_distortion"};
-  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile", "focal_pull"});
+  if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile", "focal_pull",
+                                    "track_drift"});
   JsonDiagnostics diagnostics(kinds);
   if (!a.report.empty()) opt.diagnostics = &diagnostics;
   Progress progress(std::cerr, ProgressModeFor(a.quiet), "estimate", "frames");

@@ -58,6 +58,7 @@ WindowOptions WindowOptionsOf(const TrackEstimatorOptions& o) {
   w.freedom_test = o.freedom_test;
   w.blur_noise_per_speed = o.blur_noise_per_speed;
   w.motion_plane_prior = o.motion_plane_prior;
+  w.drift_weights = o.drift_weights;
   w.noise_floor = o.two_view.noise_floor;
   w.num_threads = o.num_threads;
   return w;

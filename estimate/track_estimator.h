@@ -93,6 +93,10 @@ struct TrackEstimatorOptions {
   // open (axial_ambiguity.h) are those that put a sloped plane among the
   // points (the floor, a wall) parallel to the move (motion_plane.h).
   bool motion_plane_prior = true;
+  // Observations weighted by their track's expected drift, which grows with
+  // the frames followed (window/track_drift.h). Off: measured not to help
+  // (docs/estimate.md, "Track drift weights").
+  bool drift_weights = false;
   int num_threads = 1;               // Ceres threads
   TwoViewOptions two_view;           // model selection
   // The camera's motion told from a large subject's (motion_hypotheses.h):

@@ -269,11 +269,12 @@ int AddObservations(Blocks* b, const std::vector<BaPoint>& points,
                     const std::vector<BaObservation>& observations, const std::vector<double>& before,
                     const BaOptions& options, ceres::LossFunction* loss, std::vector<std::array<double, 4>>* X,
                     std::vector<char>* point_used, ceres::Problem* problem) {
-  const double inv_scale = 1.0 / options.huber_scale;
+  const double inv_huber_scale = 1.0 / options.huber_scale;
   int count = 0;
   for (size_t i = 0; i < observations.size(); ++i) {
     if (!std::isfinite(before[i])) continue;
     const auto& o = observations[i];
+    const double inv_scale = inv_huber_scale / o.noise_scale;
     const int root = b->rot[o.camera];
     double* q = b->q[root].data();
     double* lf = &b->lf[b->foc[o.camera]];
@@ -471,7 +472,7 @@ BaSummary SolvePose(BaCamera* camera, const PoseFreedoms& freedoms,
     double e;
     if (!ObservationError(cams[0], points[o.point], o.u, options.use_depth, &e)) continue;
     before.push_back(e);
-    problem.AddResidualBlock(PoseCost::Create(o.u, points[o.point], options.use_depth, inv_scale),
+    problem.AddResidualBlock(PoseCost::Create(o.u, points[o.point], options.use_depth, inv_scale / o.noise_scale),
                              &huber, b.q[0].data(), b.c[0].data(), &b.lf[0]);
   }
   summary.num_observations = static_cast<int>(before.size());

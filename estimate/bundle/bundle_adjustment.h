@@ -46,6 +46,10 @@ struct BaObservation {
   int camera = 0;
   int point = 0;
   Eigen::Vector2d u = Eigen::Vector2d::Zero();  // normalised image coordinates
+  // The observation's noise in units of the solve's (huber_scale): its
+  // residual is divided by this (> 1: a noisier observation, e.g. a KLT
+  // track's drift grown with its age, window/track_drift.h).
+  double noise_scale = 1;
 };
 
 struct BaOptions {

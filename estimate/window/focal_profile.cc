@@ -35,6 +35,19 @@ bool FitParabola(const std::vector<double>& x, const std::vector<double>& y, dou
   return true;
 }
 
+namespace {
+
+// Residuals in units of each observation's own noise (noise_scale), as the
+// solve weighs them.
+std::vector<double> WeightedErrors(const std::vector<BaCamera>& cameras, const std::vector<BaPoint>& points,
+                                   const std::vector<BaObservation>& observations, bool use_depth) {
+  std::vector<double> e = ObservationErrors(cameras, points, observations, use_depth);
+  for (size_t i = 0; i < e.size(); ++i) e[i] /= observations[i].noise_scale;
+  return e;
+}
+
+}  // namespace
+
 FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& cameras,
                           const std::vector<BaPoint>& points, const std::vector<BaObservation>& observations,
                           const std::vector<double>& log_shifts) {
@@ -42,7 +55,7 @@ FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& came
   prof.log_shifts = log_shifts;
   // One sigma for every shift: the residual variance of the window as solved.
   const double m = static_cast<double>(observations.size());
-  const double var0 = m > 0 ? SumOfFiniteSquares(ObservationErrors(cameras, points, observations, ba.use_depth)) / m : 0;
+  const double var0 = m > 0 ? SumOfFiniteSquares(WeightedErrors(cameras, points, observations, ba.use_depth)) / m : 0;
   for (double shift : log_shifts) {
     std::vector<BaCamera> cams = cameras;
     std::vector<BaPoint> pts = points;
@@ -51,7 +64,7 @@ FocalProfile ProfileFocal(const BaOptions& ba, const std::vector<BaCamera>& came
       c.fixed_focal = true;
     }
     const BaSummary s = SolveBundle(&cams, &pts, observations, ba);
-    prof.errors.push_back(ObservationErrors(cams, pts, observations, ba.use_depth));
+    prof.errors.push_back(WeightedErrors(cams, pts, observations, ba.use_depth));
     const double ss = SumOfFiniteSquares(prof.errors.back());
     prof.chi2.push_back(s.success && var0 > 0 ? ss / var0 : std::numeric_limits<double>::quiet_NaN());
   }

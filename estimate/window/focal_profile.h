@@ -24,7 +24,7 @@ struct FocalProfile {
   double curvature = 0;            // a of chi2 ~ a s^2 + b s + c (<= 0: not pinned)
   double sigma_log_focal = 0;      // 1 / sqrt(a); +inf when a <= 0
   double minimum_log_shift = 0;    // -b / (2 a) (0 when a <= 0)
-  // Per shift, every observation's residual (normalised units): which
+  // Per shift, every observation's residual (normalised units over its noise_scale): which
   // tracks pull the focal which way.
   std::vector<std::vector<double>> errors;
 };

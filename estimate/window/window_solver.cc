@@ -24,6 +24,7 @@
 #include "estimate/window/jump_resection.h"
 #include "estimate/window/occlusion_order.h"
 #include "estimate/window/plane_prior.h"
+#include "estimate/window/track_drift.h"
 #include "estimate/geometry/reference_width.h"
 #include "estimate/bundle/robust_bundle.h"
 #include "estimate/geometry/two_view_geometry.h"
@@ -673,6 +674,41 @@ void RejectTracks(const WindowProblem& p, Candidate* c, Diagnostics* diagnostics
   if (Wants(diagnostics, "track_rms")) RecordTrackRms(p, *c, diagnostics);
 }
 
+// Each observation's age in frames since its point's first observation in
+// the window (track_drift.h).
+std::vector<int> AgesOf(const WindowProblem& p, const std::vector<BaObservation>& ob) {
+  std::vector<int> pos(p.n);
+  for (int i = 0; i < p.n; ++i) pos[i] = p.keyframes[i].pos;
+  return ObservationAges(ob, pos);
+}
+
+// A KLT track's drift grows with the frames it has been followed
+// (track_drift.h). Measured on the solve before the whole-track cut: the
+// cut keeps the tracks a rigid point explains to 0.2 px, and whatever drift
+// they share the fit has absorbed (in the focal, too), so their residuals
+// no longer show it.
+DriftFit MeasureDrift(const WindowProblem& p, const Candidate& c) {
+  return FitDrift(ObservationErrors(c.cams, c.pts, c.ob, p.ba.use_depth), AgesOf(p, c.ob));
+}
+
+// With `apply`, where the drift measured grows with the age, the solution is
+// polished with each observation weighted by its expected drift (after the
+// model choice and the track cut, which compare and cut at one noise level).
+// Off by default: on kitti07 it moves the focal the wrong way
+// (docs/estimate.md, "Track drift weights"). The fit is recorded either way.
+void WeightByDrift(const WindowProblem& p, const DriftFit& fit, bool apply, Candidate* c, Diagnostics* diagnostics) {
+  const bool weighted = apply && ApplyDriftWeights(fit, AgesOf(p, c->ob), &c->ob);
+  const double focal_before = c->cams.front().log_focal;
+  if (weighted) PolishBundle(p.ba, &c->cams, &c->pts, c->ob, &c->summary);
+  const double px = kReferenceWidthPx;  // the figures in px at 960 px width
+  Record(diagnostics, "track_drift",
+         {{"first_frame", p.in->first_frame}, {"observations", fit.observations},
+          {"s0_px", std::sqrt(std::max(0.0, fit.s0_sq)) * px},
+          {"q_px_per_sqrt_frame", std::sqrt(std::max(0.0, fit.q_sq)) * px},
+          {"t_slope", fit.t_slope}, {"weighted", weighted},
+          {"focal_change_pct", 100 * (c->cams.front().log_focal - focal_before)}});
+}
+
 // Along the axis the fit leaves every inverse depth open by one shift
 // (axial_ambiguity.h) unless the lead-in's own move pins the depths: take
 // the shift that makes a floor or wall parallel to the move (plane_prior.h).
@@ -959,9 +995,15 @@ WindowOutcome SolveWindow(const WindowInput& in, const WindowOptions& opt, Diagn
   // the only cue between the two branches of the dolly/zoom ambiguity, and
   // the branch not taken leaves them with the largest residuals. Unless the
   // occlusion order chose the branch: then the residuals are not the cue.
+  // Not in a shot of stills: its links are descriptor matches, which do not
+  // accumulate drift.
+  const bool drift_measured = chosen.summary.success && !in.stills &&
+                              (opt.drift_weights || Wants(diagnostics, "track_drift"));
+  const DriftFit drift = drift_measured ? MeasureDrift(p, chosen) : DriftFit{};
   if (chosen.summary.success &&
       (report.branch_by_occlusion || !(p.has_translation && IsAxialMotion(chosen.cams, p.held))))
     RejectTracks(p, &chosen, diagnostics);
+  if (drift_measured) WeightByDrift(p, drift, opt.drift_weights, &chosen, diagnostics);
   report.timings_s.emplace_back("track_rejection", clock.Lap());
   // After every other polish: the focal smoothness prior, the only term
   // that is not flat along the shift, would pull the solve back towards

@@ -78,6 +78,7 @@ struct WindowOptions {
   bool freedom_test = true;
   double blur_noise_per_speed = 0.04;
   bool motion_plane_prior = true;
+  bool drift_weights = false;      // weight observations by their track's drift (track_drift.h)
   double noise_floor = 0.25 / kReferenceWidthPx; // normalised units
   int num_threads = 1;
 };

@@ -266,6 +266,31 @@ TEST(SolveWindow, TheFocalProfileIsRecordedOnRequestAndChangesNothing) {
   EXPECT_FALSE(other.Document().contains("focal_profiles"));
 }
 
+// The drift fit is recorded on request and, without --drift-weights,
+// changes nothing; with it, exact tracks show no growth: nothing is weighted.
+TEST(SolveWindow, TheTrackDriftIsRecordedOnRequestAndExactTracksAreNotWeighted) {
+  using M = MotionModel;
+  const std::vector<BaCamera> truth{Camera(0, {0, 0, 0}), Camera(2, {0, 0, 0}), Camera(4, {0, 0, 0}),
+                                    Camera(6, {0, 0, 0})};
+  SyntheticWindow w = MakeWindow(truth, {M::kStatic, M::kRotation, M::kRotation, M::kRotation});
+  JsonDiagnostics wanted({"track_drift"});
+  const WindowOutcome recorded = SolveWindow(w.input, WindowOptions{}, &wanted);
+  const WindowOutcome plain = SolveWindow(w.input, WindowOptions{}, nullptr);
+  WindowOptions weighting;
+  weighting.drift_weights = true;
+  const WindowOutcome weighted = SolveWindow(w.input, weighting, nullptr);
+  ASSERT_TRUE(recorded.success);
+  for (size_t i = 0; i < plain.keyframe_cams.size(); ++i) {
+    EXPECT_EQ(recorded.keyframe_cams[i].log_focal, plain.keyframe_cams[i].log_focal);
+    EXPECT_EQ(recorded.keyframe_cams[i].world_from_cam.coeffs(), plain.keyframe_cams[i].world_from_cam.coeffs());
+    EXPECT_EQ(weighted.keyframe_cams[i].log_focal, plain.keyframe_cams[i].log_focal);
+  }
+  const nlohmann::json doc = wanted.Document();
+  ASSERT_EQ(doc["track_drifts"].size(), 1u);
+  EXPECT_FALSE(doc["track_drifts"][0]["weighted"].get<bool>());
+  EXPECT_GT(doc["track_drifts"][0]["observations"].get<int>(), 100);
+}
+
 TEST(SolveWindow, ATranslationThePairsMisreadIsDroppedThroughRevisedLabels) {
   using M = MotionModel;
   // A pan; one interval among four labelled general: over the window one
