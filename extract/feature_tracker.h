@@ -69,6 +69,19 @@ struct TrackerOptions {
   void Check() const;              // throws UsageError
 };
 
+// Lucas-Kanade assumes a point keeps its brightness; in a fade the whole
+// picture is scaled from frame to frame and KLT reads too little motion.
+// IsFadeStep: the reference's mean and contrast (standard deviation) over a
+// frame's are one factor (within kFadeFactorAgreement of its log) and differ
+// from 1 by more than kContrastChangeToMatch. ContrastMatched: `gray` with
+// its mean and contrast set to the reference's on such a step; otherwise
+// `gray` itself (shared), so ordinary footage is tracked as before.
+// `*gain`: the contrast factor applied (1: none).
+constexpr double kContrastChangeToMatch = 0.02;
+constexpr double kFadeFactorAgreement = 0.5;
+bool IsFadeStep(double mean_ratio, double contrast_ratio);
+cv::Mat ContrastMatched(const cv::Mat& gray, double reference_mean, double reference_stddev, double* gain);
+
 class Diagnostics;
 
 class FeatureTracker {
