@@ -68,16 +68,20 @@ bool IsFadeStep(double mean_ratio, double contrast_ratio) {
 }
 
 cv::Mat ContrastMatched(const cv::Mat& gray, double reference_mean, double reference_stddev, double* gain) {
-  *gain = 1;
   cv::Scalar mean, stddev;
   cv::meanStdDev(gray, mean, stddev);
+  return ContrastMatched(gray, mean[0], stddev[0], reference_mean, reference_stddev, gain);
+}
+
+cv::Mat ContrastMatched(const cv::Mat& gray, double mean, double stddev, double reference_mean,
+                        double reference_stddev, double* gain) {
+  *gain = 1;
   // A blank (or flat) frame has no contrast to match; nor has a blank reference.
-  if (!(stddev[0] > 1 && reference_stddev > 1)) return gray;
-  if (!(mean[0] > 1 && reference_mean > 1)) return gray;
-  const double a = reference_stddev / stddev[0];
-  if (!IsFadeStep(reference_mean / mean[0], a)) return gray;
+  if (!(stddev > 1 && reference_stddev > 1 && mean > 1 && reference_mean > 1)) return gray;
+  const double a = reference_stddev / stddev;
+  if (!IsFadeStep(reference_mean / mean, a)) return gray;
   cv::Mat matched;
-  gray.convertTo(matched, -1, a, reference_mean - a * mean[0]);
+  gray.convertTo(matched, -1, a, reference_mean - a * mean);
   *gain = a;
   return matched;
 }
@@ -830,9 +834,17 @@ struct FeatureTracker::Impl {
   // The frame KLT tracks: in a fade, matched to the contrast of the last
   // tracked picture (itself matched in a fade), so LK sees one brightness.
   cv::Mat ContrastMatchedToLast(const cv::Mat& gray) {
+    if (!options.match_fade_contrast) return gray;
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(gray, mean, stddev);
     double gain = 1;
-    const cv::Mat tracked = prev_pyramid.empty() ? gray : ContrastMatched(gray, last_mean, last_stddev, &gain);
-    RememberContrast(tracked);
+    const cv::Mat tracked = prev_pyramid.empty()
+                                ? gray
+                                : ContrastMatched(gray, mean[0], stddev[0], last_mean, last_stddev, &gain);
+    if (gain == 1) {
+      last_mean = mean[0];
+      last_stddev = stddev[0];
+    }  // else the picture now has the last one's mean and contrast
     return tracked;
   }
 
@@ -1186,7 +1198,7 @@ struct FeatureTracker::Impl {
     w->size = frame.gray.size();
     w->pyramid = std::move(spare_pyramid);  // KLT may take the next frame
     cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
-    RememberContrast(frame.gray);
+    if (options.match_fade_contrast) RememberContrast(frame.gray);
     w->had_tracks = !last_described.empty() || !good_described.empty();
     w->before = last_described.points.size();
     DescribedFrame cur;

@@ -860,7 +860,9 @@ TEST(FeatureTrackerTest, PanThroughAFadeIsReadAsOutsideIt) {
   for (int x = 0; x < kDecoded.width; ++x)
     light.col(x).setTo(cv::Scalar::all(1.0 - 0.6 * x / kDecoded.width));
   cv::RNG rng(5);
-  FeatureTracker tracker(SmallOptions());
+  TrackerOptions o = SmallOptions();
+  o.match_fade_contrast = true;
+  FeatureTracker tracker(o);
   std::map<long, Eigen::Vector2d> last;
   std::vector<double> fade_steps;
   for (int i = 0; i < 30; ++i) {
