@@ -844,7 +844,9 @@ struct FeatureTracker::Impl {
     if (gain == 1) {
       last_mean = mean[0];
       last_stddev = stddev[0];
-    }  // else the picture now has the last one's mean and contrast
+    } else {
+      RememberContrast(tracked);  // as matched: clipped at black and white
+    }
     return tracked;
   }
 
