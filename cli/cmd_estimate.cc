@@ -193,6 +193,10 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
   app.add_flag("--no-klt-predict", a->no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
+  app.add_flag("--match-fade-contrast", opt->tracker.match_fade_contrast,
+               "in a fade (a frame's mean and contrast changed by one factor of more than 2 %), "
+               "track it at the last frame's mean and contrast: LK assumes constant brightness "
+               "(docs/extract.md \"inside a fade\")");
   app.add_flag("--stills", opt->tracker.stills,
                "every frame is a still: link frames by descriptors (SIFT; KLT only where they are as "
                "close as a video's), split shots only where nothing links, do not smooth the path "
@@ -234,7 +238,7 @@ void GroupTuningOptions(CLI::App& app) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }

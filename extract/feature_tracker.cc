@@ -56,6 +56,36 @@ void TrackerOptions::Check() const {
   if (!(blank_stddev >= 0)) throw UsageError("blank_stddev must be >= 0");
 }
 
+bool IsFadeStep(double mean_ratio, double contrast_ratio) {
+  // Grain and compression move a frame's contrast by well under 2 %; a fade
+  // moves it by more (a 1 s fade: ~4 % a frame).
+  if (std::abs(contrast_ratio - 1) <= kContrastChangeToMatch || std::abs(mean_ratio - 1) <= kContrastChangeToMatch)
+    return false;
+  // A fade scales the picture, its mean and its contrast by one factor;
+  // motion blur lowers the contrast alone, new content moves either.
+  const double log_contrast = std::log(contrast_ratio), log_mean = std::log(mean_ratio);
+  return log_contrast * log_mean > 0 && std::abs(log_mean - log_contrast) < kFadeFactorAgreement * std::abs(log_contrast);
+}
+
+cv::Mat ContrastMatched(const cv::Mat& gray, double reference_mean, double reference_stddev, double* gain) {
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(gray, mean, stddev);
+  return ContrastMatched(gray, mean[0], stddev[0], reference_mean, reference_stddev, gain);
+}
+
+cv::Mat ContrastMatched(const cv::Mat& gray, double mean, double stddev, double reference_mean,
+                        double reference_stddev, double* gain) {
+  *gain = 1;
+  // A blank (or flat) frame has no contrast to match; nor has a blank reference.
+  if (!(stddev > 1 && reference_stddev > 1 && mean > 1 && reference_mean > 1)) return gray;
+  const double a = reference_stddev / stddev;
+  if (!IsFadeStep(reference_mean / mean, a)) return gray;
+  cv::Mat matched;
+  gray.convertTo(matched, -1, a, reference_mean - a * mean);
+  *gain = a;
+  return matched;
+}
+
 namespace {
 
 // An unknown displacement (a new track's, no tracks' at all).
@@ -135,6 +165,7 @@ struct FeatureTracker::Impl {
   int shot = 0;
   long next_id = 0;
   std::vector<cv::Mat> prev_pyramid;
+  double last_mean = 0, last_stddev = 0;  // of the picture prev_pyramid was built from
   std::vector<cv::Mat> spare_pyramid;  // buffers reused for the next pyramid
   size_t tracks_after_detect = 0;      // live tracks right after the last top-up
   int frames_since_detect = 0;
@@ -800,12 +831,39 @@ struct FeatureTracker::Impl {
     after_blank = true;
   }
 
+  // The frame KLT tracks: in a fade, matched to the contrast of the last
+  // tracked picture (itself matched in a fade), so LK sees one brightness.
+  cv::Mat ContrastMatchedToLast(const cv::Mat& gray) {
+    if (!options.match_fade_contrast) return gray;
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(gray, mean, stddev);
+    double gain = 1;
+    const cv::Mat tracked = prev_pyramid.empty()
+                                ? gray
+                                : ContrastMatched(gray, mean[0], stddev[0], last_mean, last_stddev, &gain);
+    if (gain == 1) {
+      last_mean = mean[0];
+      last_stddev = stddev[0];
+    } else {
+      RememberContrast(tracked);  // as matched: clipped at black and white
+    }
+    return tracked;
+  }
+
+  void RememberContrast(const cv::Mat& tracked) {
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(tracked, mean, stddev);
+    last_mean = mean[0];
+    last_stddev = stddev[0];
+  }
+
   // KLT from the last frame, with the displacements the prediction and the
   // transition-run statistics need.
   void TrackFromLastFrame(const Frame& frame, bool transition, FrameWork* w) {
     w->size = frame.gray.size();
     w->pyramid = std::move(spare_pyramid);
-    cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
+    cv::buildOpticalFlowPyramid(ContrastMatchedToLast(frame.gray), w->pyramid, Window(), options.pyramid_levels - 1,
+                                true);
     w->had_tracks = !prev_points.empty();
     w->before = prev_points.size();
     Track(w->pyramid, w->size, &w->points, &w->ids, &w->from);
@@ -1142,6 +1200,7 @@ struct FeatureTracker::Impl {
     w->size = frame.gray.size();
     w->pyramid = std::move(spare_pyramid);  // KLT may take the next frame
     cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
+    if (options.match_fade_contrast) RememberContrast(frame.gray);
     w->had_tracks = !last_described.empty() || !good_described.empty();
     w->before = last_described.points.size();
     DescribedFrame cur;

@@ -33,6 +33,10 @@ struct TrackerOptions {
   // velocity; the median displacement for new tracks) instead of at zero
   // motion: fast pans stay within the pyramid's reach.
   bool klt_predict = true;
+  // In a fade, track each frame at the last tracked picture's mean and
+  // contrast (IsFadeStep, ContrastMatched). Off by default: with the test
+  // look's lens distortion it moves that fade's focal the wrong way (docs/extract.md).
+  bool match_fade_contrast = false;
   // KLT drift bound: frame-to-frame KLT adds a small error every frame, so
   // a track's error grows with its age. Every track is also tracked from
   // the frame where it was detected (its anchor), at the finest pyramid
@@ -68,6 +72,22 @@ struct TrackerOptions {
   double blank_stddev = 4;         // or whose contrast is below this
   void Check() const;              // throws UsageError
 };
+
+// Lucas-Kanade assumes a point keeps its brightness; in a fade the whole
+// picture is scaled from frame to frame and KLT reads too little motion.
+// IsFadeStep: the reference's mean and contrast (standard deviation) over a
+// frame's are one factor (within kFadeFactorAgreement of its log) and differ
+// from 1 by more than kContrastChangeToMatch. ContrastMatched: `gray` with
+// its mean and contrast set to the reference's on such a step; otherwise
+// `gray` itself (shared), so ordinary footage is tracked as before.
+// `*gain`: the contrast factor applied (1: none).
+constexpr double kContrastChangeToMatch = 0.02;
+constexpr double kFadeFactorAgreement = 0.5;
+bool IsFadeStep(double mean_ratio, double contrast_ratio);
+cv::Mat ContrastMatched(const cv::Mat& gray, double reference_mean, double reference_stddev, double* gain);
+// The same with `gray`'s own mean and standard deviation already measured.
+cv::Mat ContrastMatched(const cv::Mat& gray, double mean, double stddev, double reference_mean,
+                        double reference_stddev, double* gain);
 
 class Diagnostics;
 

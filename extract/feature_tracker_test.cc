@@ -848,6 +848,75 @@ TEST(FeatureTrackerTest, FadeThatStaysAboveBlackIsNotACut) {
   }
 }
 
+// Lucas-Kanade assumes constant brightness: in a fade (the picture scaled
+// by 7.5 % a frame, with grain) under light that falls off across the
+// picture, the frames are tracked at the last one's contrast, so the pan's
+// 3 px a frame are read as outside the fade.
+TEST(FeatureTrackerTest, PanThroughAFadeIsReadAsOutsideIt) {
+  const cv::Mat a = NoiseTexture({1600, 800}, 26, {0.3, 0.0, -0.3});
+  // Light falling off across the picture (vignetting, a lamp): where the
+  // picture's brightness has a slope, a change of gain biases LK along it.
+  cv::Mat light(kDecoded, CV_32FC3);
+  for (int x = 0; x < kDecoded.width; ++x)
+    light.col(x).setTo(cv::Scalar::all(1.0 - 0.6 * x / kDecoded.width));
+  cv::RNG rng(5);
+  TrackerOptions o = SmallOptions();
+  o.match_fade_contrast = true;
+  FeatureTracker tracker(o);
+  std::map<long, Eigen::Vector2d> last;
+  std::vector<double> fade_steps;
+  for (int i = 0; i < 30; ++i) {
+    double gain = 1;
+    if (i >= 10 && i < 20) gain = 1 - 0.075 * (i - 9);  // 10..19 down to 25 %, 20..29 back up
+    if (i >= 20) gain = std::min(1.0, 0.25 + 0.075 * (i - 19));
+    cv::Mat img = Shifted(a, -3.0 * i, 0, kDecoded);
+    img.convertTo(img, CV_32FC3);
+    cv::multiply(img, light, img, gain);
+    cv::Mat grain(img.size(), CV_32FC3);
+    rng.fill(grain, cv::RNG::NORMAL, 0, 3);  // film grain, 3 levels
+    img += grain;
+    img.convertTo(img, CV_8UC3);
+    const auto now = ById(tracker.Process(MakeFrame(img, i, 0.5)));
+    if (i >= 11 && i < 30)
+      for (const auto& [id, px] : now)
+        if (last.count(id)) fade_steps.push_back(px.x() - last.at(id).x());
+    last = now;
+  }
+  ASSERT_GT(fade_steps.size(), 1000u);
+  std::sort(fade_steps.begin(), fade_steps.end());
+  EXPECT_NEAR(fade_steps[fade_steps.size() / 2], -3.0, 0.006);  // 0.013 without the matching
+  double sum = 0;
+  for (double d : fade_steps) sum += d;
+  EXPECT_NEAR(sum / fade_steps.size(), -3.0, 0.012);  // 0.024 without
+}
+
+TEST(ContrastMatched, MatchesAFadeAndLeavesBlurAndNoiseAlone) {
+  EXPECT_TRUE(IsFadeStep(1.08, 1.08));    // fading out: the reference is brighter
+  EXPECT_TRUE(IsFadeStep(0.9, 0.92));     // fading in
+  EXPECT_FALSE(IsFadeStep(1.01, 1.01));   // grain, compression
+  EXPECT_FALSE(IsFadeStep(1.0, 1.2));     // motion blur: contrast alone
+  EXPECT_FALSE(IsFadeStep(1.1, 0.9));     // new content: opposite ways
+  EXPECT_FALSE(IsFadeStep(1.3, 1.05));    // not one factor
+  EXPECT_FALSE(IsFadeStep(std::nan(""), 1.1));
+  const cv::Mat a = NoiseTexture({200, 100}, 3);
+  cv::Mat gray, dim;
+  cv::cvtColor(a, gray, cv::COLOR_BGR2GRAY);
+  gray.convertTo(dim, -1, 0.5, 0);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(gray, mean, stddev);
+  double gain = 0;
+  const cv::Mat matched = ContrastMatched(dim, mean[0], stddev[0], &gain);
+  EXPECT_NEAR(gain, 2.0, 0.02);
+  EXPECT_LT(cv::norm(matched, gray, cv::NORM_INF), 2.5);  // rounding of the dim copy, doubled
+  // Within 2 %: the frame itself, not a copy.
+  const cv::Mat same = ContrastMatched(gray, mean[0] * 1.01, stddev[0] * 1.01, &gain);
+  EXPECT_EQ(same.data, gray.data);
+  EXPECT_EQ(gain, 1.0);
+  // A blank frame (no contrast) is left alone.
+  const cv::Mat black(50, 50, CV_8UC1, cv::Scalar(0));
+  EXPECT_EQ(ContrastMatched(black, mean[0], stddev[0], &gain).data, black.data);
+}
+
 TEST(FeatureTrackerTest, BlankFramesAreFlaggedAndNotTracked) {
   const cv::Mat a = NoiseTexture({1000, 800}, 9);
   FeatureTracker tracker(SmallOptions());
