@@ -36,18 +36,19 @@ struct LensCost {
   LensCost(const Eigen::Vector2d& u, double focal, double r2_per_u2, double inv_scale, bool depth)
       : u_(u), focal_(focal), r2_per_u2_(r2_per_u2), inv_scale_(inv_scale), depth_(depth) {}
   template <typename T>
-  bool operator()(const T* q, const T* c, const T* point, const T* k1, T* r) const {
+  bool operator()(const T* q, const T* c, const T* point, const T* lens, T* r) const {
     Eigen::Map<const Eigen::Quaternion<T>> world_from_cam(q);
     Eigen::Matrix<T, 3, 1> v(point[0], point[1], point[2]);
     if (depth_) v -= point[3] * Eigen::Matrix<T, 3, 1>(c[0], c[1], c[2]);
     const Eigen::Matrix<T, 3, 1> p = world_from_cam.conjugate() * v;
     if (!(p.z() > T(1e-9) * ceres::sqrt(p.squaredNorm() + T(1e-300)))) return false;
-    const T x = T(focal_) * p.x() / p.z(), y = T(focal_) * p.y() / p.z();
+    const T focal = T(focal_) * ceres::exp(lens[1]);
+    const T x = focal * p.x() / p.z(), y = focal * p.y() / p.z();
     // The distorted position d with d (1 + k1 r(d)^2) = (x, y): fixed point,
     // a contraction for |k1| r^2 < 1/2 (the range, inside the picture).
     T dx = x, dy = y;
     for (int i = 0; i < kDistortIterations; ++i) {
-      const T scale = T(1) + k1[0] * T(r2_per_u2_) * (dx * dx + dy * dy);
+      const T scale = T(1) + lens[0] * T(r2_per_u2_) * (dx * dx + dy * dy);
       dx = x / scale;
       dy = y / scale;
     }
@@ -66,7 +67,11 @@ struct LensProblem {
   std::vector<std::array<double, 4>> q;
   std::vector<std::array<double, 3>> c;
   std::vector<std::array<double, 4>> x;  // (X, w) or (bearing, 0)
-  double k1 = 0;
+  // k1, and the log of one factor on every camera's focal: k1 must pay
+  // for itself beyond what a focal change explains (a focal held at a
+  // wrong prior bends a rotation's tracks radially too). The factor found
+  // is not used: the window decided the focal.
+  std::array<double, 2> lens{0, 0};
 };
 
 // The first camera's centre is moved to the origin (the other centres and
@@ -114,10 +119,10 @@ bool Solve(const SolvedWindow& w, int width, int height, bool free_k1, double ma
   const double inv_scale = kReferenceWidthPx;  // ~1 px residual units
   const double r2 = R2PerU2(width, height);
   for (const BaObservation& o : w.observations) {
-    auto* cost = new ceres::AutoDiffCostFunction<LensCost, 2, 4, 3, 4, 1>(new LensCost(
+    auto* cost = new ceres::AutoDiffCostFunction<LensCost, 2, 4, 3, 4, 2>(new LensCost(
         o.u, std::exp(w.cameras[o.camera].log_focal), r2, inv_scale, w.use_depth));
     problem.AddResidualBlock(cost, new ceres::HuberLoss(1.0), p->q[o.camera].data(), p->c[o.camera].data(),
-                             p->x[o.point].data(), &p->k1);
+                             p->x[o.point].data(), p->lens.data());
   }
   // The first camera and the held ones are the gauge, and the scale: unless
   // two held cameras fix it, the farthest centre stays as far.
@@ -139,12 +144,12 @@ bool Solve(const SolvedWindow& w, int width, int height, bool free_k1, double ma
   // Bearings ignore the 4th coordinate: one more null direction, as the scale.
   for (auto& x : p->x)
     if (problem.HasParameterBlock(x.data())) problem.SetManifold(x.data(), new ceres::SphereManifold<4>);
-  if (!problem.HasParameterBlock(&p->k1)) return false;
+  if (!problem.HasParameterBlock(p->lens.data())) return false;
   if (free_k1) {
-    problem.SetParameterLowerBound(&p->k1, 0, -max_abs_k1);
-    problem.SetParameterUpperBound(&p->k1, 0, max_abs_k1);
+    problem.SetParameterLowerBound(p->lens.data(), 0, -max_abs_k1);
+    problem.SetParameterUpperBound(p->lens.data(), 0, max_abs_k1);
   } else {
-    problem.SetParameterBlockConstant(&p->k1);
+    problem.SetManifold(p->lens.data(), new ceres::SubsetManifold(2, {0}));  // k1 held, the focal free
   }
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_SCHUR;
@@ -165,7 +170,7 @@ std::vector<Eigen::Vector2d> Residuals(const SolvedWindow& w, int width, int hei
   for (const BaObservation& o : w.observations) {
     const LensCost cost(o.u, std::exp(w.cameras[o.camera].log_focal), r2, 1.0, w.use_depth);
     Eigen::Vector2d r;
-    if (cost(p.q[o.camera].data(), p.c[o.camera].data(), p.x[o.point].data(), &p.k1, r.data()))
+    if (cost(p.q[o.camera].data(), p.c[o.camera].data(), p.x[o.point].data(), p.lens.data(), r.data()))
       out.push_back(r);
   }
   return out;
@@ -199,12 +204,12 @@ LensBundleEstimate EstimateK1InWindow(const SolvedWindow& window, int width, int
   // traveling's rotation against its depths) the first held solve can stop
   // short, and the free one's gain would be the valley's, not the lens's.
   LensProblem again = free;
-  again.k1 = 0;
+  again.lens[0] = 0;
   if (Solve(window, width, height, false, max_abs_k1, &again) &&
       CappedChi2(Residuals(window, width, height, again), 1) < CappedChi2(Residuals(window, width, height, held), 1))
     held = again;
   out.solved = true;
-  out.best_k1 = free.k1;
+  out.best_k1 = free.lens[0];
   const std::vector<Eigen::Vector2d> at_k1 = Residuals(window, width, height, free);
   const std::vector<Eigen::Vector2d> at_zero = Residuals(window, width, height, held);
   // The noise of the model with k1 (the larger one); capped chi2 at both.
@@ -212,10 +217,10 @@ LensBundleEstimate EstimateK1InWindow(const SolvedWindow& window, int width, int
   out.noise_px = sigma * width;
   out.chi2_gain = CappedChi2(at_zero, sigma) - CappedChi2(at_k1, sigma);
   out.penalty = std::max(std::log(2.0 * at_k1.size()), kMinSigmas * kMinSigmas);
-  out.sigma_k1 = out.chi2_gain > 0 ? std::abs(free.k1) / std::sqrt(out.chi2_gain) : 0;
+  out.sigma_k1 = out.chi2_gain > 0 ? std::abs(free.lens[0]) / std::sqrt(out.chi2_gain) : 0;
   // At the end of the range: no lens, a model the data break.
-  const bool inside = std::abs(free.k1) < 0.96 * max_abs_k1;
-  if (out.chi2_gain > out.penalty && std::abs(free.k1) >= kMinAbsK1 && inside) out.k1 = free.k1;
+  const bool inside = std::abs(free.lens[0]) < 0.96 * max_abs_k1;
+  if (out.chi2_gain > out.penalty && std::abs(free.lens[0]) >= kMinAbsK1 && inside) out.k1 = free.lens[0];
   return out;
 }
 

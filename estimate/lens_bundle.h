@@ -8,9 +8,10 @@
 // an amount that depends on where in the picture each view sees it.
 //
 // k1 is in lens_distortion.h's convention (ffmpeg lenscorrection: r in
-// half-diagonals, barrel k1 > 0). The focal stays the window's: the window
-// decided whether the focal is observable; a k1 that made a focal look
-// observable which was not would trade one for the other (docs/estimate.md
+// half-diagonals, barrel k1 > 0). Both solves also free one factor on the
+// focal, so that k1 pays only for what a focal change cannot explain (a
+// focal held at a wrong prior bends a rotation's tracks radially too); the
+// factor is not used: the window decided the focal (docs/estimate.md
 // "Lens distortion").
 
 #include <vector>
@@ -40,8 +41,8 @@ struct LensBundleEstimate {
   bool solved = false;
 };
 
-// Adjusts the window's rotations, centres and points with k1 fixed at 0 and
-// with k1 free in [-max_abs_k1, max_abs_k1]; keeps k1 when the capped chi2
+// Adjusts the window's rotations, centres, points and focal factor with k1
+// fixed at 0 and with k1 free in [-max_abs_k1, max_abs_k1]; keeps k1 when the capped chi2
 // gain exceeds max(ln N, 4) (BIC's price and |k1| > 2 sigma), |k1| is at
 // least 0.005 and it is not at the end of the range.
 LensBundleEstimate EstimateK1InWindow(const SolvedWindow& window, int width, int height,
