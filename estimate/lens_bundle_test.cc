@@ -26,7 +26,8 @@ enum class Move { kTraveling, kCrane, kPan, kStatic };
 // past 400 points 3..12 units deep, observed through k1 with `noise_px`
 // Gaussian noise (pixels of a 320 px frame). The cameras and points start
 // where a pinhole solve would leave them nearby: the truth, slightly off.
-SolvedWindow Window(Move move, double k1, double noise_px, unsigned seed) {
+// `focal_error`: the window's focal is the true one x this (a wrong prior).
+SolvedWindow Window(Move move, double k1, double noise_px, unsigned seed, double focal_error = 1) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(-1, 1), depth(3, 12);
   std::normal_distribution<double> noise(0, noise_px / kW), jitter(0, 1e-3);
@@ -67,6 +68,7 @@ SolvedWindow Window(Move move, double k1, double noise_px, unsigned seed) {
     pt.homogeneous.normalize();
     w.points.push_back(pt);
   }
+  for (BaCamera& cam : w.cameras) cam.log_focal += std::log(focal_error);
   for (size_t i = 1; i < w.cameras.size(); ++i)
     w.cameras[i].world_from_cam = w.cameras[i].world_from_cam *
                                   Eigen::AngleAxisd(jitter(rng), Eigen::Vector3d::UnitZ());
@@ -104,6 +106,15 @@ TEST(LensBundleTest, PinholeKeepsNone) {
     const LensBundleEstimate c = EstimateK1InWindow(Window(Move::kCrane, 0, 0.3, seed), kW, kH);
     EXPECT_EQ(c.k1, 0) << "crane, seed " << seed << ": best " << c.best_k1;
   }
+}
+
+TEST(LensBundleTest, AWrongFocalIsNoLens) {
+  // A focal held 10 % off (an unobservable focal at its prior) bends a
+  // rotation's tracks radially: the focal factor takes it, not k1.
+  const LensBundleEstimate e = EstimateK1InWindow(Window(Move::kPan, 0, 0.3, 11, 1.1), kW, kH);
+  EXPECT_TRUE(e.solved);
+  EXPECT_EQ(e.k1, 0) << "best " << e.best_k1;
+  EXPECT_NEAR(EstimateK1InWindow(Window(Move::kPan, 0.03, 0.3, 12, 0.9), kW, kH).k1, 0.03, 0.005);
 }
 
 TEST(LensBundleTest, NoiseHidesAWeakLens) {
