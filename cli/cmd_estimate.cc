@@ -127,6 +127,14 @@ void AddModelOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
                "estimate one radial distortion coefficient k1 from the first shot's first frames "
                "and undistort the tracks with it where it pays for itself (header k1=; "
                "docs/estimate.md \"Lens distortion\")");
+  app.add_flag("--lens-bundle,!--no-lens-bundle", opt->lens_bundle,
+               "measure k1 in a bundle adjustment of the first window (rigid points over many "
+               "views: translating footage too); where it pays for itself the estimation starts "
+               "again with the tracks undistorted (header k1=; docs/estimate.md \"Lens distortion\")");
+  app.add_option("--lens-k1", opt->lens_k1,
+                 "a known radial distortion coefficient (ffmpeg lenscorrection's k1: r in "
+                 "half-diagonals, barrel > 0): every track is undistorted with it, none is estimated")
+      ->check(FiniteRange(-0.5, 0.5));
   app.add_flag("--no-plane-prior", a->no_plane_prior,
                "a dolly with a zoom along the optical axis keeps the depths its fit started from "
                "(the farthest points at infinity) instead of those that make a floor or wall "

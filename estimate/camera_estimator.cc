@@ -1,11 +1,15 @@
 #include "estimate/camera_estimator.h"
 
+#include <cmath>
+#include <limits>
+#include <memory>
 #include <sstream>
 #include <thread>
 
 #include "core/diagnostics.h"
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "estimate/lens_bundle.h"
 #include "estimate/lens_distortion.h"
 #include "estimate/shot_quality.h"
 #include "estimate/skipped_frames.h"
@@ -21,6 +25,7 @@ void EstimatorOptions::Check() const {
   frames.Check();
   tracker.Check();
   estimator.Check();
+  if (!(std::abs(lens_k1) <= 0.5)) throw UsageError("lens k1 must be within [-0.5, 0.5]");
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
   if (backend == "colmap" && frames.skip_nonref_frames)
     throw UsageError("skipping non-reference frames is for the hapcine backend only");
@@ -164,6 +169,57 @@ class LensUndistorter {
   double k1_ = 0;
 };
 
+// Keeps the frames until the estimator has solved its first window, then
+// measures k1 on that window (lens_bundle.h). Where k1 pays for itself the
+// caller starts a new estimator and replays the kept frames undistorted:
+// the cost of a second first window falls only on footage with a lens to
+// correct, and the estimation overlaps tracking as without it.
+class LensFromFirstWindow {
+ public:
+  LensFromFirstWindow(bool enabled, int width, int height, Diagnostics* diagnostics)
+      : watching_(enabled), width_(width), height_(height), diagnostics_(diagnostics) {}
+
+  // After `tracks` went to `estimator`: true when k1 was found now (then
+  // TakeFrames() holds every frame so far, undistorted).
+  bool Watch(const FrameTracks& tracks, const TrackCameraEstimator& estimator) {
+    if (!watching_) return false;
+    kept_.push_back(tracks);
+    return Decide(estimator);
+  }
+
+  // At the end, when the first window was solved only by Finish().
+  bool Decide(const TrackCameraEstimator& estimator) {
+    if (!watching_ || estimator.reports().empty()) return false;
+    watching_ = false;
+    if (!estimator.first_window()) {  // the first window failed: nothing to measure
+      kept_.clear();
+      return false;
+    }
+    const LensBundleEstimate e = EstimateK1InWindow(*estimator.first_window(), width_, height_);
+    Record(diagnostics_, "lens_distortion",
+           {{"method", "bundle"}, {"k1", e.k1}, {"best_k1", e.best_k1}, {"chi2_gain", e.chi2_gain},
+            {"penalty", e.penalty}, {"sigma_k1", e.sigma_k1}, {"noise_px", e.noise_px},
+            {"observations", e.observations}, {"focal_observable", estimator.first_window()->focal_observable}});
+    k1_ = e.k1;
+    focal_was_observable_ = estimator.first_window()->focal_observable;
+    if (k1_ == 0) kept_.clear();
+    for (FrameTracks& t : kept_) UndistortTracks(k1_, width_, height_, &t);
+    return k1_ != 0;
+  }
+
+  std::vector<FrameTracks> TakeFrames() { return std::move(kept_); }
+  double k1() const { return k1_; }
+  bool focal_was_observable() const { return focal_was_observable_; }
+
+ private:
+  bool watching_;
+  int width_, height_;
+  Diagnostics* diagnostics_;
+  std::vector<FrameTracks> kept_;
+  double k1_ = 0;
+  bool focal_was_observable_ = false;
+};
+
 // Tracking runs on its own thread, estimation (bundle-adjustment windows,
 // which arrive in bursts) on this one, with a bounded queue of FrameTracks
 // between them: on two cores the stages overlap instead of adding up. The
@@ -173,7 +229,13 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
                             const ProgressFn& progress) {
   const VideoInfo& info = source.info();
   FeatureTracker tracker(StillsAware(options.tracker, info), options.diagnostics);
-  TrackCameraEstimator estimator(info.width, info.height, StillsAware(options, info), options.diagnostics);
+  // hold_focal: no window calibrates the focal (it stays at the prior).
+  auto new_estimator = [&](bool hold_focal) {
+    TrackEstimatorOptions o = StillsAware(options, info);
+    if (hold_focal) o.min_rotation_for_focal_deg = std::numeric_limits<double>::infinity();
+    return std::make_unique<TrackCameraEstimator>(info.width, info.height, o, options.diagnostics);
+  };
+  std::unique_ptr<TrackCameraEstimator> estimator = new_estimator(false);
   // Which stage of the estimation thread is on the critical path after
   // tracking ends (docs/estimate.md "Speed").
   StageLog stages(options.diagnostics);
@@ -202,10 +264,20 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     }
   });
   LensUndistorter lens(options.lens_distortion, info.width, info.height, options.diagnostics);
+  LensFromFirstWindow lens_bundle(options.lens_bundle && !options.lens_distortion && options.lens_k1 == 0,
+                                  info.width, info.height, options.diagnostics);
+  // A focal the first window could not observe stays unobserved: undistorted,
+  // a translating window's focal looks observable and is not (docs/estimate.md).
+  auto replay = [&] {
+    estimator = new_estimator(!lens_bundle.focal_was_observable());
+    for (const FrameTracks& t : lens_bundle.TakeFrames()) estimator->AddFrame(t);
+  };
   auto estimate = [&](FrameTracks& tracks) {
     index_of_position.push_back(tracks.index);  // tracks.step keeps the gap
     tracks.index = static_cast<int>(index_of_position.size()) - 1;
-    estimator.AddFrame(tracks);
+    UndistortTracks(options.lens_k1 != 0 ? options.lens_k1 : lens_bundle.k1(), info.width, info.height, &tracks);
+    estimator->AddFrame(tracks);
+    if (lens_bundle.Watch(tracks, *estimator)) replay();
   };
   try {
     FrameTracks tracks;
@@ -221,11 +293,16 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   }
   tracking.join();
   stages.Stage("all frames estimated, last window next");
-  CameraPath path = estimator.Finish();
-  if (lens.k1() != 0) path.metadata["k1"] = Num(lens.k1());
+  CameraPath path = estimator->Finish();
+  if (lens_bundle.Decide(*estimator)) {  // a short clip: its first window closed only now
+    replay();
+    path = estimator->Finish();
+  }
+  const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most
+  if (k1 != 0) path.metadata["k1"] = Num(k1);
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
   InsertSkippedFrames(skipped, info.width, &path);
-  WriteShotQuality(SummariseShots(path, estimator.reports(), info.width), &path);
+  WriteShotQuality(SummariseShots(path, estimator->reports(), info.width), &path);
   stages.Stage("estimation done");
   return path;
 }

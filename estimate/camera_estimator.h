@@ -32,6 +32,14 @@ struct EstimatorOptions {
   // first shot and undistort every track with it (lens_distortion.h; kept
   // only where it pays for itself; the path's header says k1=).
   bool lens_distortion = false;
+  // Measure k1 in a bundle adjustment of the first window the estimator
+  // solves (lens_bundle.h): where it pays for itself, the estimation starts
+  // again from the first frame with the tracks undistorted (header k1=).
+  // Off with lens_distortion or lens_k1.
+  bool lens_bundle = false;
+  // A known coefficient (lens_distortion.h's convention): every track is
+  // undistorted with it, nothing is estimated; 0 = none.
+  double lens_k1 = 0;
   // Where the run's diagnostics go (core/diagnostics.h): per-run "stage"
   // records, per-window "window" records, and the costlier ones it asks for.
   // Not owned; none by default.

@@ -34,6 +34,7 @@
 #include "estimate/geometry/model_selection.h"
 #include "estimate/geometry/motion_hypotheses.h"
 #include "estimate/geometry/motion_model.h"
+#include "estimate/lens_bundle.h"
 #include "estimate/window/window_solver.h"
 #include "extract/tracks.h"
 
@@ -117,6 +118,9 @@ class TrackCameraEstimator {
   // Closes the last shot and returns every frame (metadata: width, height).
   CameraPath Finish();
   const std::vector<WindowReport>& reports() const { return reports_; }
+  // The first window as solved (cameras, kept points, their observations):
+  // what the lens adjustment measures k1 on (lens_bundle.h). Set once.
+  const std::optional<SolvedWindow>& first_window() const { return first_window_; }
 
  private:
   struct BufferedFrame {
@@ -174,6 +178,7 @@ class TrackCameraEstimator {
   // The keyframes' cameras and labels as a window solve left them.
   void UpdateKeyframes(const std::vector<BaCamera>& cams, const std::vector<MotionModel>& labels);
   void Report(WindowReport report);
+  void KeepFirstWindow(const WindowOutcome& w);
   // After the window's solve (track_estimator_frames.cc).
   void SetUnits(std::vector<BaPoint>* points);
   void EmitWindowFrames(const WindowOutcome& solution, bool final);
@@ -188,6 +193,7 @@ class TrackCameraEstimator {
   double prior_log_focal_;
   CameraPath path_;
   std::vector<WindowReport> reports_;
+  std::optional<SolvedWindow> first_window_;
 
   // Current shot.
   int shot_ = -1;

@@ -95,6 +95,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     w.report.zoom_decisions.insert(w.report.zoom_decisions.begin(), decisions.begin(), decisions.end());
   }
   UpdateKeyframes(w.keyframe_cams, w.labels);
+  if (!first_window_ && w.success) KeepFirstWindow(w);
   if (w.written_log_focal_shift)
     for (RawPose& r : raw_) r.cam.log_focal += *w.written_log_focal_shift;
   if (w.focal_calibrated) focal_observed_ = true;
@@ -105,6 +106,22 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   w.report.timings_s.emplace_back("in_between_frames", clock.Lap());
   Report(std::move(w.report));
   if (!final) StartNextWindow();
+}
+
+// Before SetUnits rescales the points: the window in the solve's own units.
+void TrackCameraEstimator::KeepFirstWindow(const WindowOutcome& w) {
+  SolvedWindow s;
+  s.cameras = w.keyframe_cams;
+  s.points = w.points;
+  s.use_depth = w.pose_options.use_depth;
+  s.focal_observable = w.focal_observable;
+  for (size_t i = 0; i < keyframes_.size(); ++i)
+    for (const auto& [id, u] : At(keyframes_[i].pos).u) {
+      const auto it = w.point_of_track.find(id);
+      if (it == w.point_of_track.end() || !w.point_kept[it->second]) continue;
+      s.observations.push_back({static_cast<int>(i), it->second, u});
+    }
+  first_window_ = std::move(s);
 }
 
 // The window's report, with its keyframes' two-view model selection, to
