@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "estimate/window/dolly_or_zoom.h"
 #include "estimate/window/window_freedoms.h"
@@ -68,6 +69,20 @@ bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double p
   if (d.test != "branch" || !IsAmbiguous(d)) return false;
   if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;
   return other_zoom_change < d.zoom_change;
+}
+
+double TrackPairedZ(const std::vector<double>& e_taken, const std::vector<double>& e_other,
+                    const std::vector<int>& point_of_obs, double sigma) {
+  auto capped = [sigma](double e) { return std::isfinite(e) ? std::min(e * e / (sigma * sigma), 9.0) : 9.0; };
+  std::map<int, double> per_track;
+  const size_t n = std::min({e_taken.size(), e_other.size(), point_of_obs.size()});
+  for (size_t i = 0; i < n; ++i) per_track[point_of_obs[i]] += capped(e_other[i]) - capped(e_taken[i]);
+  double sum = 0, sum_sq = 0;
+  for (const auto& [point, d] : per_track) {
+    sum += d;
+    sum_sq += d * d;
+  }
+  return sum_sq > 0 ? sum / std::sqrt(sum_sq) : 0;
 }
 
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {

@@ -154,6 +154,28 @@ TEST(ZoomEvidence, AmbiguousBranchFollowsTheOcclusionOrderAtOneSigma) {
   EXPECT_NEAR(PairedBranchZ(3, 1, 1, 3), 6.0 / std::sqrt(8.0) - 2.0 / std::sqrt(8.0), 1e-12);
 }
 
+// The track, not the observation, is the unit: a gain made by one track is no evidence.
+TEST(ZoomEvidence, TrackPairedZClustersTheGainByTrack) {
+  const double sigma = 1;
+  // Ten tracks of three observations, each fitting the taken reading better by 1 chi2 per observation.
+  std::vector<double> taken(30, 1.0), other(30, std::sqrt(2.0));
+  std::vector<int> track(30);
+  for (int i = 0; i < 30; ++i) track[i] = i / 3;
+  EXPECT_NEAR(TrackPairedZ(taken, other, track, sigma), 30 / std::sqrt(10 * 9.0), 1e-9);
+  EXPECT_NEAR(TrackPairedZ(other, taken, track, sigma), -30 / std::sqrt(10 * 9.0), 1e-9);
+  // The same gain made by one track alone: z 1 however large the gain.
+  std::vector<double> one = taken;
+  for (int i = 0; i < 3; ++i) one[i] = std::sqrt(11.0);
+  EXPECT_NEAR(TrackPairedZ(taken, one, track, sigma), 1.0, 1e-9);
+  // Capped at 9 per observation, non-finite counts 9; no difference: 0.
+  std::vector<double> wild = taken;
+  wild[0] = 1e9;
+  wild[1] = NAN;
+  EXPECT_NEAR(TrackPairedZ(taken, wild, track, sigma), 1.0, 1e-9);
+  EXPECT_EQ(TrackPairedZ(taken, taken, track, sigma), 0.0);
+  EXPECT_EQ(TrackPairedZ({}, {}, {}, sigma), 0.0);
+}
+
 TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
   std::vector<BaCamera> cams(3);
   cams[0].log_focal = 0;
