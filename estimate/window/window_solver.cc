@@ -8,6 +8,8 @@
 
 #include "estimate/window/window_solver.h"
 
+#include "estimate/window/branch_tie_break.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -581,7 +583,8 @@ void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, 
     return std::max(0, agree ? votes[c]->occlusion_agree : votes[c]->occlusion_disagree);
   };
   const double z = PairedBranchZ(count(taken, true), count(taken, false), count(other, true), count(other, false));
-  if (PreferOtherBranch(d, zoom_of(other), z)) {
+  auto floor_of = [&](int c) { return c < static_cast<int>(votes.size()) ? votes[c]->plane_support : 0; };
+  if (PreferOtherBranchGivenFloor(d, zoom_of(other), z, floor_of(taken), floor_of(other))) {
     s.best = other - 1;
     d.zoom_taken = other > 0;
   }

@@ -1,5 +1,7 @@
 #include "estimate/window/zoom_evidence.h"
 
+#include "estimate/window/branch_tie_break.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,6 +35,8 @@ double Decisiveness(const ZoomDecision& d) {
   if ((d.zoom_change < kNegligibleLogZoom && d.test != "branch") || d.decided_by_cue) return 1;
   const double bic = BicMargin(d);
   if (std::isnan(bic)) return 0;
+  // A branch's gain counts against its own spread over tracks too.
+  if (d.test == "branch") return std::min(Clamp01(std::abs(bic)), Clamp01(std::abs(d.fit_z) / kBranchFitZ));
   if (d.relief < 0) return Clamp01(std::abs(bic));
   // Two gates: the dolly needs both, the zoom stays when either fails.
   const double relief = ReliefMargin(d);
@@ -66,7 +70,18 @@ double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int o
 // fit still outweighs a tie. Without one, less zoom is the reading closer
 // to the fixed lens, the simpler account of the shot.
 bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z) {
-  if (d.test != "branch" || !IsAmbiguous(d)) return false;
+  return PreferOtherBranchGivenFloor(d, other_zoom_change, paired_z, 0, 0);
+}
+
+bool BranchDecidedByFit(const ZoomDecision& d) {
+  return BicMargin(d) >= kAmbiguousBelow && d.fit_z >= kBranchFitZ;
+}
+
+bool PreferOtherBranchGivenFloor(const ZoomDecision& d, double other_zoom_change, double paired_z, int taken_floor,
+                                 int other_floor) {
+  if (d.test != "branch" || BranchDecidedByFit(d)) return false;
+  // On the wrong branch no floor is parallel to the move: a plane under one reading only tells.
+  if ((taken_floor > 0) != (other_floor > 0)) return other_floor > 0;
   if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;
   return other_zoom_change < d.zoom_change;
 }
