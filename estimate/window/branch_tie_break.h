@@ -15,8 +15,14 @@ namespace hapcine {
 constexpr double kBranchFitZ = 2.0;
 bool BranchDecidedByFit(const ZoomDecision& d);
 
-// Whether a branch decision the fit did not make takes the other branch's
-// best reading: where a floor plane (plane_prior.h, >= 12 points) was found
+// The occlusion order overrules the fit where its paired test reaches this:
+// the paired test counts each event under both readings, so 2 sqrt(2) is the
+// gate of 2 a single reading's votes need to rule a branch out.
+constexpr double kBranchOverruleZ = 2.0 * 1.4142135623730951;
+
+// Whether a branch decision takes the other branch's best reading: where
+// the occlusion order's paired test reaches kBranchOverruleZ, the branch it
+// favours. A decision the fit did not make besides: where a floor plane (plane_prior.h, >= 12 points) was found
 // under one branch's reading only, that branch (on the wrong branch no floor
 // is parallel to the move); else where the paired occlusion test reaches
 // kBranchTieBreakZ either way, the branch it favours; else the reading with

@@ -79,7 +79,9 @@ bool BranchDecidedByFit(const ZoomDecision& d) {
 
 bool PreferOtherBranchGivenFloor(const ZoomDecision& d, double other_zoom_change, double paired_z, int taken_floor,
                                  int other_floor) {
-  if (d.test != "branch" || BranchDecidedByFit(d)) return false;
+  if (d.test != "branch") return false;
+  if (std::abs(paired_z) >= kBranchOverruleZ) return paired_z < 0;
+  if (BranchDecidedByFit(d)) return false;
   // On the wrong branch no floor is parallel to the move: a plane under one reading only tells.
   if ((taken_floor > 0) != (other_floor > 0)) return other_floor > 0;
   if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;

@@ -144,7 +144,7 @@ TEST(ZoomEvidence, AmbiguousBranchWithoutCueTakesTheReadingWithLessZoom) {
   EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.0));
   EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.99));   // the cue under one sigma
   EXPECT_FALSE(PreferOtherBranch(Branch(10, 100, 0.04), 0.5, 0.0));   // already the lesser zoom
-  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04, -3));   // decided by the fit
+  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04, -2.5));  // decided by the fit
   EXPECT_FALSE(PreferOtherBranch(Bic(100, 100, true), 0.0, -3));      // not a branch decision
 }
 
@@ -179,12 +179,23 @@ TEST(ZoomEvidence, AFloorUnderOneBranchOnlyTellsAnUndecidedBranch) {
   const ZoomDecision d = Branch(74.4, 144.2, 0.039, 1.51);
   EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.47, -0.23, 0, 15));
   EXPECT_FALSE(PreferOtherBranchGivenFloor(d, 0.47, -0.23, 15, 0));
-  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.01, 3, -1, 15));  // before the occlusion test
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.01, 2.5, -1, 15));  // before the 1-sigma occlusion test
   // A plane under both readings tells nothing: the occlusion test, then less zoom.
   EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.47, -1.2, 13, 15));
   EXPECT_FALSE(PreferOtherBranchGivenFloor(d, 0.47, 0.5, 13, 15));
   // Decided by the fit: the floor under its gate does not overrule it.
   EXPECT_FALSE(PreferOtherBranchGivenFloor(Branch(215, 125.6, 0.1, 2.65), 0.47, 0, 0, 22));
+}
+
+// The paired occlusion test counts each event twice: at 2 sqrt(2) it overrules even a decided fit
+// (seed 7 dolly_zoom_parallax: fit z 3.38 for the taken branch, paired z 3.3 for the other).
+TEST(ZoomEvidence, ThePairedOcclusionTestOverrulesTheFitAtTheGateOfOneReading) {
+  const ZoomDecision decided = Branch(372, 75.6, 0.1, 3.38);
+  EXPECT_TRUE(BranchDecidedByFit(decided));
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(decided, 0.6, -3.3, 0, 12));
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(decided, 0.6, -2.5, 0, 12));  // under the gate: the fit stays
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(decided, 0.6, 3.3, 0, 12));   // the test agrees with the fit
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(Branch(10, 100, 0.04), 0.5, -3, 15, 0));  // before the floor
 }
 
 // The track, not the observation, is the unit: a gain made by one track is no evidence.
