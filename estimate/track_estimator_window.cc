@@ -43,6 +43,7 @@ nlohmann::json ZoomDecisionJson(const ZoomDecision& d) {
                       {"decisiveness", Decisiveness(d)}};
   if (d.relief >= 0) j["relief_margin"] = ReliefMargin(d);
   if (d.decided_by_cue) j["decided_by_cue"] = true;
+  if (d.test == "branch") j["fit_z"] = d.fit_z;
   return j;
 }
 

@@ -8,6 +8,8 @@
 
 #include "estimate/window/window_solver.h"
 
+#include "estimate/window/branch_tie_break.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -556,6 +558,7 @@ void RecordFocalDecision(const WindowProblem& p, FocalCandidateScores* scores, c
 // `votes[c]`: candidate c's report with its occlusion votes.
 void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, const std::vector<char>& ruled_out,
                           const std::vector<BaCamera>& constant_cams, const std::vector<Candidate>& zoomed,
+                          const std::vector<const std::vector<double>*>& errors,
                           const std::vector<WindowCandidate*>& votes, WindowReport* report) {
   FocalCandidateScores& s = *scores;
   std::vector<char> general(p.n, 0);
@@ -573,12 +576,16 @@ void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, 
   }
   if (direction == 0 || other < 0) return;
   ZoomDecision d{"branch", score_of(other) - score_of(taken), s.penalty, taken > 0, zoom_of(taken)};
+  std::vector<int> point_of_obs;
+  for (const BaObservation& o : p.obs) point_of_obs.push_back(o.point);
+  d.fit_z = TrackPairedZ(*errors[taken], *errors[other], point_of_obs, s.sigma);
   auto count = [&](int c, bool agree) {  // -1: not counted
     if (c >= static_cast<int>(votes.size())) return 0;
     return std::max(0, agree ? votes[c]->occlusion_agree : votes[c]->occlusion_disagree);
   };
   const double z = PairedBranchZ(count(taken, true), count(taken, false), count(other, true), count(other, false));
-  if (PreferOtherBranch(d, zoom_of(other), z)) {
+  auto floor_of = [&](int c) { return c < static_cast<int>(votes.size()) ? votes[c]->plane_support : 0; };
+  if (PreferOtherBranchGivenFloor(d, zoom_of(other), z, floor_of(taken), floor_of(other))) {
     s.best = other - 1;
     d.zoom_taken = other > 0;
   }
@@ -624,10 +631,12 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   for (const Candidate& c : zoomed) ez.push_back(ObservationErrors(c.cams, c.pts, p.obs, true));
   int extra = 0;
   for (int i = 1; i < p.n; ++i) extra += p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
-  FocalCandidateScores s = ScoreFocalCandidates(ObservationErrors(chosen->cams, chosen->pts, p.obs, true), ez,
-                                                ruled_out, extra, p.opt->noise_floor);
+  const std::vector<double> e_constant = ObservationErrors(chosen->cams, chosen->pts, p.obs, true);
+  FocalCandidateScores s = ScoreFocalCandidates(e_constant, ez, ruled_out, extra, p.opt->noise_floor);
   RecordFocalDecision(p, &s, ruled_out, zoomed, report);  // may give up an undecided zoom
-  if (axial) RecordBranchDecision(p, &s, ruled_out, chosen->cams, zoomed, solved_reports, report);
+  std::vector<const std::vector<double>*> errors{&e_constant};  // [c + 1]: zoomed[c]'s
+  for (const auto& e : ez) errors.push_back(&e);
+  if (axial) RecordBranchDecision(p, &s, ruled_out, chosen->cams, zoomed, errors, solved_reports, report);
   for (size_t c = 0; c < solved_reports.size(); ++c) {
     solved_reports[c]->ruled_out = c < ruled_out.size() && ruled_out[c];
     solved_reports[c]->score = c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty;

@@ -1,8 +1,11 @@
 #include "estimate/window/zoom_evidence.h"
 
+#include "estimate/window/branch_tie_break.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "estimate/window/dolly_or_zoom.h"
 #include "estimate/window/window_freedoms.h"
@@ -37,6 +40,11 @@ double Decisiveness(const ZoomDecision& d) {
   if ((d.zoom_change < kNegligibleLogZoom && d.test != "branch") || d.decided_by_cue) return 1;
   const double bic = BicMargin(d);
   if (std::isnan(bic)) return 0;
+  // A branch's gain counts against its own spread over tracks too.
+  if (d.test == "branch") {
+    return std::min(SaturatedMargin(std::abs(bic)),
+                    SaturatedMargin(std::abs(d.fit_z) / kBranchFitZ));
+  }
   if (d.relief < 0) return SaturatedMargin(std::abs(bic));
   // Two gates: the dolly needs both, the zoom stays when either fails.
   const double relief = ReliefMargin(d);
@@ -70,9 +78,36 @@ double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int o
 // fit still outweighs a tie. Without one, less zoom is the reading closer
 // to the fixed lens, the simpler account of the shot.
 bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z) {
-  if (d.test != "branch" || !IsAmbiguous(d)) return false;
+  return PreferOtherBranchGivenFloor(d, other_zoom_change, paired_z, 0, 0);
+}
+
+bool BranchDecidedByFit(const ZoomDecision& d) {
+  return BicMargin(d) >= kAmbiguousBelow && d.fit_z >= kBranchFitZ;
+}
+
+bool PreferOtherBranchGivenFloor(const ZoomDecision& d, double other_zoom_change, double paired_z, int taken_floor,
+                                 int other_floor) {
+  if (d.test != "branch") return false;
+  if (std::abs(paired_z) >= kBranchOverruleZ) return paired_z < 0;
+  if (BranchDecidedByFit(d)) return false;
+  // On the wrong branch no floor is parallel to the move: a plane under one reading only tells.
+  if ((taken_floor > 0) != (other_floor > 0)) return other_floor > 0;
   if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;
   return other_zoom_change < d.zoom_change;
+}
+
+double TrackPairedZ(const std::vector<double>& e_taken, const std::vector<double>& e_other,
+                    const std::vector<int>& point_of_obs, double sigma) {
+  auto capped = [sigma](double e) { return std::isfinite(e) ? std::min(e * e / (sigma * sigma), 9.0) : 9.0; };
+  std::map<int, double> per_track;
+  const size_t n = std::min({e_taken.size(), e_other.size(), point_of_obs.size()});
+  for (size_t i = 0; i < n; ++i) per_track[point_of_obs[i]] += capped(e_other[i]) - capped(e_taken[i]);
+  double sum = 0, sum_sq = 0;
+  for (const auto& [point, d] : per_track) {
+    sum += d;
+    sum_sq += d * d;
+  }
+  return sum_sq > 0 ? sum / std::sqrt(sum_sq) : 0;
 }
 
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {

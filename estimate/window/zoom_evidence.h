@@ -56,6 +56,7 @@ struct ZoomDecision {
   double zoom_change = 0;   // sum |delta ln f| of the zooming reading over the window
   double relief = -1;       // dolly_or_zoom: the dolly's depth relief (-1: no second gate)
   bool decided_by_cue = false;  // focal: a branch cue ruled out the constant focal
+  double fit_z = 0;             // branch: the gain against its spread over tracks (TrackPairedZ)
 };
 
 // (gain - penalty) / penalty (a branch: gain / penalty); +-infinity with no penalty.
@@ -99,6 +100,15 @@ double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int o
 // way, the branch it favours; else the reading with less zoom (sum |delta
 // ln f|; `other_zoom_change` the other's). Decided branches stay.
 bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z);
+
+// Paired test of two readings' fit, clustered by track: with d_j the sum
+// over track j's observations of min(e_other^2 / sigma^2, 9) - min(e_taken^2
+// / sigma^2, 9), z = sum_j d_j / sqrt(sum_j d_j^2) (positive: the taken
+// reading fits better). Observations of one track share its tracking drift,
+// so the track, not the observation, is the independent unit. 0 without
+// any difference. `point_of_obs[i]`: observation i's track (point index).
+double TrackPairedZ(const std::vector<double>& e_taken, const std::vector<double>& e_other,
+                    const std::vector<int>& point_of_obs, double sigma);
 
 // The least decisive of a window's decisions; 1 without any.
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions);

@@ -1,5 +1,7 @@
 #include "estimate/window/zoom_evidence.h"
 
+#include "estimate/window/branch_tie_break.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -124,8 +126,11 @@ TEST(ZoomEvidence, PreferNoZoomOnlyWhereAmbiguousAndZoomed) {
   EXPECT_FALSE(PreferNoZoom(cue));
 }
 
-ZoomDecision Branch(double gain, double penalty, double zoom_change) {
-  return {"branch", gain, penalty, true, zoom_change};
+// fit_z: the gain against its spread over tracks (TrackPairedZ); far over kBranchFitZ unless given.
+ZoomDecision Branch(double gain, double penalty, double zoom_change, double fit_z = 10) {
+  ZoomDecision d{"branch", gain, penalty, true, zoom_change};
+  d.fit_z = fit_z;
+  return d;
 }
 
 // Two branches have the same freedoms: a tie is margin 0, not -1.
@@ -147,7 +152,7 @@ TEST(ZoomEvidence, AmbiguousBranchWithoutCueTakesTheReadingWithLessZoom) {
   EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.0));
   EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.5), 0.04, 0.99));   // the cue under one sigma
   EXPECT_FALSE(PreferOtherBranch(Branch(10, 100, 0.04), 0.5, 0.0));   // already the lesser zoom
-  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04, -3));   // decided by the fit
+  EXPECT_FALSE(PreferOtherBranch(Branch(120, 100, 0.5), 0.04, -2.5));  // decided by the fit
   EXPECT_FALSE(PreferOtherBranch(Bic(100, 100, true), 0.0, -3));      // not a branch decision
 }
 
@@ -160,6 +165,67 @@ TEST(ZoomEvidence, AmbiguousBranchFollowsTheOcclusionOrderAtOneSigma) {
   EXPECT_DOUBLE_EQ(PairedBranchZ(0, 0, 0, 0), 0.0);
   // The two branches' votes swap (the test is affine-equivariant): the pair counts each event twice.
   EXPECT_NEAR(PairedBranchZ(3, 1, 1, 3), 6.0 / std::sqrt(8.0) - 2.0 / std::sqrt(8.0), 1e-12);
+}
+
+// A gain of many observations is no decision unless it is two sigma of its spread over tracks
+// (seed 3, --variant-without walkers, dolly_zoom_parallax: margin 2.05 at z 1.84, the wrong branch).
+TEST(ZoomEvidence, TheFitDecidesABranchAtTwoSigmaOverTracks) {
+  EXPECT_TRUE(BranchDecidedByFit(Branch(215, 125.6, 0.1, 2.65)));
+  EXPECT_FALSE(BranchDecidedByFit(Branch(190.7, 93, 0.1, 1.84)));
+  EXPECT_FALSE(BranchDecidedByFit(Branch(40, 100, 0.1, 5)));    // under half the zoom's threshold
+  EXPECT_FALSE(BranchDecidedByFit(Branch(150, 100, 0.1, -3)));  // the spread says the other way
+  EXPECT_NEAR(Decisiveness(Branch(190.7, 93, 0.1, 1.84)), 0.92, 1e-12);
+  EXPECT_TRUE(IsAmbiguous(Branch(190.7, 93, 0.1, 0.9)));
+  // Undecided by the fit: the paired occlusion test (z 2.67 for the other branch) takes it.
+  EXPECT_TRUE(PreferOtherBranch(Branch(190.7, 93, 0.1, 1.84), 0.6, -2.67));
+  EXPECT_FALSE(PreferOtherBranch(Branch(215, 125.6, 0.1, 2.65), 0.6, -2.67));
+}
+
+// On the wrong branch no floor is parallel to the move: a plane found under one reading only tells
+// (seed 3 vertigo: taken 0 points, other 15, occlusion paired z -0.23).
+TEST(ZoomEvidence, AFloorUnderOneBranchOnlyTellsAnUndecidedBranch) {
+  const ZoomDecision d = Branch(74.4, 144.2, 0.039, 1.51);
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.47, -0.23, 0, 15));
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(d, 0.47, -0.23, 15, 0));
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.01, 2.5, -1, 15));  // before the 1-sigma occlusion test
+  // A plane under both readings tells nothing: the occlusion test, then less zoom.
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.47, -1.2, 13, 15));
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(d, 0.47, 0.5, 13, 15));
+  // Decided by the fit: the floor under its gate does not overrule it.
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(Branch(215, 125.6, 0.1, 2.65), 0.47, 0, 0, 22));
+}
+
+// The paired occlusion test counts each event twice: at 2 sqrt(2) it overrules even a decided fit
+// (seed 7 dolly_zoom_parallax: fit z 3.38 for the taken branch, paired z 3.3 for the other).
+TEST(ZoomEvidence, ThePairedOcclusionTestOverrulesTheFitAtTheGateOfOneReading) {
+  const ZoomDecision decided = Branch(372, 75.6, 0.1, 3.38);
+  EXPECT_TRUE(BranchDecidedByFit(decided));
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(decided, 0.6, -3.3, 0, 12));
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(decided, 0.6, -2.5, 0, 12));  // under the gate: the fit stays
+  EXPECT_FALSE(PreferOtherBranchGivenFloor(decided, 0.6, 3.3, 0, 12));   // the test agrees with the fit
+  EXPECT_TRUE(PreferOtherBranchGivenFloor(Branch(10, 100, 0.04), 0.5, -3, 15, 0));  // before the floor
+}
+
+// The track, not the observation, is the unit: a gain made by one track is no evidence.
+TEST(ZoomEvidence, TrackPairedZClustersTheGainByTrack) {
+  const double sigma = 1;
+  // Ten tracks of three observations, each fitting the taken reading better by 1 chi2 per observation.
+  std::vector<double> taken(30, 1.0), other(30, std::sqrt(2.0));
+  std::vector<int> track(30);
+  for (int i = 0; i < 30; ++i) track[i] = i / 3;
+  EXPECT_NEAR(TrackPairedZ(taken, other, track, sigma), 30 / std::sqrt(10 * 9.0), 1e-9);
+  EXPECT_NEAR(TrackPairedZ(other, taken, track, sigma), -30 / std::sqrt(10 * 9.0), 1e-9);
+  // The same gain made by one track alone: z 1 however large the gain.
+  std::vector<double> one = taken;
+  for (int i = 0; i < 3; ++i) one[i] = std::sqrt(11.0);
+  EXPECT_NEAR(TrackPairedZ(taken, one, track, sigma), 1.0, 1e-9);
+  // Capped at 9 per observation, non-finite counts 9; no difference: 0.
+  std::vector<double> wild = taken;
+  wild[0] = 1e9;
+  wild[1] = NAN;
+  EXPECT_NEAR(TrackPairedZ(taken, wild, track, sigma), 1.0, 1e-9);
+  EXPECT_EQ(TrackPairedZ(taken, taken, track, sigma), 0.0);
+  EXPECT_EQ(TrackPairedZ({}, {}, {}, sigma), 0.0);
 }
 
 TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
