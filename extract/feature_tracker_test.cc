@@ -479,7 +479,9 @@ TEST(FeatureTrackerTest, StillsAsCloseAsVideoFramesGoBackToKlt) {
   for (int i = 0; i < 5; ++i) {
     const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 0, 2.7 * i, 0.4 * i), i, 0.5));
     EXPECT_EQ(t.shot, 0);
-    if (i == 1) EXPECT_TRUE(t.recovered);  // linked by descriptors
+    if (i == 1) {
+      EXPECT_TRUE(t.recovered);  // linked by descriptors
+    }
     EXPECT_FALSE(t.jump) << i;             // ... within KLT's reach
     if (i >= 2) {
       EXPECT_FALSE(t.recovered) << i;  // tracked by KLT
@@ -505,7 +507,9 @@ TEST(FeatureTrackerTest, VideoThatJumpsFromItsFirstStepIsLinkedAsStills) {
     for (int i = 0; i < 4; ++i) {
       const FrameTracks t = tracker.Process(MakeFrame(Turned(texture, 20.0 * i, 70.0 * i, -30.0 * i), i, 0.5));
       EXPECT_EQ(t.shot, 0);
-      if (i >= 1) EXPECT_EQ(t.still, evidence) << "frame " << i;
+      if (i >= 1) {
+        EXPECT_EQ(t.still, evidence) << "frame " << i;
+      }
       if (i >= 2 && evidence) {
         const auto before = ById(last);
         int continued = 0;

@@ -153,7 +153,9 @@ FocalErrors SolveBothWays(double s0_px, double q_px, int seeds) {
     const std::vector<int> ages = ObservationAges(w.obs, w.pos);
     const DriftFit fit = FitDrift(ObservationErrors(w.cams, w.points, w.obs, true), ages);
     r.significant += fit.significant;
-    if (ApplyDriftWeights(fit, ages, &w.obs)) EXPECT_TRUE(SolveBundle(&w.cams, &w.points, w.obs, w.ba).success);
+    if (ApplyDriftWeights(fit, ages, &w.obs)) {
+      EXPECT_TRUE(SolveBundle(&w.cams, &w.points, w.obs, w.ba).success);
+    }
     const double after = w.cams[0].log_focal - std::log(kFocal);
     r.weighted_sq += after * after;
   }
