@@ -10,19 +10,15 @@
 
 #include "core/statistics.h"
 #include "estimate/geometry/reference_width.h"
+#include "estimate/lens_distortion.h"
 
 namespace hapcine {
 namespace {
 
-// A k1 whose corner shift is under 0.5 % of the half-diagonal is no finding:
-// the scatter of one view pair's best k1 on pinhole footage (lens_distortion.cc).
-constexpr double kMinAbsK1 = 0.005;
 // |k1| > 2 sigma: the chi2 gain must exceed 2^2.
 constexpr double kMinSigmas = 2;
 // Capped chi2: an observation counts at most (4 sigma)^2, as an outlier would.
 constexpr double kChi2Cap = 16;
-// Noise floor, px at the reference width (the estimator's, window_solver.h).
-constexpr double kNoiseFloorPx = 0.25;
 constexpr int kIterations = 100;
 constexpr int kDistortIterations = 8;
 
@@ -213,14 +209,14 @@ LensBundleEstimate EstimateK1InWindow(const SolvedWindow& window, int width, int
   const std::vector<Eigen::Vector2d> at_k1 = Residuals(window, width, height, free);
   const std::vector<Eigen::Vector2d> at_zero = Residuals(window, width, height, held);
   // The noise of the model with k1 (the larger one); capped chi2 at both.
-  const double sigma = NoiseSigma(at_k1, kNoiseFloorPx / kReferenceWidthPx);
+  const double sigma = NoiseSigma(at_k1, kLensNoiseFloorPx / kReferenceWidthPx);
   out.noise_px = sigma * width;
   out.chi2_gain = CappedChi2(at_zero, sigma) - CappedChi2(at_k1, sigma);
   out.penalty = std::max(std::log(2.0 * at_k1.size()), kMinSigmas * kMinSigmas);
   out.sigma_k1 = out.chi2_gain > 0 ? std::abs(free.lens[0]) / std::sqrt(out.chi2_gain) : 0;
   // At the end of the range: no lens, a model the data break.
   const bool inside = std::abs(free.lens[0]) < 0.96 * max_abs_k1;
-  if (out.chi2_gain > out.penalty && std::abs(free.lens[0]) >= kMinAbsK1 && inside) out.k1 = free.lens[0];
+  if (out.chi2_gain > out.penalty && std::abs(free.lens[0]) >= kMinLensK1 && inside) out.k1 = free.lens[0];
   return out;
 }
 

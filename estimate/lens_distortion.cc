@@ -18,8 +18,7 @@ constexpr double kPairMotionShare = 0.03;
 constexpr double kMaxPairMotionShare = 0.15;
 constexpr int kMinPairTracks = 40;
 constexpr int kMaxPairs = 8;
-// Noise floor and RANSAC thresholds, px at the reference width.
-constexpr double kNoiseFloorPx = 0.25;
+// RANSAC threshold, px at the reference width.
 constexpr double kRansacPx = 1.5;
 // GRIC constants (Torr): r = 4 (two 2-D views), lambda3 = 2.
 constexpr double kGricR = 4;
@@ -27,11 +26,6 @@ constexpr double kGricR = 4;
 // under the chosen k1: a coefficient whose effect is under the noise is
 // not a finding, whatever the sum of many small gains says.
 constexpr double kMinCornerEffectSigmas = 2;
-// Nor one that moves the corner by under 0.5 % of the half-diagonal: the
-// scatter of one pair's best k1 on pinhole footage (measured +-0.009 on a
-// rendered tilt). 0.0115 (a 50 deg lens at synth's k1 = -0.04) already
-// costs a tilt 0.75 deg of rotation (docs/estimate.md).
-constexpr double kMinAbsK1 = 0.005;
 // At least this share of the frame pairs a homography explains must fit
 // better with k1, and at least 3 such pairs.
 constexpr double kConsistentShare = 0.75;
@@ -241,7 +235,7 @@ RadialDistortionEstimate EstimateRadialDistortion(const std::vector<FrameTracks>
   out.pairs = static_cast<int>(pairs.size());
   if (out.pairs < kMinPairs) return out;
   const double px = 1 / HalfDiagonal(width, height) * width / kReferenceWidthPx;  // 1 ref px
-  const double sigma = PrepareAtZero(&pairs, kRansacPx * px, kNoiseFloorPx * px);
+  const double sigma = PrepareAtZero(&pairs, kRansacPx * px, kLensNoiseFloorPx * px);
   CostFundamentals(&pairs, sigma);
   for (const Pair& p : pairs) out.correspondences += static_cast<int>(p.a.size());
   // Grid, then golden-section search around the best grid point.
@@ -265,7 +259,7 @@ RadialDistortionEstimate EstimateRadialDistortion(const std::vector<FrameTracks>
   out.gric_gain = cost_at_zero - best_cost;
   out.penalty = std::log(kGricR * out.correspondences);
   // The corner (r = 1) moves by |k1| half-diagonals.
-  const bool visible = std::abs(best) >= std::max(kMinCornerEffectSigmas * sigma, kMinAbsK1);
+  const bool visible = std::abs(best) >= std::max(kMinCornerEffectSigmas * sigma, kMinLensK1);
   // At the end of the search range: no lens, a model the data break.
   const bool inside = std::abs(best) < max_abs_k1 - step;
   const auto [improved, measuring] = PairsImproved(pairs, best, sigma);
