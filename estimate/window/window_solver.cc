@@ -8,8 +8,6 @@
 
 #include "estimate/window/window_solver.h"
 
-#include "estimate/window/branch_tie_break.h"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -585,7 +583,7 @@ void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, 
   };
   const double z = PairedBranchZ(count(taken, true), count(taken, false), count(other, true), count(other, false));
   auto floor_of = [&](int c) { return c < static_cast<int>(votes.size()) ? votes[c]->plane_support : 0; };
-  if (PreferOtherBranchGivenFloor(d, zoom_of(other), z, floor_of(taken), floor_of(other))) {
+  if (PreferOtherBranch(d, zoom_of(other), z, floor_of(taken), floor_of(other))) {
     s.best = other - 1;
     d.zoom_taken = other > 0;
   }

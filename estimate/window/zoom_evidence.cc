@@ -1,7 +1,5 @@
 #include "estimate/window/zoom_evidence.h"
 
-#include "estimate/window/branch_tie_break.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -74,19 +72,12 @@ double PairedBranchZ(int taken_agree, int taken_disagree, int other_agree, int o
   return for_taken + against > 0 ? (for_taken - against) / std::sqrt(for_taken + against) : 0;
 }
 
-// The fit left the branch open: a cue under the gate it needs to overrule a
-// fit still outweighs a tie. Without one, less zoom is the reading closer
-// to the fixed lens, the simpler account of the shot.
-bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z) {
-  return PreferOtherBranchGivenFloor(d, other_zoom_change, paired_z, 0, 0);
-}
-
 bool BranchDecidedByFit(const ZoomDecision& d) {
   return BicMargin(d) >= kAmbiguousBelow && d.fit_z >= kBranchFitZ;
 }
 
-bool PreferOtherBranchGivenFloor(const ZoomDecision& d, double other_zoom_change, double paired_z, int taken_floor,
-                                 int other_floor) {
+bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double paired_z, int taken_floor,
+                       int other_floor) {
   if (d.test != "branch") return false;
   if (std::abs(paired_z) >= kBranchOverruleZ) return paired_z < 0;
   if (BranchDecidedByFit(d)) return false;

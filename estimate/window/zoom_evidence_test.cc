@@ -1,7 +1,5 @@
 #include "estimate/window/zoom_evidence.h"
 
-#include "estimate/window/branch_tie_break.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -185,14 +183,14 @@ TEST(ZoomEvidence, TheFitDecidesABranchAtTwoSigmaOverTracks) {
 // (seed 3 vertigo: taken 0 points, other 15, occlusion paired z -0.23).
 TEST(ZoomEvidence, AFloorUnderOneBranchOnlyTellsAnUndecidedBranch) {
   const ZoomDecision d = Branch(74.4, 144.2, 0.039, 1.51);
-  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.47, -0.23, 0, 15));
-  EXPECT_FALSE(PreferOtherBranchGivenFloor(d, 0.47, -0.23, 15, 0));
-  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.01, 2.5, -1, 15));  // before the 1-sigma occlusion test
+  EXPECT_TRUE(PreferOtherBranch(d, 0.47, -0.23, 0, 15));
+  EXPECT_FALSE(PreferOtherBranch(d, 0.47, -0.23, 15, 0));
+  EXPECT_TRUE(PreferOtherBranch(d, 0.01, 2.5, -1, 15));  // before the 1-sigma occlusion test
   // A plane under both readings tells nothing: the occlusion test, then less zoom.
-  EXPECT_TRUE(PreferOtherBranchGivenFloor(d, 0.47, -1.2, 13, 15));
-  EXPECT_FALSE(PreferOtherBranchGivenFloor(d, 0.47, 0.5, 13, 15));
+  EXPECT_TRUE(PreferOtherBranch(d, 0.47, -1.2, 13, 15));
+  EXPECT_FALSE(PreferOtherBranch(d, 0.47, 0.5, 13, 15));
   // Decided by the fit: the floor under its gate does not overrule it.
-  EXPECT_FALSE(PreferOtherBranchGivenFloor(Branch(215, 125.6, 0.1, 2.65), 0.47, 0, 0, 22));
+  EXPECT_FALSE(PreferOtherBranch(Branch(215, 125.6, 0.1, 2.65), 0.47, 0, 0, 22));
 }
 
 // The paired occlusion test counts each event twice: at 2 sqrt(2) it overrules even a decided fit
@@ -200,10 +198,10 @@ TEST(ZoomEvidence, AFloorUnderOneBranchOnlyTellsAnUndecidedBranch) {
 TEST(ZoomEvidence, ThePairedOcclusionTestOverrulesTheFitAtTheGateOfOneReading) {
   const ZoomDecision decided = Branch(372, 75.6, 0.1, 3.38);
   EXPECT_TRUE(BranchDecidedByFit(decided));
-  EXPECT_TRUE(PreferOtherBranchGivenFloor(decided, 0.6, -3.3, 0, 12));
-  EXPECT_FALSE(PreferOtherBranchGivenFloor(decided, 0.6, -2.5, 0, 12));  // under the gate: the fit stays
-  EXPECT_FALSE(PreferOtherBranchGivenFloor(decided, 0.6, 3.3, 0, 12));   // the test agrees with the fit
-  EXPECT_TRUE(PreferOtherBranchGivenFloor(Branch(10, 100, 0.04), 0.5, -3, 15, 0));  // before the floor
+  EXPECT_TRUE(PreferOtherBranch(decided, 0.6, -3.3, 0, 12));
+  EXPECT_FALSE(PreferOtherBranch(decided, 0.6, -2.5, 0, 12));  // under the gate: the fit stays
+  EXPECT_FALSE(PreferOtherBranch(decided, 0.6, 3.3, 0, 12));   // the test agrees with the fit
+  EXPECT_TRUE(PreferOtherBranch(Branch(10, 100, 0.04), 0.5, -3, 15, 0));  // before the floor
 }
 
 // The track, not the observation, is the unit: a gain made by one track is no evidence.
