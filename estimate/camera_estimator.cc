@@ -26,6 +26,9 @@ void EstimatorOptions::Check() const {
   tracker.Check();
   estimator.Check();
   if (!(std::abs(lens_k1) <= 0.5)) throw UsageError("lens k1 must be within [-0.5, 0.5]");
+  // Each is a whole source of k1; two would undistort the tracks twice.
+  if ((lens_k1 != 0) + lens_distortion + lens_bundle > 1)
+    throw UsageError("lens distortion, lens bundle and a known lens k1 exclude each other: choose one");
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
   if (backend == "colmap" && frames.skip_nonref_frames)
     throw UsageError("skipping non-reference frames is for the hapcine backend only");
@@ -264,8 +267,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     }
   });
   LensUndistorter lens(options.lens_distortion, info.width, info.height, options.diagnostics);
-  LensFromFirstWindow lens_bundle(options.lens_bundle && !options.lens_distortion && options.lens_k1 == 0,
-                                  info.width, info.height, options.diagnostics);
+  LensFromFirstWindow lens_bundle(options.lens_bundle, info.width, info.height, options.diagnostics);
   // A focal the first window could not observe stays unobserved: undistorted,
   // a translating window's focal looks observable and is not (docs/estimate.md).
   auto replay = [&] {
@@ -298,7 +300,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     replay();
     path = estimator->Finish();
   }
-  const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most
+  const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most (Check)
   if (k1 != 0) path.metadata["k1"] = Num(k1);
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
   InsertSkippedFrames(skipped, info.width, &path);

@@ -35,7 +35,7 @@ struct EstimatorOptions {
   // Measure k1 in a bundle adjustment of the first window the estimator
   // solves (lens_bundle.h): where it pays for itself, the estimation starts
   // again from the first frame with the tracks undistorted (header k1=).
-  // Off with lens_distortion or lens_k1.
+  // Not with lens_distortion or lens_k1 (Check()).
   bool lens_bundle = false;
   // A known coefficient (lens_distortion.h's convention): every track is
   // undistorted with it, nothing is estimated; 0 = none.

@@ -77,6 +77,23 @@ class PanSource : public FrameSource {
   int count_, fail_at_, next_ = 0;
 };
 
+TEST(EstimatorOptions, OneSourceOfLensDistortion) {
+  // Two sources would undistort the tracks twice and write their sum as k1.
+  EstimatorOptions o;
+  o.lens_k1 = 0.02;
+  EXPECT_NO_THROW(o.Check());
+  o.lens_distortion = true;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.lens_k1 = 0;
+  EXPECT_NO_THROW(o.Check());
+  o.lens_bundle = true;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.lens_distortion = false;
+  EXPECT_NO_THROW(o.Check());
+  o.lens_k1 = -0.01;
+  EXPECT_THROW(o.Check(), UsageError);
+}
+
 TEST(EstimateCameraPath, EveryFrameInOrderWithProgressOnTheCallersThread) {
   PanSource source(30);
   EstimatorOptions options;
