@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -15,12 +14,6 @@ namespace hapcine {
 namespace {
 
 constexpr const char* kKeyPrefix = "shot_quality.";
-
-std::string Fixed(double v, int digits) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
 
 // The whole of `text` as an int (no sign but '-', no blanks, no fraction,
 // within int); nullopt otherwise: converting the rest would be undefined or
@@ -79,9 +72,9 @@ void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path) {
   for (const ShotQuality& q : shots) {
     std::ostringstream v;
     v << "first:" << q.first_frame << " last:" << q.last_frame << " frames:" << q.frames << " lost:" << q.lost
-      << " median_confidence:" << Fixed(q.median_confidence, 3);
-    if (q.inlier_ratio) v << " inlier_ratio:" << Fixed(*q.inlier_ratio, 3);
-    if (q.rms_px) v << " rms_px:" << Fixed(*q.rms_px, 3);
+      << " median_confidence:" << FormatFixed(q.median_confidence, 3);
+    if (q.inlier_ratio) v << " inlier_ratio:" << FormatFixed(*q.inlier_ratio, 3);
+    if (q.rms_px) v << " rms_px:" << FormatFixed(*q.rms_px, 3);
     if (q.focal_observable) v << " focal_observable:" << (*q.focal_observable ? 1 : 0);
     if (q.zoom_ambiguous) v << " zoom_ambiguous:" << *q.zoom_ambiguous;
     if (q.zoom_ambiguous.value_or(0) > 0 && q.ambiguous_zoom_kept)

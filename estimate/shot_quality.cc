@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <map>
 
@@ -13,12 +12,6 @@
 
 namespace hapcine {
 namespace {
-
-std::string Fixed(double v, int digits) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
 
 // The windows' figures per shot: inliers and correspondences summed, the
 // RMS pooled over observations.
@@ -129,7 +122,7 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
   std::string s = "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
                   std::to_string(q.last_frame) + "): doubtful: ";
   if (q.lost > 0) s += std::to_string(q.lost) + " of " + std::to_string(q.frames) + " frames lost, ";
-  return s + "median confidence " + Fixed(q.median_confidence, 2);
+  return s + "median confidence " + FormatFixed(q.median_confidence, 2);
 }
 
 std::string AmbiguousZoomLine(const ShotQuality& q) {
