@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <limits>
 
 #include "batch/content_hash.h"
 #include "batch/json_bytes.h"
@@ -159,17 +158,11 @@ const char* FilmStatusName(FilmStatus s) {
 void ReadShotQualityCounts(const std::string& camera_csv, FilmOutcome* o) {
   const std::vector<ShotQuality> shots = ReadShotQualityOfFile(camera_csv);
   if (shots.empty()) return;
-  int doubtful = 0, zoom_ambiguous = 0;
-  long long lost = 0;  // each count is an int; their sum may not be
-  for (const ShotQuality& q : shots) {
-    doubtful += q.doubtful ? 1 : 0;
-    zoom_ambiguous += q.zoom_ambiguous.value_or(0) > 0 ? 1 : 0;
-    lost += q.lost;
-  }
-  o->shots = static_cast<int>(shots.size());
-  o->doubtful_shots = doubtful;
-  o->zoom_ambiguous_shots = zoom_ambiguous;
-  o->lost_frames = static_cast<int>(std::min<long long>(lost, std::numeric_limits<int>::max()));
+  const ShotQualityCounts counts = CountShotQuality(shots);
+  o->shots = counts.shots;
+  o->doubtful_shots = counts.doubtful;
+  o->zoom_ambiguous_shots = counts.zoom_ambiguous;
+  o->lost_frames = counts.lost_frames;
 }
 
 nlohmann::json OutcomeToJson(const FilmOutcome& o) {

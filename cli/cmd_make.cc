@@ -123,14 +123,10 @@ void PrintSummary(const batch::MakeOptions& options, const batch::MakeResult& r,
   const batch::FilmLayout& l = r.layout;
   const fs::path dir(l.output_dir);
   const std::vector<ShotQuality> shots = ReadShotQualityOfFile((dir / l.camera).string());
-  int doubtful = 0, zoom_ambiguous = 0;
-  for (const ShotQuality& q : shots) {
-    doubtful += q.doubtful ? 1 : 0;
-    zoom_ambiguous += q.zoom_ambiguous.value_or(0) > 0 ? 1 : 0;
-  }
-  out << "make: " << options.film << ": " << shots.size() << " shot(s)";
-  if (doubtful > 0) out << ", " << doubtful << " doubtful";
-  if (zoom_ambiguous > 0) out << ", " << zoom_ambiguous << " zoom ambiguous";
+  const ShotQualityCounts counts = CountShotQuality(shots);
+  out << "make: " << options.film << ": " << counts.shots << " shot(s)";
+  if (counts.doubtful > 0) out << ", " << counts.doubtful << " doubtful";
+  if (counts.zoom_ambiguous > 0) out << ", " << counts.zoom_ambiguous << " zoom ambiguous";
   out << ", model " << options.model << ", " << FormatDuration(r.outcome.seconds) << "\n";
   for (const batch::StepRecord& s : r.outcome.steps) {
     out << "  " << std::left << std::setw(20) << s.name

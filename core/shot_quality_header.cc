@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "core/csv.h"
@@ -116,6 +117,19 @@ std::vector<ShotQuality> ReadShotQualityOfFile(const std::string& camera_csv) {
   CameraPath header;
   header.metadata = csv.metadata();
   return ReadShotQuality(header);
+}
+
+ShotQualityCounts CountShotQuality(const std::vector<ShotQuality>& shots) {
+  ShotQualityCounts c;
+  long long lost = 0;  // each count is an int; their sum may not be
+  for (const ShotQuality& q : shots) {
+    c.doubtful += q.doubtful ? 1 : 0;
+    c.zoom_ambiguous += q.zoom_ambiguous.value_or(0) > 0 ? 1 : 0;
+    lost += q.lost;
+  }
+  c.shots = static_cast<int>(shots.size());
+  c.lost_frames = static_cast<int>(std::min<long long>(lost, std::numeric_limits<int>::max()));
+  return c;
 }
 
 }  // namespace hapcine

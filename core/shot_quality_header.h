@@ -53,4 +53,13 @@ std::vector<ShotQuality> ReadShotQuality(const CameraPath& path);
 // read): empty when the file cannot be read or its header has no summary.
 std::vector<ShotQuality> ReadShotQualityOfFile(const std::string& camera_csv);
 
+// What `hapcine make` and the batch summary report of a film's shots.
+struct ShotQualityCounts {
+  int shots = 0;
+  int doubtful = 0;        // shots flagged doubtful
+  int zoom_ambiguous = 0;  // shots with some frame of an ambiguous zoom decision
+  int lost_frames = 0;     // summed over the shots, capped at the int maximum
+};
+ShotQualityCounts CountShotQuality(const std::vector<ShotQuality>& shots);
+
 }  // namespace hapcine

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace hapcine {
 namespace {
@@ -147,6 +148,28 @@ TEST(ShotQualityHeader, FromTheFileHeaderOnly) {
   EXPECT_TRUE(q[1].doubtful);
   std::remove(file.c_str());
   EXPECT_TRUE(ReadShotQualityOfFile(file).empty());  // no file: no summary
+}
+
+// A shot counts once however many of its frames were ambiguous; a zero
+// or unknown count is no ambiguity; the lost frames' sum stops at the int
+// maximum rather than wrap.
+TEST(ShotQualityHeader, Counts) {
+  EXPECT_EQ(CountShotQuality({}).shots, 0);
+  std::vector<ShotQuality> shots(4);
+  shots[0].doubtful = true;
+  shots[0].zoom_ambiguous = 12;
+  shots[1].zoom_ambiguous = 0;
+  shots[2].doubtful = true;
+  shots[2].zoom_ambiguous = 1;
+  shots[0].lost = shots[1].lost = std::numeric_limits<int>::max();
+  const ShotQualityCounts c = CountShotQuality(shots);
+  EXPECT_EQ(c.shots, 4);
+  EXPECT_EQ(c.doubtful, 2);
+  EXPECT_EQ(c.zoom_ambiguous, 2);
+  EXPECT_EQ(c.lost_frames, std::numeric_limits<int>::max());
+  shots[0].lost = 3;
+  shots[1].lost = 4;
+  EXPECT_EQ(CountShotQuality(shots).lost_frames, 7);
 }
 
 }  // namespace
