@@ -16,7 +16,7 @@ TEST(JsonBytesTest, Utf8TextStaysAPlainString) {
 
 TEST(JsonBytesTest, OtherBytesRoundTripThroughHex) {
   // A stray byte, a cut sequence, an overlong '/', a surrogate, past U+10FFFF.
-  for (const std::string text : {std::string("a\xff.mp4"), std::string("\xC3"),
+  for (const std::string& text : {std::string("a\xff.mp4"), std::string("\xC3"),
                                  std::string("\xC0\xAF"), std::string("\xED\xA0\x80"),
                                  std::string("\xF4\x90\x80\x80"), std::string("x\0y", 3)}) {
     const bool valid = IsValidUtf8(text);

@@ -26,7 +26,7 @@ TEST(HeaderValueTest, PlainTextIsUnchangedBothWays) {
 TEST(HeaderValueTest, RoundTripsEveryByteButNul) {
   std::string all;
   for (int c = 1; c < 256; ++c) all += static_cast<char>(c);
-  for (const std::string s : {all, std::string("film\nname.mp4"), std::string("a\r\n\\n"),
+  for (const std::string& s : {all, std::string("film\nname.mp4"), std::string("a\r\n\\n"),
                               std::string("\\"), std::string(" "), std::string("x\\"),
                               std::string("dir/tilting é\x1b[31m.mp4")}) {
     const std::string e = EscapeHeaderValue(s);

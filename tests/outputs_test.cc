@@ -172,7 +172,7 @@ TEST_F(OutputsTest, AFailingOutputLeavesNoneOfTheOthers) {
 
 TEST_F(OutputsTest, SymlinkOutputsReplaceTheirTargetAndStay) {
   fs::create_directories(work_ / "real");
-  for (const std::string& name : {"est.csv", "h.csv", "e.json", "t.txt", "p.mp4", "f.png"}) {
+  for (const char* name : {"est.csv", "h.csv", "e.json", "t.txt", "p.mp4", "f.png"}) {
     std::ofstream(work_ / "real" / name) << "old";
     fs::create_symlink(fs::path("real") / name, work_ / name);
   }
@@ -191,7 +191,7 @@ TEST_F(OutputsTest, SymlinkOutputsReplaceTheirTargetAndStay) {
   EXPECT_EQ(RunHapcine("plot haptic " + Quote(Track()) + " --format png -o " + Quote(work_ / "f"), work_)
                 .exit_code,
             0);
-  for (const std::string& name : {"est.csv", "h.csv", "e.json", "t.txt", "p.mp4", "f.png"}) {
+  for (const char* name : {"est.csv", "h.csv", "e.json", "t.txt", "p.mp4", "f.png"}) {
     EXPECT_TRUE(fs::is_symlink(work_ / name)) << name;
     EXPECT_NE(Slurp(work_ / "real" / name), "old") << name;
   }
@@ -240,8 +240,8 @@ TEST_F(OutputsTest, LongOutputNamesAreWritten) {
     const RunResult r = RunHapcine(args, work_);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
   }
-  for (const std::string& suffix : {".camera.csv", ".haptic.c", ".hjif", ".json", ".tum.txt",
-                                    ".png", ".svg"})
+  for (const char* suffix :
+       {".camera.csv", ".haptic.c", ".hjif", ".json", ".tum.txt", ".png", ".svg"})
     EXPECT_TRUE(fs::exists(base.string() + suffix)) << suffix;
 }
 
