@@ -2,80 +2,45 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
-#include "core/rotation.h"
+#include "estimate/window/window_test_scene.h"
 
 namespace hapcine {
 namespace {
 
-constexpr double kPx = 1.0 / 960;  // one pixel at 960 px width, normalised units
-constexpr double kFocal = 0.6;     // about 80 degrees of view
+using window_test::kFocal;
+using window_test::TestWindow;
 
-// A window of `n` keyframes moving 0.3 along the heading and turning by
-// `turn_deg` per keyframe (OpenCV axes); one focal shared by every keyframe,
-// the first pose held.
-std::vector<BaCamera> Cameras(int n, double turn_deg) {
-  std::vector<BaCamera> cams(n);
-  for (int k = 0; k < n; ++k) {
-    cams[k].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(k * turn_deg * kPi / 180, Eigen::Vector3d::UnitY()));
-    cams[k].log_focal = std::log(kFocal);
-    if (k > 0) {
-      cams[k].center = cams[k - 1].center + cams[k - 1].world_from_cam * Eigen::Vector3d(0.05, 0, 0.3);
-      cams[k].focal_source = k - 1;
-    }
-  }
-  cams[0].fixed = true;
-  return cams;
-}
-
-struct Window {
-  std::vector<BaCamera> cams;
-  std::vector<BaPoint> points;
-  std::vector<BaObservation> obs;
-  BaOptions ba;
-};
-
-// Points 4-30 units ahead seen by the keyframes with Gaussian noise of
-// `noise_px`, solved from the truth.
-Window SolvedWindow(double turn_deg, double noise_px, unsigned seed) {
-  Window w;
-  w.cams = Cameras(8, turn_deg);
+// A window of 8 keyframes turning by `turn_deg` per keyframe, and points
+// 4-30 units ahead seen by them with Gaussian noise of `noise_px`, solved
+// from the truth.
+TestWindow SolvedWindow(double turn_deg, double noise_px, unsigned seed) {
+  TestWindow w;
+  w.cams = window_test::MovingCameras(8, turn_deg);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1), depth(4, 30);
-  std::normal_distribution<double> noise(0, noise_px * kPx);
+  std::normal_distribution<double> noise(0, noise_px * window_test::kPx);
   for (int id = 0; id < 300; ++id) {
     const double z = depth(rng);
     const Eigen::Vector3d X(u(rng) * z, 0.3 * u(rng) * z, z);
     const int point = static_cast<int>(w.points.size());
-    int seen = 0;
+    std::vector<BaObservation> track;
     for (size_t k = 0; k < w.cams.size(); ++k) {
-      const Eigen::Vector3d p = w.cams[k].world_from_cam.conjugate() * (X - w.cams[k].center);
-      if (p.z() < 0.5) continue;
-      const Eigen::Vector2d uv = kFocal * p.head<2>() / p.z();
-      if (uv.cwiseAbs().maxCoeff() >= 0.5) continue;
-      w.obs.push_back({static_cast<int>(k), point, uv + Eigen::Vector2d(noise(rng), noise(rng))});
-      ++seen;
+      const std::optional<Eigen::Vector2d> uv = window_test::SeenAt(w.cams[k], X);
+      if (!uv) continue;
+      const Eigen::Vector2d error(noise(rng), noise(rng));
+      track.push_back(window_test::Observation(static_cast<int>(k), point, *uv + error));
     }
-    if (seen < 2) {
-      w.obs.resize(w.obs.size() - seen);
-      continue;
-    }
-    BaPoint pt;
-    pt.homogeneous = Eigen::Vector4d(X.x(), X.y(), X.z(), 1).normalized();
-    w.points.push_back(pt);
+    window_test::AddPoint(X, track, &w);
   }
-  w.ba.focal_prior_log = std::log(kFocal);
-  w.ba.scale_a = 0;
-  w.ba.scale_b = 1;
-  w.ba.scale_distance = (w.cams[1].center - w.cams[0].center).norm();
+  w.ba = window_test::WindowOptions(w.cams);
   EXPECT_TRUE(SolveBundle(&w.cams, &w.points, w.obs, w.ba).success);
   return w;
 }
 
-FocalProfile ProfileOf(const Window& w) {
+FocalProfile ProfileOf(const TestWindow& w) {
   return ProfileFocal(w.ba, w.cams, w.points, w.obs, DefaultFocalProfileShifts());
 }
 
@@ -100,7 +65,7 @@ TEST(FocalProfile, ParabolaNeedsThreeDistinctFinitePoints) {
 // A turning, translating window pins its focal: the profile's minimum is at
 // the solution and the truth lies within a few standard errors.
 TEST(FocalProfile, TurningWindowPinsTheFocal) {
-  const Window w = SolvedWindow(3.0, 1.0, 5);
+  const TestWindow w = SolvedWindow(3.0, 1.0, 5);
   const FocalProfile prof = ProfileOf(w);
   ASSERT_EQ(prof.chi2.size(), DefaultFocalProfileShifts().size());
   ASSERT_EQ(prof.errors.size(), prof.chi2.size());

@@ -2,21 +2,23 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <random>
 
-#include "core/rotation.h"
+#include "estimate/window/window_test_scene.h"
 
 namespace hapcine {
 namespace {
 
-constexpr double kPx = 1.0 / 960;  // one pixel at 960 px width, normalised units
-constexpr double kFocal = 0.6;     // about 80 degrees of view
+using window_test::kFocal;
+using window_test::kPx;
 constexpr int kFramesPerKeyframe = 5;
 
 TEST(ObservationAgesTest, FramesSinceThePointsEarliestObservation) {
-  const std::vector<BaObservation> obs = {{1, 0, {}}, {2, 0, {}}, {0, 1, {}}, {2, 1, {}}, {3, 0, {}}};
+  using window_test::Observation;
+  const std::vector<BaObservation> obs = {Observation(1, 0), Observation(2, 0), Observation(0, 1),
+                                          Observation(2, 1), Observation(3, 0)};
   const std::vector<int> pos = {10, 15, 22, 30};
   EXPECT_EQ(ObservationAges(obs, pos), (std::vector<int>{0, 7, 0, 12, 15}));
 }
@@ -74,65 +76,41 @@ TEST(ApplyDriftWeightsTest, SigmaOfAgeOverSigmaAtZero) {
   EXPECT_DOUBLE_EQ(obs[2].noise_scale, 2.0);
 }
 
-// A translating, turning window of 12 keyframes (5 frames apart), one
-// focal shared by all, the first pose held. Each track is followed from
-// its first keyframe with a KLT-like error: matching noise `s0_px` plus a
-// random walk of `q_px` per sqrt(frame) started there.
-struct Window {
-  std::vector<BaCamera> cams, truth;
-  std::vector<BaPoint> points;
-  std::vector<BaObservation> obs;
-  std::vector<int> pos;
-  BaOptions ba;
+// A translating, turning window of 12 keyframes (5 frames apart). Each
+// track is followed from its first keyframe with a KLT-like error: matching
+// noise `s0_px` plus a random walk of `q_px` per sqrt(frame) started there.
+struct Window : window_test::TestWindow {
+  std::vector<int> pos;  // each keyframe's frame
 };
 
 Window DriftingWindow(double s0_px, double q_px, unsigned seed) {
   Window w;
   const int n = 12;
-  w.cams.resize(n);
-  for (int k = 0; k < n; ++k) {
-    w.cams[k].world_from_cam = Eigen::Quaterniond(Eigen::AngleAxisd(k * 1.5 * kPi / 180, Eigen::Vector3d::UnitY()));
-    w.cams[k].log_focal = std::log(kFocal);
-    if (k > 0) {
-      w.cams[k].center = w.cams[k - 1].center + w.cams[k - 1].world_from_cam * Eigen::Vector3d(0.05, 0, 0.3);
-      w.cams[k].focal_source = k - 1;
-    }
-    w.pos.push_back(k * kFramesPerKeyframe);
-  }
-  w.cams[0].fixed = true;
-  w.truth = w.cams;
+  w.cams = window_test::MovingCameras(n, 1.5);
+  for (int k = 0; k < n; ++k) w.pos.push_back(k * kFramesPerKeyframe);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1), depth(4, 30);
   std::uniform_int_distribution<int> start(0, n - 3);
   std::normal_distribution<double> unit(0, 1);
+  const double step = q_px * kPx * std::sqrt(double(kFramesPerKeyframe));  // the walk per keyframe
   for (int id = 0; id < 300; ++id) {
     const double z = depth(rng);
     const int first = start(rng);
-    const Eigen::Vector3d X = w.cams[first].center + w.cams[first].world_from_cam * Eigen::Vector3d(u(rng) * z * 0.8, 0.3 * u(rng) * z, z);
+    const Eigen::Vector3d in_first(u(rng) * z * 0.8, 0.3 * u(rng) * z, z);  // first keyframe's axes
+    const Eigen::Vector3d X = w.cams[first].center + w.cams[first].world_from_cam * in_first;
     const int point = static_cast<int>(w.points.size());
     Eigen::Vector2d walk = Eigen::Vector2d::Zero();
-    int seen = 0;
+    std::vector<BaObservation> track;
     for (int k = first; k < n; ++k) {
-      const Eigen::Vector3d p = w.cams[k].world_from_cam.conjugate() * (X - w.cams[k].center);
-      if (p.z() < 0.5) break;
-      const Eigen::Vector2d uv = kFocal * p.head<2>() / p.z();
-      if (uv.cwiseAbs().maxCoeff() >= 0.5) break;
-      if (seen > 0) walk += q_px * kPx * std::sqrt(double(kFramesPerKeyframe)) * Eigen::Vector2d(unit(rng), unit(rng));
-      w.obs.push_back({k, point, uv + walk + s0_px * kPx * Eigen::Vector2d(unit(rng), unit(rng))});
-      ++seen;
+      const std::optional<Eigen::Vector2d> uv = window_test::SeenAt(w.cams[k], X);
+      if (!uv) break;  // a lost track is not found again
+      if (!track.empty()) walk += step * Eigen::Vector2d(unit(rng), unit(rng));
+      const Eigen::Vector2d noise = s0_px * kPx * Eigen::Vector2d(unit(rng), unit(rng));
+      track.push_back(window_test::Observation(k, point, *uv + walk + noise));
     }
-    if (seen < 2) {
-      w.obs.resize(w.obs.size() - seen);
-      continue;
-    }
-    BaPoint pt;
-    pt.homogeneous = Eigen::Vector4d(X.x(), X.y(), X.z(), 1).normalized();
-    w.points.push_back(pt);
+    window_test::AddPoint(X, track, &w);
   }
-  w.ba.focal_prior_log = std::log(kFocal);
-  w.ba.scale_a = 0;
-  w.ba.scale_b = 1;
-  w.ba.scale_distance = (w.cams[1].center - w.cams[0].center).norm();
+  w.ba = window_test::WindowOptions(w.cams);
   return w;
 }
 
