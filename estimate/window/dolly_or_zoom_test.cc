@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "estimate/window/window_test_scene.h"
+
 namespace hapcine {
 namespace {
 
@@ -64,7 +66,9 @@ TEST(DollyOrZoom, ExtraParametersCountCentresDepthsLessZoomsAndTheScale) {
   const std::vector<M> dolly{M::kStatic, M::kGeneral, M::kGeneral, M::kStatic};
   // Point 0 seen by cameras 0-1 (spans the interval ending at 1), point 1
   // by 2-3 only (a static interval), point 2 by camera 1 alone.
-  const std::vector<BaObservation> obs{{0, 0, {}}, {1, 0, {}}, {2, 1, {}}, {3, 1, {}}, {1, 2, {}}};
+  using window_test::Observation;
+  const std::vector<BaObservation> obs{Observation(0, 0), Observation(1, 0), Observation(2, 1),
+                                       Observation(3, 1), Observation(1, 2)};
   // 2 centres (6) - 1 zoom + 1 depth - 1 scale.
   EXPECT_EQ(DollyExtraParameters(zoom, dolly, obs), 5);
   EXPECT_EQ(DollyExtraParameters(zoom, zoom, obs), 0);  // nothing changes: no scale either
