@@ -17,20 +17,13 @@
 #include "tests/run_hapcine.h"
 
 namespace fs = std::filesystem;
+using hapcine_test::LastLine;
 using hapcine_test::Quote;
 using hapcine_test::RunHapcine;
 using hapcine_test::RunResult;
 using hapcine_test::Slurp;
 
 namespace {
-
-std::string LastLine(const std::string& text) {
-  std::istringstream in(text);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
 
 // Names in `dir` (not recursive) other than the ones listed.
 std::vector<std::string> OtherNames(const fs::path& dir, const std::vector<std::string>& known) {

@@ -23,21 +23,12 @@
 #include "tests/run_hapcine.h"
 
 namespace fs = std::filesystem;
+using hapcine_test::LastLine;
 using hapcine_test::Quote;
 using hapcine_test::RunHapcine;
 using hapcine_test::RunResult;
 
 namespace {
-
-
-// Last non-empty line of a text (progress output may come before an error).
-std::string LastLine(const std::string& text) {
-  std::istringstream in(text);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
 
 // Files in `dir` whose name starts with `stem`, and output temporaries
 // (".<pid>-<n>-<host>.hapcine-tmp", core/output_files.h).

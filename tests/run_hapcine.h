@@ -46,4 +46,13 @@ inline RunResult RunHapcine(const std::string& args, const std::filesystem::path
 
 inline std::string Quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
+// Last non-empty line of a text (progress output may come before an error).
+inline std::string LastLine(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
 }  // namespace hapcine_test
