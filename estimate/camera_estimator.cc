@@ -274,6 +274,16 @@ class LensFromWindows {
   bool focal_was_observable_ = false;
 };
 
+// hold_focal: no window calibrates the focal (it stays at the prior).
+// keep_windows: solved windows kept for the lens (lens_bundle.h).
+std::unique_ptr<TrackCameraEstimator> NewEstimator(const EstimatorOptions& options, const VideoInfo& info,
+                                                   bool hold_focal, int keep_windows, Diagnostics* diagnostics) {
+  TrackEstimatorOptions o = StillsAware(options, info);
+  if (hold_focal) o.min_rotation_for_focal_deg = std::numeric_limits<double>::infinity();
+  o.keep_solved_windows = keep_windows;
+  return std::make_unique<TrackCameraEstimator>(info.width, info.height, o, diagnostics);
+}
+
 // Tracking runs on its own thread, estimation (bundle-adjustment windows,
 // which arrive in bursts) on this one, with a bounded queue of FrameTracks
 // between them: on two cores the stages overlap instead of adding up. The
@@ -283,17 +293,12 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
                             const ProgressFn& progress) {
   const VideoInfo& info = source.info();
   FeatureTracker tracker(StillsAware(options.tracker, info), options.diagnostics);
-  // hold_focal: no window calibrates the focal (it stays at the prior).
   // The first estimator's window records wait for the lens decision.
   HeldWindowRecords first_run_records(options.diagnostics);
-  auto new_estimator = [&](bool hold_focal, bool first) {
-    TrackEstimatorOptions o = StillsAware(options, info);
-    if (hold_focal) o.min_rotation_for_focal_deg = std::numeric_limits<double>::infinity();
-    o.keep_solved_windows = first && options.lens_bundle ? options.lens_bundle_windows : 0;
-    Diagnostics* d = first && options.lens_bundle ? &first_run_records : options.diagnostics;
-    return std::make_unique<TrackCameraEstimator>(info.width, info.height, o, d);
-  };
-  std::unique_ptr<TrackCameraEstimator> estimator = new_estimator(false, true);
+  const bool measure_lens = options.lens_bundle;
+  std::unique_ptr<TrackCameraEstimator> estimator =
+      NewEstimator(options, info, false, measure_lens ? options.lens_bundle_windows : 0,
+                   measure_lens ? &first_run_records : options.diagnostics);
   // Which stage of the estimation thread is on the critical path after
   // tracking ends (docs/estimate.md "Speed").
   StageLog stages(options.diagnostics);
@@ -328,7 +333,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   // a translating window's focal looks observable and is not (docs/estimate.md).
   auto replay = [&] {
     first_run_records.Release(false);
-    estimator = new_estimator(!lens_bundle.focal_was_observable(), false);
+    estimator = NewEstimator(options, info, !lens_bundle.focal_was_observable(), 0, options.diagnostics);
     for (const FrameTracks& t : lens_bundle.TakeFrames()) estimator->AddFrame(t);
   };
   auto estimate = [&](FrameTracks& tracks) {
