@@ -151,6 +151,7 @@ bool Solve(const SolvedWindow& w, int width, int height, bool free_k1, double ma
   options.linear_solver_type = ceres::DENSE_SCHUR;
   options.max_num_iterations = kIterations;
   options.num_threads = 1;
+  options.logging_type = ceres::SILENT;  // algorithms print nothing (a step behind a camera warned)
   options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-12;
   ceres::Solver::Summary summary;
