@@ -21,6 +21,9 @@ constexpr double kMinSigmas = 2;
 constexpr double kChi2Cap = 16;
 constexpr int kIterations = 100;
 constexpr int kDistortIterations = 8;
+// Windows that must pay for their own k1 before the pooled one is kept: a
+// lens confirmed by at least one other window.
+constexpr int kMinPayingWindows = 2;
 
 // Residual of one observation: the point projected by the camera (focal
 // constant) and distorted by k1, minus the observation, in units of
@@ -249,8 +252,11 @@ LensAgreement EstimateK1InWindows(const std::vector<SolvedWindow>& windows, int 
   LensAgreement out;
   double weight_sum = 0, weighted_k1 = 0;
   bool inside = true;
-  for (const SolvedWindow& w : windows) {
-    out.windows.push_back(EstimateK1InWindow(w, width, height, max_abs_k1));
+  for (size_t i = 0; i < windows.size(); ++i) {
+    // Two windows must pay for their own k1: once too few are left for
+    // that, the rest cannot change the decision and are not measured.
+    if (out.significant + static_cast<int>(windows.size() - i) < kMinPayingWindows) break;
+    out.windows.push_back(EstimateK1InWindow(windows[i], width, height, max_abs_k1));
     const LensBundleEstimate& e = out.windows.back();
     // A window whose k1 has no profile (no gain) measures nothing.
     if (!e.solved || e.track_sigma_k1 <= 0) continue;
@@ -272,7 +278,7 @@ LensAgreement EstimateK1InWindows(const std::vector<SolvedWindow>& windows, int 
     out.same_sign = out.same_sign && e.best_k1 * out.pooled_k1 > 0;
   }
   out.spread_limit = Chi2Quantile95(out.measuring - 1);
-  if (out.significant >= 2 && out.same_sign && out.spread_chi2 <= out.spread_limit && inside &&
+  if (out.significant >= kMinPayingWindows && out.same_sign && out.spread_chi2 <= out.spread_limit && inside &&
       std::abs(out.pooled_k1) >= kMinLensK1)
     out.k1 = out.pooled_k1;
   return out;

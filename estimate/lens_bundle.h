@@ -74,7 +74,8 @@ struct LensAgreement {
 // with a standard error agrees (track_sigma_k1: spread_chi2 <= spread_limit,
 // same sign) and the pooled k1 is at least 0.005 and inside the range. A
 // lens comes back in every window; one window's k1 alone is not kept (no
-// other window confirmed it).
+// other window confirmed it). Windows are measured in order until too few
+// are left to reach two that pay (`windows` holds those measured).
 LensAgreement EstimateK1InWindows(const std::vector<SolvedWindow>& windows, int width, int height,
                                   double max_abs_k1 = 0.25);
 
