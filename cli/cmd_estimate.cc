@@ -128,9 +128,16 @@ void AddModelOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
                "and undistort the tracks with it where it pays for itself (header k1=; "
                "docs/estimate.md \"Lens distortion\")");
   app.add_flag("--lens-bundle,!--no-lens-bundle", opt->lens_bundle,
-               "measure k1 in a bundle adjustment of the first window (rigid points over many "
-               "views: translating footage too); where it pays for itself the estimation starts "
-               "again with the tracks undistorted (header k1=; docs/estimate.md \"Lens distortion\")");
+               "measure k1 in a bundle adjustment of each of the first shot's first windows "
+               "(--lens-windows; rigid points over many views); where two windows pay for their own "
+               "k1 and all agree the estimation starts again with the tracks undistorted by the "
+               "pooled k1 (header k1=; docs/estimate.md \"Lens distortion\")");
+  app.add_option("--lens-windows", opt->lens_bundle_windows,
+                 "--lens-bundle measures k1 in each of the first shot's first N windows and keeps it "
+                 "only where they agree (same sign, within their standard errors); 1: the first "
+                 "window alone")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 8));
   app.add_option("--lens-k1", opt->lens_k1,
                  "a known radial distortion coefficient (ffmpeg lenscorrection's k1: r in "
                  "half-diagonals, barrel > 0): every track is undistorted with it, none is estimated")

@@ -29,6 +29,7 @@ void EstimatorOptions::Check() const {
   // Each is a whole source of k1; two would undistort the tracks twice.
   if ((lens_k1 != 0) + lens_distortion + lens_bundle > 1)
     throw UsageError("lens distortion, lens bundle and a known lens k1 exclude each other: choose one");
+  if (lens_bundle_windows < 1 || lens_bundle_windows > 8) throw UsageError("lens windows must be within [1, 8]");
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
   if (backend == "colmap" && frames.skip_nonref_frames)
     throw UsageError("skipping non-reference frames is for the hapcine backend only");
@@ -172,56 +173,116 @@ class LensUndistorter {
   double k1_ = 0;
 };
 
-// Keeps the frames until the estimator has solved its first window, then
-// measures k1 on that window (lens_bundle.h). Where k1 pays for itself the
-// caller starts a new estimator and replays the kept frames undistorted:
-// the cost of a second first window falls only on footage with a lens to
-// correct, and the estimation overlaps tracking as without it.
-class LensFromFirstWindow {
+// The first estimator's "window" records, held until the lens is decided:
+// dropped when the estimation starts again undistorted (the report lists
+// the run's own windows only), passed on otherwise. Estimation thread only.
+class HeldWindowRecords : public Diagnostics {
  public:
-  LensFromFirstWindow(bool enabled, int width, int height, Diagnostics* diagnostics)
-      : watching_(enabled), width_(width), height_(height), diagnostics_(diagnostics) {}
+  explicit HeldWindowRecords(Diagnostics* sink) : sink_(sink) {}
+  bool Wants(const std::string& kind) const override { return hapcine::Wants(sink_, kind); }
+  void Record(const std::string& kind, nlohmann::json fields) override {
+    if (holding_ && kind == "window") held_.emplace_back(kind, std::move(fields));
+    else hapcine::Record(sink_, kind, std::move(fields));
+  }
+  // pass_on: the records go to the sink; else they are dropped. Later ones pass.
+  void Release(bool pass_on) {
+    if (pass_on)
+      for (auto& [kind, fields] : held_) hapcine::Record(sink_, kind, std::move(fields));
+    held_.clear();
+    holding_ = false;
+  }
+
+ private:
+  Diagnostics* sink_;
+  bool holding_ = true;
+  std::vector<std::pair<std::string, nlohmann::json>> held_;
+};
+
+nlohmann::json LensBundleJson(const LensBundleEstimate& e) {
+  return {{"k1", e.k1},
+          {"best_k1", e.best_k1},
+          {"chi2_gain", e.chi2_gain},
+          {"penalty", e.penalty},
+          {"sigma_k1", e.sigma_k1},
+          {"track_sigma_k1", e.track_sigma_k1},
+          {"noise_px", e.noise_px},
+          {"observations", e.observations},
+          {"points", e.points}};
+}
+
+// Keeps the frames until the estimator has solved the first shot's first
+// windows (or the shot ended), then measures k1 on them (lens_bundle.h:
+// one window alone, or several that must agree). Where k1 is kept the
+// caller starts a new estimator and replays the kept frames undistorted:
+// the cost of a second start falls only on footage with a lens to correct,
+// and the estimation overlaps tracking as without it.
+class LensFromWindows {
+ public:
+  LensFromWindows(bool enabled, int windows, int width, int height, Diagnostics* diagnostics)
+      : watching_(enabled), windows_(windows), width_(width), height_(height), diagnostics_(diagnostics) {}
 
   // After `tracks` went to `estimator`: true when k1 was found now (then
   // TakeFrames() holds every frame so far, undistorted).
   bool Watch(const FrameTracks& tracks, const TrackCameraEstimator& estimator) {
     if (!watching_) return false;
     kept_.push_back(tracks);
-    return Decide(estimator);
+    return estimator.solved_windows_complete() && Decide(estimator);
   }
 
-  // At the end, when the first window was solved only by Finish().
+  // When the windows are in, or at the end with those solved by then.
   bool Decide(const TrackCameraEstimator& estimator) {
-    if (!watching_ || estimator.reports().empty()) return false;
+    if (!watching_) return false;
     watching_ = false;
-    if (!estimator.first_window()) {  // the first window failed: nothing to measure
-      kept_.clear();
-      return false;
-    }
-    const LensBundleEstimate e = EstimateK1InWindow(*estimator.first_window(), width_, height_);
-    Record(diagnostics_, "lens_distortion",
-           {{"method", "bundle"}, {"k1", e.k1}, {"best_k1", e.best_k1}, {"chi2_gain", e.chi2_gain},
-            {"penalty", e.penalty}, {"sigma_k1", e.sigma_k1}, {"noise_px", e.noise_px},
-            {"observations", e.observations}, {"focal_observable", estimator.first_window()->focal_observable}});
-    k1_ = e.k1;
-    focal_was_observable_ = estimator.first_window()->focal_observable;
+    const std::vector<SolvedWindow>& solved = estimator.solved_windows();
+    if (!solved.empty()) Measure(solved);
     if (k1_ == 0) kept_.clear();
     for (FrameTracks& t : kept_) UndistortTracks(k1_, width_, height_, &t);
     return k1_ != 0;
   }
 
   std::vector<FrameTracks> TakeFrames() { return std::move(kept_); }
+  bool watching() const { return watching_; }
   double k1() const { return k1_; }
   bool focal_was_observable() const { return focal_was_observable_; }
 
  private:
+  void Measure(const std::vector<SolvedWindow>& solved) {
+    focal_was_observable_ = solved.front().focal_observable;
+    nlohmann::json j = {{"method", "bundle"}, {"focal_observable", focal_was_observable_}};
+    if (windows_ <= 1) {
+      const LensBundleEstimate e = EstimateK1InWindow(solved.front(), width_, height_);
+      j.update(LensBundleJson(e));
+      k1_ = e.k1;
+    } else {
+      const LensAgreement a = EstimateK1InWindows(solved, width_, height_);
+      j.update({{"k1", a.k1}, {"best_k1", a.pooled_k1}, {"sigma_k1", a.sigma}, {"spread_chi2", a.spread_chi2},
+                {"spread_limit", a.spread_limit}, {"measuring_windows", a.measuring}, {"significant_windows", a.significant},
+                {"same_sign", a.same_sign}});
+      j["windows"] = nlohmann::json::array();
+      for (const LensBundleEstimate& e : a.windows) j["windows"].push_back(LensBundleJson(e));
+      k1_ = a.k1;
+    }
+    Record(diagnostics_, "lens_distortion", std::move(j));
+  }
+
   bool watching_;
+  int windows_;
   int width_, height_;
   Diagnostics* diagnostics_;
   std::vector<FrameTracks> kept_;
   double k1_ = 0;
   bool focal_was_observable_ = false;
 };
+
+// hold_focal: no window calibrates the focal (it stays at the prior).
+// keep_windows: solved windows kept for the lens (lens_bundle.h).
+std::unique_ptr<TrackCameraEstimator> NewEstimator(const EstimatorOptions& options, const VideoInfo& info,
+                                                   bool hold_focal, int keep_windows, Diagnostics* diagnostics) {
+  TrackEstimatorOptions o = StillsAware(options, info);
+  if (hold_focal) o.min_rotation_for_focal_deg = std::numeric_limits<double>::infinity();
+  o.keep_solved_windows = keep_windows;
+  return std::make_unique<TrackCameraEstimator>(info.width, info.height, o, diagnostics);
+}
 
 // Tracking runs on its own thread, estimation (bundle-adjustment windows,
 // which arrive in bursts) on this one, with a bounded queue of FrameTracks
@@ -232,13 +293,12 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
                             const ProgressFn& progress) {
   const VideoInfo& info = source.info();
   FeatureTracker tracker(StillsAware(options.tracker, info), options.diagnostics);
-  // hold_focal: no window calibrates the focal (it stays at the prior).
-  auto new_estimator = [&](bool hold_focal) {
-    TrackEstimatorOptions o = StillsAware(options, info);
-    if (hold_focal) o.min_rotation_for_focal_deg = std::numeric_limits<double>::infinity();
-    return std::make_unique<TrackCameraEstimator>(info.width, info.height, o, options.diagnostics);
-  };
-  std::unique_ptr<TrackCameraEstimator> estimator = new_estimator(false);
+  // The first estimator's window records wait for the lens decision.
+  HeldWindowRecords first_run_records(options.diagnostics);
+  const bool measure_lens = options.lens_bundle;
+  std::unique_ptr<TrackCameraEstimator> estimator =
+      NewEstimator(options, info, false, measure_lens ? options.lens_bundle_windows : 0,
+                   measure_lens ? &first_run_records : options.diagnostics);
   // Which stage of the estimation thread is on the critical path after
   // tracking ends (docs/estimate.md "Speed").
   StageLog stages(options.diagnostics);
@@ -267,11 +327,13 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     }
   });
   LensUndistorter lens(options.lens_distortion, info.width, info.height, options.diagnostics);
-  LensFromFirstWindow lens_bundle(options.lens_bundle, info.width, info.height, options.diagnostics);
+  LensFromWindows lens_bundle(options.lens_bundle, options.lens_bundle_windows, info.width, info.height,
+                              options.diagnostics);
   // A focal the first window could not observe stays unobserved: undistorted,
   // a translating window's focal looks observable and is not (docs/estimate.md).
   auto replay = [&] {
-    estimator = new_estimator(!lens_bundle.focal_was_observable());
+    first_run_records.Release(false);
+    estimator = NewEstimator(options, info, !lens_bundle.focal_was_observable(), 0, options.diagnostics);
     for (const FrameTracks& t : lens_bundle.TakeFrames()) estimator->AddFrame(t);
   };
   auto estimate = [&](FrameTracks& tracks) {
@@ -280,6 +342,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     UndistortTracks(options.lens_k1 != 0 ? options.lens_k1 : lens_bundle.k1(), info.width, info.height, &tracks);
     estimator->AddFrame(tracks);
     if (lens_bundle.Watch(tracks, *estimator)) replay();
+    else if (!lens_bundle.watching()) first_run_records.Release(true);
   };
   try {
     FrameTracks tracks;
@@ -296,10 +359,11 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   tracking.join();
   stages.Stage("all frames estimated, last window next");
   CameraPath path = estimator->Finish();
-  if (lens_bundle.Decide(*estimator)) {  // a short clip: its first window closed only now
+  if (lens_bundle.Decide(*estimator)) {  // a short clip: its windows closed only now
     replay();
     path = estimator->Finish();
   }
+  first_run_records.Release(true);  // no-op once released
   const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most (Check)
   if (k1 != 0) path.metadata["k1"] = Num(k1);
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);

@@ -37,6 +37,9 @@ struct EstimatorOptions {
   // again from the first frame with the tracks undistorted (header k1=).
   // Not with lens_distortion or lens_k1 (Check()).
   bool lens_bundle = false;
+  // Windows of the first shot it measures k1 in: 1, that window's own test;
+  // more, each window's k1 must agree with the others' (lens_bundle.h).
+  int lens_bundle_windows = 3;
   // A known coefficient (lens_distortion.h's convention): every track is
   // undistorted with it, nothing is estimated; 0 = none.
   double lens_k1 = 0;

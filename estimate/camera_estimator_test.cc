@@ -94,6 +94,16 @@ TEST(EstimatorOptions, OneSourceOfLensDistortion) {
   EXPECT_THROW(o.Check(), UsageError);
 }
 
+TEST(EstimatorOptions, LensWindowsInRange) {
+  EstimatorOptions o;
+  o.lens_bundle_windows = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.lens_bundle_windows = 9;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.lens_bundle_windows = 1;
+  EXPECT_NO_THROW(o.Check());
+}
+
 TEST(EstimateCameraPath, EveryFrameInOrderWithProgressOnTheCallersThread) {
   PanSource source(30);
   EstimatorOptions options;

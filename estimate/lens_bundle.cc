@@ -21,6 +21,9 @@ constexpr double kMinSigmas = 2;
 constexpr double kChi2Cap = 16;
 constexpr int kIterations = 100;
 constexpr int kDistortIterations = 8;
+// Windows that must pay for their own k1 before the pooled one is kept: a
+// lens confirmed by at least one other window.
+constexpr int kMinPayingWindows = 2;
 
 // Residual of one observation: the point projected by the camera (focal
 // constant) and distorted by k1, minus the observation, in units of
@@ -93,13 +96,13 @@ LensProblem Parameters(const SolvedWindow& w) {
   return p;
 }
 
-// The free camera whose centre is farthest from the first's (the origin), or -1.
+// The camera whose centre is farthest from the first's (the origin), or -1.
 int ScaleCamera(const SolvedWindow& w, const LensProblem& p) {
   int farthest = -1;
   double far = 1e-9;
   for (size_t i = 1; i < w.cameras.size(); ++i) {
     const double d = Eigen::Vector3d(p.c[i][0], p.c[i][1], p.c[i][2]).norm();
-    if (!w.cameras[i].fixed && d > far) far = d, farthest = static_cast<int>(i);
+    if (d > far) far = d, farthest = static_cast<int>(i);
   }
   return farthest;
 }
@@ -120,15 +123,15 @@ bool Solve(const SolvedWindow& w, int width, int height, bool free_k1, double ma
     problem.AddResidualBlock(cost, new ceres::HuberLoss(1.0), p->q[o.camera].data(), p->c[o.camera].data(),
                              p->x[o.point].data(), p->lens.data());
   }
-  // The first camera and the held ones are the gauge, and the scale: unless
-  // two held cameras fix it, the farthest centre stays as far.
-  int held = 1;
-  for (size_t i = 1; i < w.cameras.size(); ++i) held += w.cameras[i].fixed;
-  const int scale_camera = w.use_depth && held < 2 ? ScaleCamera(w, *p) : -1;
+  // The first camera is the gauge, and the scale: the farthest centre stays
+  // as far. The window's other held cameras (its overlap with the previous
+  // window) are free: solved at k1 = 0 they carry that window's lens error,
+  // and each window must measure k1 on its own (EstimateK1InWindows).
+  const int scale_camera = w.use_depth ? ScaleCamera(w, *p) : -1;
   for (size_t i = 0; i < w.cameras.size(); ++i) {
     if (!problem.HasParameterBlock(p->q[i].data())) continue;
     problem.SetManifold(p->q[i].data(), new ceres::EigenQuaternionManifold);
-    if (i == 0 || w.cameras[i].fixed) {
+    if (i == 0) {
       problem.SetParameterBlockConstant(p->q[i].data());
       problem.SetParameterBlockConstant(p->c[i].data());
     } else if (!w.use_depth) {
@@ -151,6 +154,7 @@ bool Solve(const SolvedWindow& w, int width, int height, bool free_k1, double ma
   options.linear_solver_type = ceres::DENSE_SCHUR;
   options.max_num_iterations = kIterations;
   options.num_threads = 1;
+  options.logging_type = ceres::SILENT;  // algorithms print nothing (a step behind a camera warned)
   options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-12;
   ceres::Solver::Summary summary;
@@ -177,6 +181,14 @@ double NoiseSigma(const std::vector<Eigen::Vector2d>& r, double floor) {
   std::vector<double> a;
   for (const auto& e : r) a.push_back(std::abs(e.x())), a.push_back(std::abs(e.y()));
   return a.empty() ? floor : std::max(floor, 1.4826 * Median(a));
+}
+
+int PointsObserved(const SolvedWindow& w) {
+  std::vector<bool> seen(w.points.size(), false);
+  int n = 0;
+  for (const BaObservation& o : w.observations)
+    if (o.point >= 0 && o.point < static_cast<int>(seen.size()) && !seen[o.point]) seen[o.point] = true, ++n;
+  return n;
 }
 
 double CappedChi2(const std::vector<Eigen::Vector2d>& r, double sigma) {
@@ -214,9 +226,61 @@ LensBundleEstimate EstimateK1InWindow(const SolvedWindow& window, int width, int
   out.chi2_gain = CappedChi2(at_zero, sigma) - CappedChi2(at_k1, sigma);
   out.penalty = std::max(std::log(2.0 * at_k1.size()), kMinSigmas * kMinSigmas);
   out.sigma_k1 = out.chi2_gain > 0 ? std::abs(free.lens[0]) / std::sqrt(out.chi2_gain) : 0;
+  out.points = PointsObserved(window);
+  if (out.points > 0) out.track_sigma_k1 = out.sigma_k1 * std::sqrt(double(out.observations) / out.points);
   // At the end of the range: no lens, a model the data break.
   const bool inside = std::abs(free.lens[0]) < 0.96 * max_abs_k1;
   if (out.chi2_gain > out.penalty && std::abs(free.lens[0]) >= kMinLensK1 && inside) out.k1 = free.lens[0];
+  return out;
+}
+
+namespace {
+
+// chi2's 95 % quantile with `dof` degrees of freedom (1..5; above, the
+// Wilson-Hilferty approximation).
+double Chi2Quantile95(int dof) {
+  static const double kTable[] = {3.841, 5.991, 7.815, 9.488, 11.070};
+  if (dof >= 1 && dof <= 5) return kTable[dof - 1];
+  const double a = 2.0 / (9.0 * dof);
+  return dof * std::pow(1 - a + 1.645 * std::sqrt(a), 3);
+}
+
+}  // namespace
+
+LensAgreement EstimateK1InWindows(const std::vector<SolvedWindow>& windows, int width, int height,
+                                  double max_abs_k1) {
+  LensAgreement out;
+  double weight_sum = 0, weighted_k1 = 0;
+  bool inside = true;
+  for (size_t i = 0; i < windows.size(); ++i) {
+    // Two windows must pay for their own k1: once too few are left for
+    // that, the rest cannot change the decision and are not measured.
+    if (out.significant + static_cast<int>(windows.size() - i) < kMinPayingWindows) break;
+    out.windows.push_back(EstimateK1InWindow(windows[i], width, height, max_abs_k1));
+    const LensBundleEstimate& e = out.windows.back();
+    // A window whose k1 has no profile (no gain) measures nothing.
+    if (!e.solved || e.track_sigma_k1 <= 0) continue;
+    inside = inside && std::abs(e.best_k1) < 0.96 * max_abs_k1;
+    ++out.measuring;
+    // Its own test's gain (the 0.005 floor is the pooled k1's).
+    out.significant += e.chi2_gain > e.penalty;
+    const double weight = 1 / (e.track_sigma_k1 * e.track_sigma_k1);
+    weight_sum += weight;
+    weighted_k1 += weight * e.best_k1;
+  }
+  if (out.measuring < 2) return out;
+  out.pooled_k1 = weighted_k1 / weight_sum;
+  out.sigma = 1 / std::sqrt(weight_sum);
+  out.same_sign = true;
+  for (const LensBundleEstimate& e : out.windows) {
+    if (!e.solved || e.track_sigma_k1 <= 0) continue;
+    out.spread_chi2 += std::pow((e.best_k1 - out.pooled_k1) / e.track_sigma_k1, 2);
+    out.same_sign = out.same_sign && e.best_k1 * out.pooled_k1 > 0;
+  }
+  out.spread_limit = Chi2Quantile95(out.measuring - 1);
+  if (out.significant >= kMinPayingWindows && out.same_sign && out.spread_chi2 <= out.spread_limit && inside &&
+      std::abs(out.pooled_k1) >= kMinLensK1)
+    out.k1 = out.pooled_k1;
   return out;
 }
 

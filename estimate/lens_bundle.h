@@ -37,7 +37,12 @@ struct LensBundleEstimate {
   double penalty = 0;     // what it had to exceed: max(ln N (BIC, N residuals), 2 sigma's 4)
   double sigma_k1 = 0;    // |best_k1| / sqrt(chi2_gain): the profile's curvature
   double noise_px = 0;    // the residuals' robust sigma, pixels of the decoded frame
+  // sigma_k1 x sqrt(observations per point): a track's errors over its
+  // keyframes are one drift, not independent draws, so a point is one
+  // measurement (what windows are compared with, EstimateK1InWindows).
+  double track_sigma_k1 = 0;
   int observations = 0;
+  int points = 0;         // points with observations
   bool solved = false;
 };
 
@@ -47,5 +52,31 @@ struct LensBundleEstimate {
 // least 0.005 and it is not at the end of the range.
 LensBundleEstimate EstimateK1InWindow(const SolvedWindow& window, int width, int height,
                                       double max_abs_k1 = 0.25);
+
+// k1 measured independently in several windows of one shot and pooled
+// (inverse variance). A lens is a property of the whole shot and comes back
+// in every window within its standard error; a k1 that absorbs something
+// else (drift, a wrong focal, parallax) changes with the window's motion.
+struct LensAgreement {
+  double k1 = 0;            // the pooled k1 where kept, else 0
+  double pooled_k1 = 0;     // inverse-variance mean of the measuring windows
+  double sigma = 0;         // its standard error
+  double spread_chi2 = 0;   // the windows' k1 about the pooled one, in their sigmas
+  double spread_limit = 0;  // what it must stay under (chi2 95 % with n - 1 dof)
+  int measuring = 0;        // windows whose k1 has a standard error
+  int significant = 0;      // windows whose k1 pays for itself (chi2 gain > penalty)
+  bool same_sign = false;   // every measuring window's k1 has the pooled one's sign
+  std::vector<LensBundleEstimate> windows;
+};
+
+// Keeps the pooled k1 when at least 2 windows pay for their own k1 (each
+// window's chi2 gain over its penalty, EstimateK1InWindow), every window
+// with a standard error agrees (track_sigma_k1: spread_chi2 <= spread_limit,
+// same sign) and the pooled k1 is at least 0.005 and inside the range. A
+// lens comes back in every window; one window's k1 alone is not kept (no
+// other window confirmed it). Windows are measured in order until too few
+// are left to reach two that pay (`windows` holds those measured).
+LensAgreement EstimateK1InWindows(const std::vector<SolvedWindow>& windows, int width, int height,
+                                  double max_abs_k1 = 0.25);
 
 }  // namespace hapcine

@@ -137,5 +137,60 @@ TEST(LensBundleTest, TooLittleToSolve) {
   EXPECT_FALSE(EstimateK1InWindow(SolvedWindow{}, kW, kH).solved);
 }
 
+// Several windows of one shot (lens_bundle.h EstimateK1InWindows).
+
+TEST(LensBundleTest, TwoWindowsThatAgreeKeepTheLens) {
+  const LensAgreement a = EstimateK1InWindows(
+      {Window(Move::kPan, 0.03, 0.3, 21), Window(Move::kCrane, 0.03, 0.3, 22)}, kW, kH);
+  EXPECT_EQ(a.significant, 2);
+  EXPECT_TRUE(a.same_sign);
+  EXPECT_LE(a.spread_chi2, a.spread_limit);
+  EXPECT_NEAR(a.k1, 0.03, 0.004);
+  EXPECT_GT(a.sigma, 0);
+}
+
+TEST(LensBundleTest, OneWindowAloneIsNotConfirmed) {
+  // Its own test keeps k1, but no other window was there to confirm it.
+  const SolvedWindow w = Window(Move::kPan, 0.03, 0.3, 23);
+  EXPECT_NE(EstimateK1InWindow(w, kW, kH).k1, 0);
+  const LensAgreement a = EstimateK1InWindows({w}, kW, kH);
+  EXPECT_TRUE(a.windows.empty());  // one window cannot make two that pay: not measured
+  EXPECT_EQ(a.k1, 0);
+}
+
+TEST(LensBundleTest, ABendInOneWindowOnlyIsNoLens) {
+  // Something that bends one window's tracks radially (drift, a subject)
+  // and not the next window's: not the lens, which is in both.
+  const LensAgreement a = EstimateK1InWindows(
+      {Window(Move::kPan, 0.03, 0.3, 24), Window(Move::kPan, 0, 0.3, 25)}, kW, kH);
+  EXPECT_NE(a.windows[0].k1, 0);
+  EXPECT_EQ(a.k1, 0) << "pooled " << a.pooled_k1 << " spread " << a.spread_chi2;
+}
+
+TEST(LensBundleTest, WindowsOfOppositeSignsAreNoLens) {
+  const LensAgreement a = EstimateK1InWindows(
+      {Window(Move::kPan, 0.03, 0.3, 26), Window(Move::kCrane, -0.03, 0.3, 27)}, kW, kH);
+  EXPECT_EQ(a.significant, 2);
+  EXPECT_FALSE(a.same_sign);
+  EXPECT_EQ(a.k1, 0);
+}
+
+TEST(LensBundleTest, AWrongFocalInEveryWindowIsNoLens) {
+  // A focal held 10 % off in both windows: the focal factor takes it, no
+  // window pays for a k1, none is kept.
+  const LensAgreement a = EstimateK1InWindows(
+      {Window(Move::kPan, 0, 0.3, 28, 1.1), Window(Move::kPan, 0, 0.3, 29, 1.1)}, kW, kH);
+  EXPECT_EQ(a.k1, 0) << "pooled " << a.pooled_k1;
+}
+
+TEST(LensBundleTest, PinholeWindowsKeepNone) {
+  const LensAgreement a = EstimateK1InWindows(
+      {Window(Move::kTraveling, 0, 0.3, 30), Window(Move::kCrane, 0, 0.3, 31), Window(Move::kPan, 0, 0.3, 32)},
+      kW, kH);
+  // The third is measured only if one of the first two paid.
+  EXPECT_EQ(a.windows.size(), a.significant > 0 ? 3u : 2u);
+  EXPECT_EQ(a.k1, 0) << "pooled " << a.pooled_k1;
+}
+
 }  // namespace
 }  // namespace hapcine

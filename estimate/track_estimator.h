@@ -99,6 +99,9 @@ struct TrackEstimatorOptions {
   // (docs/estimate.md, "Track drift weights").
   bool drift_weights = false;
   int num_threads = 1;               // Ceres threads
+  // The first shot's first solved windows kept for the lens adjustment
+  // (lens_bundle.h); 0: none is copied.
+  int keep_solved_windows = 0;
   TwoViewOptions two_view;           // model selection
   // The camera's motion told from a large subject's (motion_hypotheses.h):
   // the frame's border, where the background is, decides.
@@ -118,9 +121,12 @@ class TrackCameraEstimator {
   // Closes the last shot and returns every frame (metadata: width, height).
   CameraPath Finish();
   const std::vector<WindowReport>& reports() const { return reports_; }
-  // The first window as solved (cameras, kept points, their observations):
-  // what the lens adjustment measures k1 on (lens_bundle.h). Set once.
-  const std::optional<SolvedWindow>& first_window() const { return first_window_; }
+  // The first shot's first windows as solved (cameras, kept points, their
+  // observations), up to options.keep_solved_windows of them: what the lens
+  // adjustment measures k1 on (lens_bundle.h).
+  const std::vector<SolvedWindow>& solved_windows() const { return solved_windows_; }
+  // No more window will be kept: as many as asked, or the first shot ended.
+  bool solved_windows_complete() const;
 
  private:
   struct BufferedFrame {
@@ -178,7 +184,7 @@ class TrackCameraEstimator {
   // The keyframes' cameras and labels as a window solve left them.
   void UpdateKeyframes(const std::vector<BaCamera>& cams, const std::vector<MotionModel>& labels);
   void Report(WindowReport report);
-  void KeepFirstWindow(const WindowOutcome& w);
+  void KeepSolvedWindow(const WindowOutcome& w);
   // After the window's solve (track_estimator_frames.cc).
   void SetUnits(std::vector<BaPoint>* points);
   void EmitWindowFrames(const WindowOutcome& solution, bool final);
@@ -193,7 +199,8 @@ class TrackCameraEstimator {
   double prior_log_focal_;
   CameraPath path_;
   std::vector<WindowReport> reports_;
-  std::optional<SolvedWindow> first_window_;
+  std::vector<SolvedWindow> solved_windows_;
+  int solved_windows_shot_ = -1;     // the shot they are of
 
   // Current shot.
   int shot_ = -1;

@@ -456,6 +456,41 @@ TEST(TrackEstimator, ShotCutRestartsAtTheOrigin) {
   EXPECT_LT(AngleBetweenDeg(path.frames[30].world_from_cam, Eigen::Quaterniond::Identity()), 1e-9);
 }
 
+// The solved windows the lens adjustment reads (lens_bundle.h): copied only
+// when asked, at most as many as asked, and only the first shot's (a cut
+// may change the lens).
+TEST(TrackEstimator, KeepsTheFirstShotsSolvedWindowsOnlyWhenAsked) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 6);
+  auto run = [&](int keep, int cut_at) {
+    TrackEstimatorOptions o;
+    o.window_frames = 30;
+    o.keep_solved_windows = keep;
+    auto est = std::make_unique<TrackCameraEstimator>(kW, kH, o);
+    std::mt19937 rng(1);
+    for (int i = 0; i < 120; ++i) {
+      FrameTracks ft = MakeFrameTracks(i, 25, PanCamera(i + 20, 20, 800), pts, kW, kH, 0.3, 0, &rng);
+      if (i == cut_at) ft.boundary = ShotBoundary::kCut;
+      ft.shot = i < cut_at ? 0 : 1;
+      est->AddFrame(ft);
+    }
+    est->Finish();
+    return est;
+  };
+  EXPECT_TRUE(run(0, 1000)->solved_windows().empty());
+  const auto two = run(2, 1000);
+  ASSERT_EQ(two->solved_windows().size(), 2u);
+  EXPECT_TRUE(two->solved_windows_complete());
+  EXPECT_FALSE(two->solved_windows()[1].observations.empty());
+  EXPECT_GE(two->reports().size(), 3u);  // more windows were solved than kept
+  // A cut after the first window: the second shot's windows are not kept.
+  const auto cut = run(3, 35);
+  size_t first_shot_windows = 0;
+  for (const WindowReport& r : cut->reports()) first_shot_windows += r.last_frame < 35;
+  ASSERT_GE(cut->reports().size(), first_shot_windows + 2);  // the second shot's would have filled 3
+  EXPECT_EQ(cut->solved_windows().size(), first_shot_windows);
+  EXPECT_TRUE(cut->solved_windows_complete());
+}
+
 // Frames 0, step, 2 step, ... of a `frames`-frame video given to `est` as a
 // decoder that skipped the others would (positions 0, 1, 2, ..., with
 // FrameTracks::step the gap); returns Finish().

@@ -96,7 +96,7 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     w.report.zoom_decisions.insert(w.report.zoom_decisions.begin(), decisions.begin(), decisions.end());
   }
   UpdateKeyframes(w.keyframe_cams, w.labels);
-  if (!first_window_ && w.success) KeepFirstWindow(w);
+  if (w.success) KeepSolvedWindow(w);
   if (w.written_log_focal_shift)
     for (RawPose& r : raw_) r.cam.log_focal += *w.written_log_focal_shift;
   if (w.focal_calibrated) focal_observed_ = true;
@@ -109,8 +109,16 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
   if (!final) StartNextWindow();
 }
 
+bool TrackCameraEstimator::solved_windows_complete() const {
+  const int wanted = options_.keep_solved_windows;
+  return static_cast<int>(solved_windows_.size()) >= wanted || (solved_windows_shot_ >= 0 && shot_ != solved_windows_shot_);
+}
+
 // Before SetUnits rescales the points: the window in the solve's own units.
-void TrackCameraEstimator::KeepFirstWindow(const WindowOutcome& w) {
+// Only the first shot's (films change lenses at cuts), only when asked.
+void TrackCameraEstimator::KeepSolvedWindow(const WindowOutcome& w) {
+  if (solved_windows_complete()) return;
+  solved_windows_shot_ = shot_;
   SolvedWindow s;
   s.cameras = w.keyframe_cams;
   s.points = w.points;
@@ -122,7 +130,7 @@ void TrackCameraEstimator::KeepFirstWindow(const WindowOutcome& w) {
       if (it == w.point_of_track.end() || !w.point_kept[it->second]) continue;
       s.observations.push_back({static_cast<int>(i), it->second, u});
     }
-  first_window_ = std::move(s);
+  solved_windows_.push_back(std::move(s));
 }
 
 // The window's report, with its keyframes' two-view model selection, to
