@@ -135,7 +135,7 @@ constexpr size_t kStillsViewsBack = 8;
 // Views kept of each finished stills shot (its first and its last ones:
 // where a split shot meets the others) and of how many shots, for the links
 // across stills splits (LinkEarlierShots): a bound on the matching per still.
-constexpr size_t kShotEndViews = 4;
+constexpr size_t kShotEndViews = 2;
 constexpr size_t kEarlierStillsShots = 8;
 
 }  // namespace
@@ -168,7 +168,12 @@ struct FeatureTracker::Impl {
     int shot = 0, index = 0;
   };
   std::deque<ShotView> shot_first_stills, shot_last_stills;  // the current stills shot's ends
-  std::deque<std::vector<ShotView>> earlier_stills_shots;    // finished stills shots' ends, oldest first
+  // A finished stills shot's first views and last views (the last first):
+  // each end tried from its outermost view inwards.
+  struct StillsShotEnds {
+    std::vector<ShotView> first, last;
+  };
+  std::deque<StillsShotEnds> earlier_stills_shots;  // oldest first
   // Video: the shot's frames a jump frame is linked back to (LinkEarlierViews),
   // oldest first: a frame KLT tracked per KLT window of motion (described
   // only when a jump needs it) and the jump frames themselves.
@@ -1277,11 +1282,11 @@ struct FeatureTracker::Impl {
   // The finished stills shot's first and last views, for the stills after
   // it to link to across the split.
   void KeepStillsShotEnds() {
-    std::vector<ShotView> ends(shot_first_stills.begin(), shot_first_stills.end());
-    ends.insert(ends.end(), shot_last_stills.begin(), shot_last_stills.end());
+    StillsShotEnds ends{{shot_first_stills.begin(), shot_first_stills.end()},
+                        {shot_last_stills.rbegin(), shot_last_stills.rend()}};
     shot_first_stills.clear();
     shot_last_stills.clear();
-    if (ends.empty()) return;
+    if (ends.first.empty()) return;
     earlier_stills_shots.push_back(std::move(ends));
     if (earlier_stills_shots.size() > kEarlierStillsShots) earlier_stills_shots.pop_front();
   }
@@ -1302,24 +1307,32 @@ struct FeatureTracker::Impl {
   // shots in one frame (a ring that came round to its start).
   void LinkEarlierShots(DescribedFrame* cur, FrameTracks* out, FrameWork* w) {
     std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
-    for (std::vector<ShotView>& views : earlier_stills_shots) {
-      for (ShotView& kept : views) {
-        const LinkResult link = linker.Link(kept.view, *cur);
-        if (!link.ok()) continue;
-        out->earlier_shot_links.push_back({kept.shot, kept.index, link.verified_matches});
-        for (size_t k = 0; k < link.point_of_keypoint.size(); ++k) {
-          const int i = link.point_of_keypoint[k];
-          if (i < 0 || cur->point_of_keypoint[k] >= 0 || taken.count(link.ids[i])) continue;
-          cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
-          TakePoint(link, i, &taken, w);
-        }
-        // A view KLT tracked (a video's first frame): its tracks are corners,
-        // carried by the guided KLT.
-        const auto& on_keypoint = kept.view.point_of_keypoint;
-        if (std::none_of(on_keypoint.begin(), on_keypoint.end(), [](int i) { return i >= 0; }))
-          TakeGuidedPoints(link, &taken, w);
-      }
+    for (StillsShotEnds& ends : earlier_stills_shots) {
+      // From each end inwards until a view does not link (those further
+      // in share less): most unrelated shots cost one attempt per end.
+      for (std::vector<ShotView>* views : {&ends.first, &ends.last})
+        for (ShotView& kept : *views)
+          if (!LinkEarlierShotView(kept, cur, out, &taken, w)) break;
     }
+  }
+
+  bool LinkEarlierShotView(const ShotView& kept, DescribedFrame* cur, FrameTracks* out,
+                           std::unordered_set<long>* taken, FrameWork* w) {
+    const LinkResult link = linker.Link(kept.view, *cur);
+    if (!link.ok()) return false;
+    out->earlier_shot_links.push_back({kept.shot, kept.index, link.verified_matches});
+    for (size_t k = 0; k < link.point_of_keypoint.size(); ++k) {
+      const int i = link.point_of_keypoint[k];
+      if (i < 0 || cur->point_of_keypoint[k] >= 0 || taken->count(link.ids[i])) continue;
+      cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
+      TakePoint(link, i, taken, w);
+    }
+    // A view KLT tracked (a video's first frame): its tracks are corners,
+    // carried by the guided KLT.
+    const auto& on_keypoint = kept.view.point_of_keypoint;
+    if (std::none_of(on_keypoint.begin(), on_keypoint.end(), [](int i) { return i >= 0; }))
+      TakeGuidedPoints(link, taken, w);
+    return true;
   }
 
   // The views a described frame is linked back to and kept among: the
