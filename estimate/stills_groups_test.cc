@@ -2,10 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <set>
 #include <vector>
+
+#include "core/rotation.h"
+#include "estimate/test_scene.h"
+#include "estimate/track_estimator.h"
 
 namespace hapcine {
 namespace {
+
+using testing::MakeFrameTracks;
+using testing::SceneCamera;
 
 // A still of `shot` seeing tracks first..first+n-1 (ids continue along a
 // shot: consecutive views share tracks).
@@ -146,6 +155,66 @@ TEST(StillsGroups, RestoreFrameOrderSortsAndRenumbers) {
     EXPECT_EQ(path.frames[k].frame, frames_after[k]);
     EXPECT_EQ(*path.frames[k].shot, shots_after[k]);
   }
+}
+
+// A panorama ring of 24 stills, 15 degrees apart (focal 800 px at 960 px
+// width: 62 degrees of view), split after view 11 as where a view links to
+// nothing: shot 1's tracks are new ids, but view 23, back beside view 0,
+// continues view 0's tracks where view 22 had none (the tracker's link
+// across the split). Regrouped, the estimator places the whole ring in one
+// shot: view 12 turned 180 degrees from view 0, which no chain inside either
+// half relates.
+TEST(StillsGroups, RingOfStillsIsPlacedInOneShot) {
+  constexpr int kW = 960, kH = 540;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), depth(4, 20);
+  std::vector<Eigen::Vector3d> pts;  // around the camera, within 30 degrees of the horizon
+  while (pts.size() < 4000) {
+    const Eigen::Vector3d d(u(rng), 0.5 * u(rng), u(rng));
+    if (d.norm() > 0.2) pts.push_back(depth(rng) * d.normalized());
+  }
+  auto cam_at = [](int i) {
+    SceneCamera c;
+    c.world_from_cam = Eigen::AngleAxisd(kPi / 12 * i, Eigen::Vector3d::UnitY());
+    c.focal_px = 800;
+    return c;
+  };
+  constexpr long kNewIds = 100000;  // shot 1's tracks: new ids
+  std::vector<FrameTracks> frames;
+  std::set<long> in_view0, in_view22;
+  for (int i = 0; i < 24; ++i) {
+    FrameTracks t = MakeFrameTracks(i, 25, cam_at(i), pts, kW, kH, 0.2, 0.0, &rng);
+    t.still = true;
+    t.shot = i < 12 ? 0 : 1;
+    if (i == 12) t.boundary = ShotBoundary::kCut;
+    for (TrackPoint& p : t.points) {
+      if (i == 0) in_view0.insert(p.track_id);
+      if (i == 22) in_view22.insert(p.track_id);
+      const bool continued = i == 23 && in_view0.count(p.track_id) && !in_view22.count(p.track_id);
+      if (i >= 12 && !continued) p.track_id += kNewIds;
+    }
+    if (i == 23) t.earlier_shot_links.push_back({0, 0, 200});
+    frames.push_back(std::move(t));
+  }
+  StillsRegrouper regrouper;
+  EXPECT_TRUE(regrouper.Add(frames).empty());
+  TrackEstimatorOptions o;
+  o.smooth = false;
+  TrackCameraEstimator estimator(kW, kH, o);
+  for (const FrameTracks& t : regrouper.Finish()) estimator.AddFrame(t);
+  CameraPath path = estimator.Finish();
+  ASSERT_TRUE(regrouper.regrouped());
+  RestoreFrameOrder(&path);
+  ASSERT_EQ(path.frames.size(), 24u);
+  for (int i = 0; i < 24; ++i) {
+    EXPECT_EQ(path.frames[i].frame, i);
+    EXPECT_EQ(*path.frames[i].shot, 0) << i;
+  }
+  const Eigen::Quaterniond est_0_12 =
+      Eigen::Quaterniond(path.frames[0].world_from_cam).conjugate() * Eigen::Quaterniond(path.frames[12].world_from_cam);
+  const Eigen::Quaterniond true_0_12 = cam_at(0).world_from_cam.conjugate() * cam_at(12).world_from_cam;
+  EXPECT_LT(AngleBetweenDeg(est_0_12, true_0_12), 0.5);
+  EXPECT_NEAR(*path.frames[12].focal_px / 800, 1.0, 0.02);
 }
 
 }  // namespace
