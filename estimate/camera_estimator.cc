@@ -306,9 +306,9 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most (Check)
   if (k1 != 0) path.metadata["k1"] = Num(k1);
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
-  if (stills.regrouped()) RestoreFrameOrder(&path);
+  const std::vector<WindowReport> reports = stills.Restore(&path, estimator->reports());
   InsertSkippedFrames(skipped, info.width, &path);
-  WriteShotQuality(SummariseShots(path, estimator->reports(), info.width), &path);
+  WriteShotQuality(SummariseShots(path, reports, info.width), &path);
   stages.Stage("estimation done");
   return path;
 }

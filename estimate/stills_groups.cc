@@ -157,16 +157,23 @@ std::vector<FrameTracks> StillsRegrouper::Finish() {
   return out;
 }
 
-void RestoreFrameOrder(CameraPath* path) {
+std::vector<WindowReport> StillsRegrouper::Restore(CameraPath* path, std::vector<WindowReport> reports) const {
+  if (regrouped_) RestoreFrameOrder(path, &reports);
+  return reports;
+}
+
+void RestoreFrameOrder(CameraPath* path, std::vector<WindowReport>* reports) {
   std::stable_sort(path->frames.begin(), path->frames.end(),
                    [](const CameraFrame& a, const CameraFrame& b) { return a.frame < b.frame; });
   std::map<int, int> renumbered;
   for (CameraFrame& f : path->frames) {
     if (!f.shot.has_value()) continue;
-    const int shot = *f.shot;
-    const auto it = renumbered.emplace(shot, static_cast<int>(renumbered.size())).first;
+    const auto it = renumbered.emplace(*f.shot, static_cast<int>(renumbered.size())).first;
     f.shot = it->second;
   }
+  if (!reports) return;
+  for (WindowReport& w : *reports)
+    if (const auto it = renumbered.find(w.shot); it != renumbered.end()) w.shot = it->second;
 }
 
 }  // namespace hapcine

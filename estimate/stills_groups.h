@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/camera_path.h"
+#include "estimate/window/window_solver.h"
 #include "extract/tracks.h"
 
 namespace hapcine {
@@ -38,6 +39,9 @@ class StillsRegrouper {
   std::vector<FrameTracks> Finish();
   // Whether Finish() put frames out of order (a group of several shots).
   bool regrouped() const { return regrouped_; }
+  // The estimate of what Finish() handed on: RestoreFrameOrder when
+  // regrouped; returns `reports`, renumbered likewise.
+  std::vector<WindowReport> Restore(CameraPath* path, std::vector<WindowReport> reports) const;
 
  private:
   std::vector<FrameTracks> held_;
@@ -46,7 +50,8 @@ class StillsRegrouper {
 };
 
 // The estimated path back in frame order, shots numbered by first
-// appearance (a group of linked stills shots keeps one number).
-void RestoreFrameOrder(CameraPath* path);
+// appearance (a group of linked stills shots keeps one number); the
+// windows' reports (`reports`, may be null) take the same numbers.
+void RestoreFrameOrder(CameraPath* path, std::vector<WindowReport>* reports = nullptr);
 
 }  // namespace hapcine
