@@ -13,6 +13,7 @@
 #include "estimate/lens_distortion.h"
 #include "estimate/shot_quality.h"
 #include "estimate/skipped_frames.h"
+#include "estimate/stills_groups.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
 #include "extract/threaded_frame_source.h"
@@ -344,13 +345,15 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
     if (lens_bundle.Watch(tracks, *estimator)) replay();
     else if (!lens_bundle.watching()) first_run_records.Release(true);
   };
+  StillsRegrouper stills;  // stills shots linked across their splits: one shot (stills_groups.h)
   try {
     FrameTracks tracks;
     while (queue.Pop(&tracks)) {
       if (progress) progress(tracks.index + 1, info.frame_count);  // skipped frames count as done
-      for (FrameTracks& ready : lens.Add(std::move(tracks))) estimate(ready);
+      for (FrameTracks& ready : stills.Add(lens.Add(std::move(tracks)))) estimate(ready);
     }
-    for (FrameTracks& ready : lens.Finish()) estimate(ready);
+    for (FrameTracks& ready : stills.Add(lens.Finish())) estimate(ready);
+    for (FrameTracks& ready : stills.Finish()) estimate(ready);
   } catch (...) {
     queue.Cancel();
     tracking.join();
@@ -367,8 +370,9 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most (Check)
   if (k1 != 0) path.metadata["k1"] = Num(k1);
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
+  const std::vector<WindowReport> reports = stills.Restore(&path, estimator->reports());
   InsertSkippedFrames(skipped, info.width, &path);
-  WriteShotQuality(SummariseShots(path, estimator->reports(), info.width), &path);
+  WriteShotQuality(SummariseShots(path, reports, info.width), &path);
   stages.Stage("estimation done");
   return path;
 }

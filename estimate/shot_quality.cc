@@ -70,24 +70,26 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
     t.focal_observable |= w.focal_observable;
   }
   std::vector<ShotQuality> out;
-  std::vector<double> confidence;
+  // A shot's frames need not be contiguous (stills shots linked across a
+  // split, stills_groups.h): each shot collects its frames wherever they are.
+  std::map<int, size_t> index_of_shot;
+  std::vector<std::vector<double>> confidence;
   for (size_t i = 0; i < path.frames.size(); ++i) {
     const CameraFrame& f = path.frames[i];
     const int shot = f.shot.value_or(0);
-    if (out.empty() || out.back().shot != shot) {
-      if (!out.empty()) out.back().median_confidence = Median(confidence);
-      confidence.clear();
+    if (index_of_shot.emplace(shot, out.size()).second) {
       out.push_back({});
       out.back().shot = shot;
       out.back().first_frame = f.frame;
+      confidence.emplace_back();
     }
-    ShotQuality& q = out.back();
+    ShotQuality& q = out[index_of_shot[shot]];
     q.last_frame = f.frame;
     ++q.frames;
     q.lost += IsLost(f);
-    confidence.push_back(IsLost(f) ? 0.0 : ConfidenceAsWritten(f));
+    confidence[index_of_shot[shot]].push_back(IsLost(f) ? 0.0 : ConfidenceAsWritten(f));
   }
-  if (!out.empty()) out.back().median_confidence = Median(confidence);
+  for (size_t k = 0; k < out.size(); ++k) out[k].median_confidence = Median(confidence[k]);
   for (ShotQuality& q : out) {
     if (auto it = tally.find(q.shot); it != tally.end()) {
       const WindowTally& t = it->second;

@@ -30,6 +30,27 @@ std::vector<ShotQuality> ThroughTheFile(const CameraPath& path) {
   return ReadShotQuality(ReadCameraPath(file, "test"));
 }
 
+// Stills shots linked across a split are one shot whose frames are not
+// contiguous (frames 0-19 and 30-39 here, shot 1 between): one summary of
+// all its frames, not one per run.
+TEST(ShotQuality, AShotSplitByAnotherIsOneSummary) {
+  CameraPath path = TwoShots();
+  for (CameraFrame& f : path.frames) {
+    f.shot = f.frame >= 20 && f.frame < 30 ? 1 : 0;
+    f.model = "general";
+    f.confidence = f.frame < 20 ? 0.3 : (f.frame < 30 ? 0.1 : 0.5);
+  }
+  const std::vector<ShotQuality> q = SummariseShots(path, {}, 1920);
+  ASSERT_EQ(q.size(), 2u);
+  EXPECT_EQ(q[0].shot, 0);
+  EXPECT_EQ(q[0].frames, 30);
+  EXPECT_EQ(q[0].first_frame, 0);
+  EXPECT_EQ(q[0].last_frame, 39);
+  EXPECT_NEAR(q[0].median_confidence, 0.3, 1e-12);  // 20 at 0.3, 10 at 0.5
+  EXPECT_EQ(q[1].shot, 1);
+  EXPECT_EQ(q[1].frames, 10);
+}
+
 TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
   CameraPath path = TwoShots();
   WindowReport w;

@@ -132,6 +132,11 @@ constexpr size_t kChainPoints = 100;
 // Earlier stills each still is linked to (LinkEarlierViews): a bound on the
 // SIFT matching per still; views further round share nothing anyway.
 constexpr size_t kStillsViewsBack = 8;
+// Views kept of each finished stills shot (its first and its last ones:
+// where a split shot meets the others) and of how many shots, for the links
+// across stills splits (LinkEarlierShots): a bound on the matching per still.
+constexpr size_t kShotEndViews = 2;
+constexpr size_t kEarlierStillsShots = 8;
 
 }  // namespace
 
@@ -157,6 +162,18 @@ struct FeatureTracker::Impl {
   DescribedFrame good_described;  // the last well-linked one (or a shot's first)
   LinkResult last_link;           // the last link's motion: the next one's prediction
   std::deque<DescribedFrame> stills_views;  // the shot's last stills, oldest first
+  // A stills view as kept for the links across splits: its shot and index.
+  struct ShotView {
+    DescribedFrame view;
+    int shot = 0, index = 0;
+  };
+  std::deque<ShotView> shot_first_stills, shot_last_stills;  // the current stills shot's ends
+  // A finished stills shot's first views and last views (the last first):
+  // each end tried from its outermost view inwards.
+  struct StillsShotEnds {
+    std::vector<ShotView> first, last;
+  };
+  std::deque<StillsShotEnds> earlier_stills_shots;  // oldest first
   // Video: the shot's frames a jump frame is linked back to (LinkEarlierViews),
   // oldest first: a frame KLT tracked per KLT window of motion (described
   // only when a jump needs it) and the jump frames themselves.
@@ -220,6 +237,7 @@ struct FeatureTracker::Impl {
     last_described = good_described = {};
     last_link = {};
     stills_views.clear();
+    KeepStillsShotEnds();
     shot_views.clear();
     descriptor_mode = Stills();
     shot_tracked_frames = 0;
@@ -1121,6 +1139,14 @@ struct FeatureTracker::Impl {
     last_described = good_described = cur;
     last_link = link;
     KeepView(views, cur);
+    if (!stills_by_evidence) return;
+    // The shot's first frame, tracked before the evidence, is a still too.
+    // (its picture copied: the pyramids' buffers are reused).
+    if (key.gray.data == prev_pyramid[0].data) {
+      key.gray = key.gray.clone();
+      KeepStillsView(key, prev_tracked_index);
+    }
+    KeepStillsView(cur, frame.index);
   }
 
   // A video that is a sequence of stills: its shot's very first step already
@@ -1220,6 +1246,7 @@ struct FeatureTracker::Impl {
       w->had_tracks = false;
       descriptor_mode = true;  // this frame is described; KLT (video) from the next
     } else if (link.ok()) {
+      out->weak_link = Stills() && link.verified_matches < 2 * linker.options().min_verified;
       TakeLink(link, {}, w);
       out->recovered = w->relinked > 0;
       out->jump = link.median_motion_px >= options.klt_window;
@@ -1233,9 +1260,14 @@ struct FeatureTracker::Impl {
     }
     std::deque<DescribedFrame>* views = ViewsToLink(Stills(), out->jump);
     if (link.ok() && views) LinkEarlierViews(views, linked, &cur, w);
+    if (Stills()) {
+      if (cur.point_of_keypoint.empty()) cur.point_of_keypoint.assign(cur.keypoints.size(), -1);
+      LinkEarlierShots(&cur, out, w);
+    }
     DescribedTopUp(&cur, w);
     last_described = cur;
     if (views) KeepView(views, cur);
+    if (Stills()) KeepStillsView(cur, frame.index);
     // Well linked: twice the matches a link needs (a shot's first frame too).
     if (!w->had_tracks || link.verified_matches >= 2 * linker.options().min_verified) good_described = cur;
     // Frames as close as a video's (a folder of a video's frames too): KLT,
@@ -1245,6 +1277,62 @@ struct FeatureTracker::Impl {
       descriptor_mode = false;
       stills_by_evidence = false;
     }
+  }
+
+  // The finished stills shot's first and last views, for the stills after
+  // it to link to across the split.
+  void KeepStillsShotEnds() {
+    StillsShotEnds ends{{shot_first_stills.begin(), shot_first_stills.end()},
+                        {shot_last_stills.rbegin(), shot_last_stills.rend()}};
+    shot_first_stills.clear();
+    shot_last_stills.clear();
+    if (ends.first.empty()) return;
+    earlier_stills_shots.push_back(std::move(ends));
+    if (earlier_stills_shots.size() > kEarlierStillsShots) earlier_stills_shots.pop_front();
+  }
+
+  void KeepStillsView(const DescribedFrame& view, int index) {
+    ShotView kept{view, shot, index};
+    if (shot_first_stills.size() < kShotEndViews) {
+      shot_first_stills.push_back(std::move(kept));
+      return;
+    }
+    shot_last_stills.push_back(std::move(kept));
+    if (shot_last_stills.size() > kShotEndViews) shot_last_stills.pop_front();
+  }
+
+  // Stills: links the still to the kept views of earlier stills shots; a
+  // link the linker verifies (beyond chance, as every link) continues that
+  // view's tracks here and is reported, so the estimator can place both
+  // shots in one frame (a ring that came round to its start).
+  void LinkEarlierShots(DescribedFrame* cur, FrameTracks* out, FrameWork* w) {
+    std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
+    for (StillsShotEnds& ends : earlier_stills_shots) {
+      // From each end inwards until a view does not link (those further
+      // in share less): most unrelated shots cost one attempt per end.
+      for (std::vector<ShotView>* views : {&ends.first, &ends.last})
+        for (ShotView& kept : *views)
+          if (!LinkEarlierShotView(kept, cur, out, &taken, w)) break;
+    }
+  }
+
+  bool LinkEarlierShotView(const ShotView& kept, DescribedFrame* cur, FrameTracks* out,
+                           std::unordered_set<long>* taken, FrameWork* w) {
+    const LinkResult link = linker.Link(kept.view, *cur);
+    if (!link.ok()) return false;
+    out->earlier_shot_links.push_back({kept.shot, kept.index, link.verified_matches});
+    for (size_t k = 0; k < link.point_of_keypoint.size(); ++k) {
+      const int i = link.point_of_keypoint[k];
+      if (i < 0 || cur->point_of_keypoint[k] >= 0 || taken->count(link.ids[i])) continue;
+      cur->point_of_keypoint[k] = static_cast<int>(w->points.size());
+      TakePoint(link, i, taken, w);
+    }
+    // A view KLT tracked (a video's first frame): its tracks are corners,
+    // carried by the guided KLT.
+    const auto& on_keypoint = kept.view.point_of_keypoint;
+    if (std::none_of(on_keypoint.begin(), on_keypoint.end(), [](int i) { return i >= 0; }))
+      TakeGuidedPoints(link, taken, w);
+    return true;
   }
 
   // The views a described frame is linked back to and kept among: the

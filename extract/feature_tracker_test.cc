@@ -545,6 +545,48 @@ TEST(FeatureTrackerTest, StillsThatCannotBeLinkedSplitTheShot) {
   EXPECT_EQ(other.shot, 1);
 }
 
+// Stills that come round: shot 0 sees picture a, a view that shares
+// nothing with it splits (shot 1, picture b), then a view showing b on its
+// left and a (near view 0) on its right links to shot 1's last view and,
+// across the split, to shot 0's views: it reports the link and continues
+// view 0's tracks on their true positions. A view of a third picture links
+// to neither: a shot of its own, no link to an earlier shot.
+TEST(FeatureTrackerTest, StillsLinkAcrossASplitToAnEarlierShot) {
+  TrackerOptions o = SmallOptions();
+  o.stills = true;
+  FeatureTracker tracker(o);
+  const cv::Mat a = NoiseTexture({1600, 1200}, 51), b = NoiseTexture({1600, 1200}, 52),
+                c = NoiseTexture({1600, 1200}, 53);
+  const FrameTracks view0 = tracker.Process(MakeFrame(Turned(a, 0, 0, 0), 0, 0.5));
+  tracker.Process(MakeFrame(Turned(a, 10, 40, 0), 1, 0.5));
+  EXPECT_EQ(tracker.Process(MakeFrame(Turned(b, 0, 0, 0), 2, 0.5)).shot, 1);
+  const FrameTracks b1 = tracker.Process(MakeFrame(Turned(b, 20, 70, -30), 3, 0.5));
+  EXPECT_TRUE(b1.earlier_shot_links.empty());
+  cv::Mat both = Turned(b, 40, 140, -60).clone();
+  const cv::Rect right(kDecoded.width / 2, 0, kDecoded.width - kDecoded.width / 2, kDecoded.height);
+  Turned(a, 4, 20, 0)(right).copyTo(both(right));
+  const FrameTracks round = tracker.Process(MakeFrame(both, 4, 0.5));
+  EXPECT_EQ(round.shot, 1);
+  ASSERT_FALSE(round.earlier_shot_links.empty());
+  for (const auto& link : round.earlier_shot_links) {
+    EXPECT_EQ(link.shot, 0);
+    EXPECT_GE(link.verified, 15);
+  }
+  const auto first = ById(view0);
+  int continued = 0, off = 0;
+  for (const auto& p : round.points) {
+    const auto it = first.find(p.track_id);
+    if (it == first.end()) continue;
+    ++continued;
+    if ((TurnedPoint(it->second, 4, 20, 0) - p.px).norm() > 2.0) ++off;
+  }
+  EXPECT_GE(continued, 15);
+  EXPECT_LE(off, continued / 20 + 1);
+  const FrameTracks other = tracker.Process(MakeFrame(Turned(c, 0, 0, 0), 5, 0.5));
+  EXPECT_EQ(other.shot, 2);
+  EXPECT_TRUE(other.earlier_shot_links.empty());
+}
+
 // A video that rolls 60 degrees from one frame to the next (KLT loses it,
 // the upright ORB re-linker too): the descriptor link carries the old ids
 // onto the true positions; without it they are gone.

@@ -11,7 +11,9 @@
 // Track ids are unique over the whole video and never reused. A track normally
 // has one point per consecutive frame; a track re-linked by descriptor matching
 // (FrameTracks::recovered) may skip the frames between its last good frame and
-// the recovery frame. Every track ends at a shot boundary or blank frame.
+// the recovery frame. Every track ends at a shot boundary or blank frame,
+// except where a still links to an earlier stills shot
+// (FrameTracks::earlier_shot_links): that shot's tracks continue there.
 
 #include <Eigen/Core>
 #include <string>
@@ -59,6 +61,20 @@ struct FrameTracks {
   // Linked as a still (an image folder, --stills, or a video found to be a
   // sequence of stills): its pose is not smoothed with its neighbours'.
   bool still = false;
+  // Stills: views of earlier shots of the same stills this still links to
+  // by descriptors (verified as any link is), whose tracks it continues
+  // (those track ids reappear here). In stills footage a split is no
+  // picture cut: a ring that came round links its last views to its first.
+  struct ShotLink {
+    int shot = 0;   // the earlier shot
+    int frame = 0;  // the view of it linked to (FrameTracks::index)
+    int verified = 0;  // verified descriptor matches
+  };
+  std::vector<ShotLink> earlier_shot_links;
+  // Stills: linked to the view before by fewer than twice the verified
+  // matches a link needs (the tracker's "well linked"): a weak first
+  // interval for a chain to start from.
+  bool weak_link = false;
   std::vector<TrackPoint> points;  // tracks alive in this frame
 };
 
