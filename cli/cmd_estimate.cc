@@ -44,7 +44,6 @@ struct EstimateArgs {
   bool fast = false, draft = false, quiet = false, report_detail = false;
   // Flags that switch off a default of EstimatorOptions.
   bool no_smooth = false, no_freedom_test = false, no_plane_prior = false, no_klt_predict = false;
-  bool no_flat_field = false;
 };
 
 // The preset goes in first, so options given beside --fast or --draft still
@@ -202,10 +201,11 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
   app.add_flag("--no-klt-predict", a->no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
-  app.add_flag("--no-flat-field", a->no_flat_field,
-               "do not estimate the lens's vignetting; by default, once the tracks' brightness shows "
-               "the picture darkening towards its corners (5 % or more), KLT tracks frames divided by "
-               "that field (docs/extract.md \"Vignetting\")");
+  app.add_flag("--flat-field", opt->tracker.flat_field_vignetting,
+               "estimate the lens's vignetting from the tracks' brightness as they cross the picture and, "
+               "once it shows the picture darkening towards its corners (5 % or more), track frames "
+               "divided by that field: LK reads the edges' motion short under a fall-off "
+               "(docs/extract.md \"Vignetting\")");
   app.add_flag("--match-fade-contrast", opt->tracker.match_fade_contrast,
                "in a fade (a frame's mean and contrast changed by one factor of more than 2 %), "
                "track it at the last frame's mean and contrast: LK assumes constant brightness "
@@ -251,7 +251,7 @@ void GroupTuningOptions(CLI::App& app) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--no-flat-field", "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--flat-field", "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }
@@ -262,7 +262,6 @@ void CompleteOptions(const EstimateArgs& a, EstimatorOptions* opt) {
   if (a.no_freedom_test) opt->estimator.freedom_test = false;
   if (a.no_plane_prior) opt->estimator.motion_plane_prior = false;
   if (a.no_klt_predict) opt->tracker.klt_predict = false;
-  if (a.no_flat_field) opt->tracker.flat_field_vignetting = false;
   if (a.fps > 0) {
     std::error_code ec;
     if (a.video.find('%') == std::string::npos && !std::filesystem::is_directory(a.video, ec))

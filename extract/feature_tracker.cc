@@ -124,9 +124,10 @@ constexpr double kPictureExplained = 0.8;
 constexpr float kAnchorResidualFloor = 0.1f;
 // Correspondences a run frame's homography is fitted to (ChainRunMotion).
 constexpr size_t kChainPoints = 100;
-// Frame steps between two decisions of the vignetting fit (each a robust
-// fit over all its pairs): the field is found a few frames late at most.
-constexpr int kVignettingDecideEvery = 2;
+// The vignetting fit decides again once its pairs grew by this factor: a
+// field is found within a frame or two of the evidence, and a video
+// without one costs a few fits over all its pairs in all.
+constexpr double kVignettingDecisionGrowth = 1.25;
 // The pyramid level whose picture gives a point's local brightness (smoothed
 // over a few pixels: a track's sub-pixel error barely changes it).
 constexpr int kBrightnessLevel = 2;
@@ -219,7 +220,7 @@ struct FeatureTracker::Impl {
   int flat_version = 0, flat_gain_version = 0, prev_flat_version = 0;
   cv::Mat flat_gain;
   cv::Mat last_raw, prev_raw;  // the raw frame of this step and the last (while the field may change)
-  int vignetting_steps = 0;
+  size_t next_vignetting_decision = kMinVignettingPairs;  // the fit's pairs at its next decision
 
   void DropTracks() {
     prev_pyramid.clear();
@@ -911,7 +912,8 @@ struct FeatureTracker::Impl {
     if (level < 0) return;
     vignetting_fit.AddStep(prev_pyramid[2 * level], w.pyramid[2 * level], std::ldexp(1.0, level), w.from, w.points,
                            w.size);
-    if (++vignetting_steps % kVignettingDecideEvery != 0 && !vignetting_fit.full()) return;
+    if (vignetting_fit.pairs() < next_vignetting_decision && !vignetting_fit.full()) return;
+    next_vignetting_decision = static_cast<size_t>(kVignettingDecisionGrowth * vignetting_fit.pairs());
     const VignettingModel m = vignetting_fit.Decide(vignetting.found ? kMinResidualFalloff : kMinCornerFalloff);
     if (m.found) {
       vignetting.a += m.a;
@@ -919,6 +921,7 @@ struct FeatureTracker::Impl {
       vignetting.found = true;
       ++flat_version;
       vignetting_fit = VignettingFit();
+      next_vignetting_decision = kMinVignettingPairs;
     }
     if (m.found ? flat_version >= kMaxVignettingRefinements : vignetting_fit.full()) vignetting_decided = true;
     if (m.found || vignetting_decided)

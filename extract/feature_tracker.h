@@ -42,7 +42,9 @@ struct TrackerOptions {
   // the data demand a field, track on frames divided by it (flat field):
   // the fall-off's slope does not move with the texture and LK reads the
   // edges' motion short. Footage without vignetting is tracked as before.
-  bool flat_field_vignetting = true;
+  // Off by default: on the test look it helps whip pans but not every
+  // clip (docs/extract.md "Vignetting").
+  bool flat_field_vignetting = false;
   // KLT drift bound: frame-to-frame KLT adds a small error every frame, so
   // a track's error grows with its age. Every track is also tracked from
   // the frame where it was detected (its anchor), at the finest pyramid
