@@ -128,6 +128,9 @@ constexpr size_t kChainPoints = 100;
 // field is found within a frame or two of the evidence, and a video
 // without one costs a few fits over all its pairs in all.
 constexpr double kVignettingDecisionGrowth = 1.25;
+// Reprojection bound of the dominant motion's inliers, working px (as the
+// collapse's consistency check).
+constexpr double kVignettingInlierPx = 2.0;
 // The pyramid level whose picture gives a point's local brightness (smoothed
 // over a few pixels: a track's sub-pixel error barely changes it).
 constexpr int kBrightnessLevel = 2;
@@ -898,6 +901,24 @@ struct FeatureTracker::Impl {
     prev_flat_version = flat_version;
   }
 
+  // The pairs that follow the step's dominant motion (RANSAC homography,
+  // kVignettingInlierPx): a mover's tracks (a person crossing, turning in
+  // the light) change brightness together and would read as a field.
+  static bool KeepDominantMotion(std::vector<cv::Point2f>* from, std::vector<cv::Point2f>* to) {
+    if (from->size() < 8) return false;
+    std::vector<unsigned char> inlier;
+    if (cv::findHomography(*from, *to, cv::RANSAC, kVignettingInlierPx, inlier).empty()) return false;
+    size_t kept = 0;
+    for (size_t i = 0; i < from->size(); ++i)
+      if (inlier[i]) {
+        (*from)[kept] = (*from)[i];
+        (*to)[kept++] = (*to)[i];
+      }
+    from->resize(kept);
+    to->resize(kept);
+    return kept >= 8;
+  }
+
   // The tracked pairs' brightness change into the vignetting fit (on the
   // pictures KLT tracked: once a field is found, what is left of it);
   // every kVignettingDecideEvery steps a decision: a field found is taken,
@@ -910,8 +931,9 @@ struct FeatureTracker::Impl {
     const int level = std::min<int>({kBrightnessLevel, static_cast<int>(prev_pyramid.size() / 2) - 1,
                                      static_cast<int>(w.pyramid.size() / 2) - 1});
     if (level < 0) return;
-    vignetting_fit.AddStep(prev_pyramid[2 * level], w.pyramid[2 * level], std::ldexp(1.0, level), w.from, w.points,
-                           w.size);
+    std::vector<cv::Point2f> from = w.from, to = w.points;
+    if (!KeepDominantMotion(&from, &to)) return;
+    vignetting_fit.AddStep(prev_pyramid[2 * level], w.pyramid[2 * level], std::ldexp(1.0, level), from, to, w.size);
     if (vignetting_fit.pairs() < next_vignetting_decision && !vignetting_fit.full()) return;
     next_vignetting_decision = static_cast<size_t>(kVignettingDecisionGrowth * vignetting_fit.pairs());
     const VignettingModel m = vignetting_fit.Decide(vignetting.found ? kMinResidualFalloff : kMinCornerFalloff);
