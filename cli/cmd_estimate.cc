@@ -208,6 +208,11 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
   app.add_flag("--no-klt-predict", a->no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
+  app.add_flag("--flat-field", opt->tracker.flat_field_vignetting,
+               "estimate the lens's vignetting from the tracks' brightness as they cross the picture and, "
+               "once it shows the picture darkening towards its corners (5 % or more), track frames "
+               "divided by that field: LK reads the edges' motion short under a fall-off "
+               "(docs/extract.md \"Vignetting\")");
   app.add_flag("--match-fade-contrast", opt->tracker.match_fade_contrast,
                "in a fade (a frame's mean and contrast changed by one factor of more than 2 %), "
                "track it at the last frame's mean and contrast: LK assumes constant brightness "
@@ -253,7 +258,7 @@ void GroupTuningOptions(CLI::App& app) {
   for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
                            "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise",
                            "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
+                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--flat-field", "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
                            "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }
@@ -290,7 +295,7 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
 // Estimates the path and writes it (and the report) atomically.
 int Estimate(const EstimateArgs& a, EstimatorOptions opt) {
   OutputSet outputs({{a.video, "VIDEO"}}, {{a.output, "-o"}, {a.report, "--report"}});
-  std::set<std::string> kinds{"stage", "window", "lens_distortion"};
+  std::set<std::string> kinds{"stage", "window", "lens_distortion", "vignetting"};
   if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile", "focal_pull",
                                     "track_drift"});
   JsonDiagnostics diagnostics(kinds);

@@ -31,6 +31,7 @@
 #include "extract/keep_tracks.h"
 #include "extract/pyramid_lk.h"
 #include "extract/shot_detector.h"
+#include "extract/vignetting.h"
 
 namespace hapcine {
 
@@ -65,12 +66,6 @@ bool IsFadeStep(double mean_ratio, double contrast_ratio) {
   // motion blur lowers the contrast alone, new content moves either.
   const double log_contrast = std::log(contrast_ratio), log_mean = std::log(mean_ratio);
   return log_contrast * log_mean > 0 && std::abs(log_mean - log_contrast) < kFadeFactorAgreement * std::abs(log_contrast);
-}
-
-cv::Mat ContrastMatched(const cv::Mat& gray, double reference_mean, double reference_stddev, double* gain) {
-  cv::Scalar mean, stddev;
-  cv::meanStdDev(gray, mean, stddev);
-  return ContrastMatched(gray, mean[0], stddev[0], reference_mean, reference_stddev, gain);
 }
 
 cv::Mat ContrastMatched(const cv::Mat& gray, double mean, double stddev, double reference_mean,
@@ -129,6 +124,16 @@ constexpr double kPictureExplained = 0.8;
 constexpr float kAnchorResidualFloor = 0.1f;
 // Correspondences a run frame's homography is fitted to (ChainRunMotion).
 constexpr size_t kChainPoints = 100;
+// The vignetting fit decides again once its pairs grew by this factor: a
+// field is found within a frame or two of the evidence, and a video
+// without one costs a few fits over all its pairs in all.
+constexpr double kVignettingDecisionGrowth = 1.25;
+// Reprojection bound of the dominant motion's inliers, working px (as the
+// collapse's consistency check).
+constexpr double kVignettingInlierPx = 2.0;
+// The pyramid level whose picture gives a point's local brightness (smoothed
+// over a few pixels: a track's sub-pixel error barely changes it).
+constexpr int kBrightnessLevel = 2;
 // Earlier stills each still is linked to (LinkEarlierViews): a bound on the
 // SIFT matching per still; views further round share nothing anyway.
 constexpr size_t kStillsViewsBack = 8;
@@ -224,6 +229,18 @@ struct FeatureTracker::Impl {
   std::unordered_map<long, TrackAnchor> anchors;
   std::unordered_map<int, std::vector<cv::Mat>> anchor_levels;
   int prev_tracked_index = -1;  // the last tracked frame's index
+  // Vignetting (flat_field_vignetting): the fit while no field is found,
+  // the field once found (for the rest of the video: one lens), its gain
+  // at the working size, and whether prev_pyramid was built flat-fielded.
+  // flat_version counts the fields taken (0: none, raw frames); each
+  // pyramid remembers the one it was built with.
+  VignettingFit vignetting_fit;
+  VignettingModel vignetting;
+  bool vignetting_decided = false;  // the field will not change any more
+  int flat_version = 0, flat_gain_version = 0, prev_flat_version = 0;
+  cv::Mat flat_gain;
+  cv::Mat last_raw, prev_raw;  // the raw frame of this step and the last (while the field may change)
+  size_t next_vignetting_decision = kMinVignettingPairs;  // the fit's pairs at its next decision
 
   void DropTracks() {
     prev_pyramid.clear();
@@ -573,6 +590,7 @@ struct FeatureTracker::Impl {
     std::vector<cv::Point2f> points, from;  // tracked points and where they came from
     std::vector<long> ids;
     bool had_tracks = false;  // the previous frame had tracks (false: the shot's first tracked frame)
+    int flat_version = 0;     // the vignetting field the pyramid was built with (0: none)
     size_t before = 0;        // the previous frame's tracks
     size_t survived = 0;      // KLT survivors (after the collapse's consistency check)
     size_t relinked = 0;      // tracks the descriptors brought back
@@ -875,16 +893,95 @@ struct FeatureTracker::Impl {
     last_stddev = stddev[0];
   }
 
+  // The frame as KLT sees it: divided by the vignetting once one is found.
+  // The raw frame is kept while the field may still change (the next step
+  // rebuilds this frame's pyramid with the new field).
+  cv::Mat FlatFieldedPicture(const cv::Mat& gray, FrameWork* w) {
+    if (options.flat_field_vignetting && !vignetting_decided) last_raw = gray;
+    if (!vignetting.found) return gray;
+    if (flat_gain.size() != gray.size() || flat_gain_version != flat_version) {
+      flat_gain = FlatFieldGain(vignetting, gray.size());
+      flat_gain_version = flat_version;
+    }
+    w->flat_version = flat_version;
+    return FlatFielded(gray, flat_gain);
+  }
+
+  // The field changed after the last frame's pyramid was built: that frame
+  // is rebuilt with it, so both sides of the step see one picture.
+  void FlatFieldPrevious(cv::Size size) {
+    if (prev_flat_version == flat_version || prev_pyramid.empty() || prev_raw.size() != size) return;
+    FrameWork redo;
+    std::vector<cv::Mat> rebuilt;  // fresh buffers: an anchor may hold the old level 0
+    cv::buildOpticalFlowPyramid(FlatFieldedPicture(prev_raw, &redo), rebuilt, Window(), options.pyramid_levels - 1,
+                                true);
+    prev_pyramid = std::move(rebuilt);
+    prev_flat_version = flat_version;
+  }
+
+  // The pairs that follow the step's dominant motion (RANSAC homography,
+  // kVignettingInlierPx): a mover's tracks (a person crossing, turning in
+  // the light) change brightness together and would read as a field.
+  static bool KeepDominantMotion(std::vector<cv::Point2f>* from, std::vector<cv::Point2f>* to) {
+    if (from->size() < 8) return false;
+    std::vector<unsigned char> inlier;
+    if (cv::findHomography(*from, *to, cv::RANSAC, kVignettingInlierPx, inlier).empty()) return false;
+    size_t kept = 0;
+    for (size_t i = 0; i < from->size(); ++i)
+      if (inlier[i]) {
+        (*from)[kept] = (*from)[i];
+        (*to)[kept++] = (*to)[i];
+      }
+    from->resize(kept);
+    to->resize(kept);
+    return kept >= 8;
+  }
+
+  // The tracked pairs' brightness change into the vignetting fit (on the
+  // pictures KLT tracked: once a field is found, what is left of it);
+  // every kVignettingDecideEvery steps a decision: a field found is taken,
+  // then refined by what is left (KLT, pulled by the fall-off, reads part
+  // of it as motion, so the first fit falls short), until nothing
+  // significant is left or kMaxVignettingRefinements.
+  void FitVignetting(const Frame& frame, const FrameWork& w) {
+    if (!options.flat_field_vignetting || vignetting_decided || w.from.empty() || prev_flat_version != w.flat_version)
+      return;
+    const int level = std::min<int>({kBrightnessLevel, static_cast<int>(prev_pyramid.size() / 2) - 1,
+                                     static_cast<int>(w.pyramid.size() / 2) - 1});
+    if (level < 0) return;
+    std::vector<cv::Point2f> from = w.from, to = w.points;
+    if (!KeepDominantMotion(&from, &to)) return;
+    vignetting_fit.AddStep(prev_pyramid[2 * level], w.pyramid[2 * level], std::ldexp(1.0, level), from, to, w.size);
+    if (vignetting_fit.pairs() < next_vignetting_decision && !vignetting_fit.full()) return;
+    next_vignetting_decision = static_cast<size_t>(kVignettingDecisionGrowth * vignetting_fit.pairs());
+    const VignettingModel m = vignetting_fit.Decide(vignetting.found ? kMinResidualFalloff : kMinCornerFalloff);
+    if (m.found) {
+      vignetting.a += m.a;
+      vignetting.b += m.b;
+      vignetting.found = true;
+      ++flat_version;
+      vignetting_fit = VignettingFit();
+      next_vignetting_decision = kMinVignettingPairs;
+    }
+    if (m.found ? flat_version >= kMaxVignettingRefinements : vignetting_fit.full()) vignetting_decided = true;
+    if (m.found || vignetting_decided)
+      Record(diagnostics, "vignetting", {{"frame", frame.index}, {"found", vignetting.found}, {"a", vignetting.a},
+                                         {"b", vignetting.b}, {"corner_gain", vignetting.corner_gain()},
+                                         {"residual_corner_gain", m.corner_gain()}, {"refinement", flat_version}});
+  }
+
   // KLT from the last frame, with the displacements the prediction and the
   // transition-run statistics need.
   void TrackFromLastFrame(const Frame& frame, bool transition, FrameWork* w) {
     w->size = frame.gray.size();
     w->pyramid = std::move(spare_pyramid);
-    cv::buildOpticalFlowPyramid(ContrastMatchedToLast(frame.gray), w->pyramid, Window(), options.pyramid_levels - 1,
-                                true);
+    FlatFieldPrevious(w->size);
+    cv::buildOpticalFlowPyramid(ContrastMatchedToLast(FlatFieldedPicture(frame.gray, w)), w->pyramid, Window(),
+                                options.pyramid_levels - 1, true);
     w->had_tracks = !prev_points.empty();
     w->before = prev_points.size();
     Track(w->pyramid, w->size, &w->points, &w->ids, &w->from);
+    FitVignetting(frame, *w);
     BoundDrift(w);
     if (options.klt_predict)  // per frame (x 1 exactly when no frame was skipped)
       for (size_t i = 0; i < w->points.size(); ++i)
@@ -1010,6 +1107,8 @@ struct FeatureTracker::Impl {
     }
     prev_pyramid = std::move(w->pyramid);
     prev_size = w->size;
+    prev_flat_version = w->flat_version;
+    prev_raw = last_raw;
     if (options.klt_predict) {
       prev_velocity.assign(w->ids.size(), cv::Point2f(kNoMotion, kNoMotion));
       for (size_t i = 0; i < w->ids.size(); ++i) {
@@ -1225,7 +1324,8 @@ struct FeatureTracker::Impl {
   void DescribedStep(const Frame& frame, const ShotDecision& decision, FrameTracks* out, FrameWork* w) {
     w->size = frame.gray.size();
     w->pyramid = std::move(spare_pyramid);  // KLT may take the next frame
-    cv::buildOpticalFlowPyramid(frame.gray, w->pyramid, Window(), options.pyramid_levels - 1, true);
+    cv::buildOpticalFlowPyramid(FlatFieldedPicture(frame.gray, w), w->pyramid, Window(), options.pyramid_levels - 1,
+                                true);
     if (options.match_fade_contrast) RememberContrast(frame.gray);
     w->had_tracks = !last_described.empty() || !good_described.empty();
     w->before = last_described.points.size();

@@ -37,6 +37,14 @@ struct TrackerOptions {
   // contrast (IsFadeStep, ContrastMatched). Off by default: with the test
   // look's lens distortion it moves that fade's focal the wrong way (docs/extract.md).
   bool match_fade_contrast = false;
+  // Vignetting: estimate the lens's fixed radial darkening from the tracks'
+  // brightness as they move across the picture (VignettingFit) and, once
+  // the data demand a field, track on frames divided by it (flat field):
+  // the fall-off's slope does not move with the texture and LK reads the
+  // edges' motion short. Footage without vignetting is tracked as before.
+  // Off by default: on the test look it helps whip pans but not every
+  // clip (docs/extract.md "Vignetting").
+  bool flat_field_vignetting = false;
   // KLT drift bound: frame-to-frame KLT adds a small error every frame, so
   // a track's error grows with its age. Every track is also tracked from
   // the frame where it was detected (its anchor), at the finest pyramid
@@ -77,15 +85,14 @@ struct TrackerOptions {
 // picture is scaled from frame to frame and KLT reads too little motion.
 // IsFadeStep: the reference's mean and contrast (standard deviation) over a
 // frame's are one factor (within kFadeFactorAgreement of its log) and differ
-// from 1 by more than kContrastChangeToMatch. ContrastMatched: `gray` with
-// its mean and contrast set to the reference's on such a step; otherwise
-// `gray` itself (shared), so ordinary footage is tracked as before.
+// from 1 by more than kContrastChangeToMatch. ContrastMatched: `gray` (whose
+// mean and standard deviation are `mean`, `stddev`) with its mean and
+// contrast set to the reference's on such a step; otherwise `gray` itself
+// (shared), so ordinary footage is tracked as before.
 // `*gain`: the contrast factor applied (1: none).
 constexpr double kContrastChangeToMatch = 0.02;
 constexpr double kFadeFactorAgreement = 0.5;
 bool IsFadeStep(double mean_ratio, double contrast_ratio);
-cv::Mat ContrastMatched(const cv::Mat& gray, double reference_mean, double reference_stddev, double* gain);
-// The same with `gray`'s own mean and standard deviation already measured.
 cv::Mat ContrastMatched(const cv::Mat& gray, double mean, double stddev, double reference_mean,
                         double reference_stddev, double* gain);
 
