@@ -137,7 +137,7 @@ void AddModelOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
                  "only where they agree (same sign, within their standard errors); 1: the first "
                  "window alone")
       ->capture_default_str()
-      ->check(CLI::Range(1, 8));
+      ->check(FiniteRange(1, 8));
   app.add_option("--lens-k1", opt->lens_k1,
                  "a known radial distortion coefficient (ffmpeg lenscorrection's k1: r in "
                  "half-diagonals, barrel > 0): every track is undistorted with it, none is estimated")
@@ -255,11 +255,13 @@ void AddOutputOptions(CLI::App& app, EstimateArgs* a) {
 // What most users need stays on top of --help; the algorithm's knobs
 // (docs/estimate.md, "Options") are listed after them.
 void GroupTuningOptions(CLI::App& app) {
-  for (const char* name : {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor",
-                           "--track-rms-cut", "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise",
-                           "--keyframe-gap", "--no-smooth", "--smooth-sigma", "--klt-window",
-                           "--klt-anchor-frames", "--klt-anchor-min", "--klt-anchor-affine", "--no-klt-predict", "--flat-field", "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads", "--pyramid-levels",
-                           "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
+  for (const char* name :
+       {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor", "--track-rms-cut",
+        "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise", "--keyframe-gap",
+        "--no-smooth", "--smooth-sigma", "--klt-window", "--klt-anchor-frames", "--klt-anchor-min",
+        "--klt-anchor-affine", "--no-klt-predict", "--flat-field", "--match-fade-contrast", "--stills",
+        "--skip-loop-filter", "--decode-threads", "--pyramid-levels", "--klt-coarse-iterations",
+        "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }
 
