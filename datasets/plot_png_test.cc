@@ -85,7 +85,9 @@ TEST(PlotPngTest, CutLinesCrossEveryPanelInTheirOwnColour) {
   // Nowhere else in the data area: the legend's "cut" mark sits right of it.
   const int right_edge = static_cast<int>(L.panels[0].plot.x + L.panels[0].plot.w);
   for (int x = 0; x < right_edge; ++x) {
-    if (std::abs(x - at) > 1) EXPECT_EQ(cut[x], 0) << x;
+    if (std::abs(x - at) > 1) {
+      EXPECT_EQ(cut[x], 0) << x;
+    }
   }
   int legend = 0;
   for (int x = right_edge + 1; x < img.cols; ++x) legend += cut[x];

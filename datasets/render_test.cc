@@ -12,6 +12,15 @@
 namespace hapcine::synth {
 namespace {
 
+// A group of the given primitives; its bounds come from UpdateGroupBounds().
+ObjectGroup GroupOf(std::vector<int> boxes, std::vector<int> cylinders, std::vector<int> spheres) {
+  ObjectGroup g;
+  g.boxes = std::move(boxes);
+  g.cylinders = std::move(cylinders);
+  g.spheres = std::move(spheres);
+  return g;
+}
+
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
@@ -73,8 +82,8 @@ TEST(ProjectToImage, InvertsRayDirection) {
   v.world_from_cam = QuaternionFromPanTiltRoll({30, -12, 8});
   for (double x : {0.0, 17.25, 320.0, 639.9}) {
     for (double y : {0.0, 100.5, 359.0}) {
-      const Vector3d d = v.world_from_cam * CameraRayDirection(x, y, v.width, v.height,
-                                                               v.focal_px());
+      const Vector3d d =
+          v.world_from_cam * CameraRayDirection(x, y, v.width, v.height, v.focal_px());
       Vector2d xy;
       ASSERT_TRUE(ProjectToImage(v, v.center + 7.3 * d, &xy));
       EXPECT_NEAR(xy.x(), x, 1e-9);
@@ -96,7 +105,7 @@ TEST(RenderView, FrontoParallelSquareLandsAtProjectedPixel) {
   b.half = Vector3d(0.3, 0.25, 0.01);
   for (int& t : b.texture) t = 1;
   scene->boxes.push_back(b);
-  scene->groups.push_back({{}, {}, {0}, {}, {}});
+  scene->groups.push_back(GroupOf({0}, {}, {}));
   scene->UpdateGroupBounds();
   CameraView v;
   v.width = 160;
@@ -129,7 +138,7 @@ TEST(RenderView, RotatedCameraSeesSphereOnItsAxisAtImageCentre) {
   v.world_from_cam = QuaternionFromPanTiltRoll({15, -10, 30});
   // On the optical axis: a circle centred on the principal point.
   scene->spheres.push_back({v.center + v.world_from_cam * Vector3d(0, 0, -6), 0.4, 1});
-  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->groups.push_back(GroupOf({}, {}, {0}));
   scene->UpdateGroupBounds();
   RenderOptions o;
   o.supersample = 4;
@@ -148,7 +157,7 @@ TEST(RenderView, RotatedCameraSeesSphereOnItsAxisAtImageCentre) {
 TEST(RenderView, DeterministicAcrossThreadCounts) {
   auto scene = DarkRoom();
   scene->spheres.push_back({Vector3d(0.2, 0.1, -4), 0.5, 1});
-  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->groups.push_back(GroupOf({}, {}, {0}));
   scene->UpdateGroupBounds();
   CameraView v;
   v.width = 64;
@@ -197,7 +206,7 @@ TEST(RenderView, DistortedSphereLandsAtTheDistortedProjection) {
   v.fov_deg = 60;
   v.k1 = -0.15;
   scene->spheres.push_back({Vector3d(0.5, -0.3, -1) * 6, 0.12, 1});
-  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->groups.push_back(GroupOf({}, {}, {0}));
   scene->UpdateGroupBounds();
   RenderOptions o;
   o.supersample = 4;
@@ -219,7 +228,7 @@ TEST(RenderView, DistortedSphereLandsAtTheDistortedProjection) {
 TEST(RenderView, MoversOccludeTheSceneOnlyWhereTheyAreNearer) {
   auto scene = DarkRoom();
   scene->spheres.push_back({Vector3d(0.5, 0, -5), 0.4, 1});  // bright, right of the axis
-  scene->groups.push_back({{}, {}, {}, {}, {0}});
+  scene->groups.push_back(GroupOf({}, {}, {0}));
   scene->UpdateGroupBounds();
   CameraView v;
   v.width = 96;
@@ -242,7 +251,7 @@ TEST(RenderView, MoversOccludeTheSceneOnlyWhereTheyAreNearer) {
     return m.at<cv::Vec3f>(static_cast<int>(p.y()), static_cast<int>(p.x()));
   };
   EXPECT_GT(cv::norm(at(after, mover_px) - at(before, mover_px)), 10);  // the mover is drawn
-  EXPECT_EQ(at(after, sphere_px), at(before, sphere_px));              // the sphere is untouched
+  EXPECT_EQ(at(after, sphere_px), at(before, sphere_px));               // the sphere is untouched
   // Behind the sphere, a mover is hidden.
   movers->parts[0].center = Vector3d(0.5, 0, -8);
   movers->groups[0].center = movers->parts[0].center;
@@ -260,16 +269,19 @@ TEST(RenderOptions, RejectsBadSupersample) {
 TEST(Texture, MipmapsAverageAndWrap) {
   // A 2-texel-period checkerboard averages to grey in the coarser levels,
   // and wrapped lookups repeat.
-  Texture t([](double u, double v) {
-              const int i = static_cast<int>(std::floor(u * 10)), j = static_cast<int>(std::floor(v * 10));
-              return ((i + j) & 1) ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
-            },
-            1.6, 1.6, 0.1, true, 1);
+  Texture t(
+      [](double u, double v) {
+        const int i = static_cast<int>(std::floor(u * 10)),
+                  j = static_cast<int>(std::floor(v * 10));
+        return ((i + j) & 1) ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+      },
+      1.6, 1.6, 0.1, true, 1);
   ASSERT_EQ(t.width_px(), 16);
   EXPECT_GE(t.levels(), 5);
   EXPECT_NEAR(t.Texel(1, 3, 5)[0], 0.5, 0.01);
   EXPECT_NEAR(t.SampleTrilinear(0.05, 0.05, 1.6)[0], 0.5, 0.01);  // a whole-texture footprint
-  const Rgb a = t.SampleTrilinear(0.33, 0.71, 0.01), b = t.SampleTrilinear(0.33 + 1.6, 0.71 - 3.2, 0.01);
+  const Rgb a = t.SampleTrilinear(0.33, 0.71, 0.01),
+            b = t.SampleTrilinear(0.33 + 1.6, 0.71 - 3.2, 0.01);
   EXPECT_NEAR((a - b).norm(), 0, 1e-6);
 }
 

@@ -13,11 +13,20 @@ std::string Escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -37,8 +46,8 @@ std::string F(double v) {
 
 void Text(std::ostream& o, double x, double y, const std::string& s, const char* anchor,
           int size = 12, const char* extra = "") {
-  o << "<text x=\"" << F(x) << "\" y=\"" << F(y) << "\" font-size=\"" << size
-    << "\" text-anchor=\"" << anchor << "\"" << extra << ">" << Escape(s) << "</text>\n";
+  o << "<text x=\"" << F(x) << "\" y=\"" << F(y) << "\" font-size=\"" << size << "\" text-anchor=\""
+    << anchor << "\"" << extra << ">" << Escape(s) << "</text>\n";
 }
 
 // The panel's series, clipped to its data area.
@@ -51,7 +60,8 @@ void WriteSeries(std::ostream& o, const PlotPanel& p, const FigureLayout& L, con
   for (const auto& s : p.series) {
     for (const auto& run : SeriesRuns(s, L, r)) {
       if (s.filled && run.size() > 1) {  // the area down to y = 0
-        o << "<polygon fill=\"" << Rgb(s.color) << "\" fill-opacity=\"0.3\" stroke=\"none\" points=\"";
+        o << "<polygon fill=\"" << Rgb(s.color)
+          << "\" fill-opacity=\"0.3\" stroke=\"none\" points=\"";
         for (const auto& [x, y] : run) o << F(L.MapX(r, x)) << ',' << F(pl.MapY(y)) << ' ';
         o << F(L.MapX(r, run.back().first)) << ',' << F(pl.MapY(0)) << ' '
           << F(L.MapX(r, run.front().first)) << ',' << F(pl.MapY(0)) << "\"/>\n";
@@ -80,17 +90,67 @@ void WriteLegend(std::ostream& o, const Figure& fig, const FigureLayout& L, size
     }
     const LegendEntry& e = entries[i];
     if (e.kind == LegendEntry::kSwatch) {
-      o << "<rect x=\"" << F(L.legend_x) << "\" y=\"" << F(ly - 10) << "\" width=\"24\" height=\"10\" fill=\""
-        << Rgb(e.color) << "\"/>\n";
+      o << "<rect x=\"" << F(L.legend_x) << "\" y=\"" << F(ly - 10)
+        << "\" width=\"24\" height=\"10\" fill=\"" << Rgb(e.color) << "\"/>\n";
     } else if (e.kind == LegendEntry::kCut) {
-      o << "<line x1=\"" << F(L.legend_x + 12) << "\" y1=\"" << F(ly - 11) << "\" x2=\"" << F(L.legend_x + 12)
-        << "\" y2=\"" << F(ly + 1) << "\" stroke=\"" << Rgb(e.color) << "\" stroke-width=\"2\"/>\n";
+      o << "<line x1=\"" << F(L.legend_x + 12) << "\" y1=\"" << F(ly - 11) << "\" x2=\""
+        << F(L.legend_x + 12) << "\" y2=\"" << F(ly + 1) << "\" stroke=\"" << Rgb(e.color)
+        << "\" stroke-width=\"2\"/>\n";
     } else {
-      o << "<line x1=\"" << F(L.legend_x) << "\" y1=\"" << F(ly - 4) << "\" x2=\"" << F(L.legend_x + 24)
-        << "\" y2=\"" << F(ly - 4) << "\" stroke=\"" << Rgb(e.color) << "\" stroke-width=\"2\""
+      o << "<line x1=\"" << F(L.legend_x) << "\" y1=\"" << F(ly - 4) << "\" x2=\""
+        << F(L.legend_x + 24) << "\" y2=\"" << F(ly - 4) << "\" stroke=\"" << Rgb(e.color)
+        << "\" stroke-width=\"2\""
         << (e.kind == LegendEntry::kDashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
     }
     Text(o, L.legend_x + 30, ly, e.name, "start", 11);
+  }
+}
+
+// A panel's labelled bands (shots, effects), clipped to the plot.
+void WriteBands(std::ostream& o, const PlotPanel& p, const FigureLayout& L, const PlotRect& r) {
+  for (const auto& b : p.bands) {
+    const double x0 = std::max(r.x, L.MapX(r, b.x_begin));
+    const double x1 = std::min(r.x + r.w, L.MapX(r, b.x_end));
+    if (!(x1 > x0)) continue;
+    o << "<rect x=\"" << F(x0) << "\" y=\"" << F(r.y) << "\" width=\"" << F(x1 - x0)
+      << "\" height=\"" << F(r.h) << "\" fill=\"" << Rgb(b.color)
+      << "\" fill-opacity=\"0.35\" stroke=\"" << Rgb(b.color) << "\"/>\n";
+    if (BandLabelFits(b.label, x1 - x0)) {
+      Text(o, (x0 + x1) / 2, r.y + r.h / 2 + 4, b.label, "middle", 11);
+    }
+  }
+}
+
+// Grid lines with their tick labels, the plot's frame, title and y label.
+void WriteGridAndFrame(std::ostream& o, const PlotPanel& p, const FigureLayout& L,
+                       const PanelLayout& pl, double x_step) {
+  const PlotRect& r = pl.plot;
+  for (double t : L.x_ticks) {
+    const double x = L.MapX(r, t);
+    o << "<line x1=\"" << F(x) << "\" y1=\"" << F(r.y) << "\" x2=\"" << F(x) << "\" y2=\""
+      << F(r.y + r.h) << "\" stroke=\"#e0e0e0\"/>\n";
+    Text(o, x, r.y + r.h + 15, TickLabel(t, x_step), "middle", 11);
+  }
+  const double y_step = pl.y_ticks.size() > 1 ? pl.y_ticks[1] - pl.y_ticks[0] : 1.0;
+  for (double t : pl.y_ticks) {
+    const double y = pl.MapY(t);
+    o << "<line x1=\"" << F(r.x) << "\" y1=\"" << F(y) << "\" x2=\"" << F(r.x + r.w) << "\" y2=\""
+      << F(y) << "\" stroke=\"#e0e0e0\"/>\n";
+    Text(o, r.x - 6, y + 4, TickLabel(t, y_step), "end", 11);
+  }
+  o << "<rect x=\"" << F(r.x) << "\" y=\"" << F(r.y) << "\" width=\"" << F(r.w) << "\" height=\""
+    << F(r.h) << "\" fill=\"none\" stroke=\"black\"/>\n";
+  if (!p.title.empty()) Text(o, r.x + r.w / 2, r.y - 7, p.title, "middle", 13);
+  if (!p.y_label.empty()) Text(o, r.x - 6, r.y - 7, p.y_label, "end", 11);
+}
+
+// Shot boundaries inside the plot.
+void WriteCutLines(std::ostream& o, const Figure& fig, const FigureLayout& L, const PlotRect& r) {
+  for (double t : fig.cut_x) {
+    const double x = L.MapX(r, t);
+    if (x < r.x || x > r.x + r.w) continue;
+    o << "<line x1=\"" << F(x) << "\" y1=\"" << F(r.y) << "\" x2=\"" << F(x) << "\" y2=\""
+      << F(r.y + r.h) << "\" stroke=\"" << Rgb(CutLineColor()) << "\" stroke-width=\"2\"/>\n";
   }
 }
 
@@ -104,7 +164,8 @@ std::string RenderFigureSvg(const Figure& fig) {
     << "\" font-family=\"Helvetica, Arial, sans-serif\">\n";
   o << "<rect x=\"0\" y=\"0\" width=\"" << L.width_px << "\" height=\"" << L.height_px
     << "\" fill=\"white\"/>\n";
-  if (!fig.title.empty()) Text(o, L.width_px / 2.0, 22, fig.title, "middle", 16, " font-weight=\"bold\"");
+  if (!fig.title.empty())
+    Text(o, L.width_px / 2.0, 22, fig.title, "middle", 16, " font-weight=\"bold\"");
   const double x_step = L.x_ticks.size() > 1 ? L.x_ticks[1] - L.x_ticks[0] : 1.0;
 
   for (size_t pi = 0; pi < fig.panels.size(); ++pi) {
@@ -112,45 +173,12 @@ std::string RenderFigureSvg(const Figure& fig) {
     const PanelLayout& pl = L.panels[pi];
     const PlotRect& r = pl.plot;
     o << "<g>\n";
-    // Bands first, under everything else.
-    for (const auto& b : p.bands) {
-      const double x0 = std::max(r.x, L.MapX(r, b.x_begin));
-      const double x1 = std::min(r.x + r.w, L.MapX(r, b.x_end));
-      if (!(x1 > x0)) continue;
-      o << "<rect x=\"" << F(x0) << "\" y=\"" << F(r.y) << "\" width=\"" << F(x1 - x0)
-        << "\" height=\"" << F(r.h) << "\" fill=\"" << Rgb(b.color)
-        << "\" fill-opacity=\"0.35\" stroke=\"" << Rgb(b.color) << "\"/>\n";
-      if (BandLabelFits(b.label, x1 - x0)) {
-        Text(o, (x0 + x1) / 2, r.y + r.h / 2 + 4, b.label, "middle", 11);
-      }
-    }
-    // Grid and ticks.
-    for (double t : L.x_ticks) {
-      const double x = L.MapX(r, t);
-      o << "<line x1=\"" << F(x) << "\" y1=\"" << F(r.y) << "\" x2=\"" << F(x) << "\" y2=\""
-        << F(r.y + r.h) << "\" stroke=\"#e0e0e0\"/>\n";
-      Text(o, x, r.y + r.h + 15, TickLabel(t, x_step), "middle", 11);
-    }
-    const double y_step = pl.y_ticks.size() > 1 ? pl.y_ticks[1] - pl.y_ticks[0] : 1.0;
-    for (double t : pl.y_ticks) {
-      const double y = pl.MapY(t);
-      o << "<line x1=\"" << F(r.x) << "\" y1=\"" << F(y) << "\" x2=\"" << F(r.x + r.w)
-        << "\" y2=\"" << F(y) << "\" stroke=\"#e0e0e0\"/>\n";
-      Text(o, r.x - 6, y + 4, TickLabel(t, y_step), "end", 11);
-    }
-    o << "<rect x=\"" << F(r.x) << "\" y=\"" << F(r.y) << "\" width=\"" << F(r.w)
-      << "\" height=\"" << F(r.h) << "\" fill=\"none\" stroke=\"black\"/>\n";
-    if (!p.title.empty()) Text(o, r.x + r.w / 2, r.y - 7, p.title, "middle", 13);
-    if (!p.y_label.empty()) Text(o, r.x - 6, r.y - 7, p.y_label, "end", 11);
+    WriteBands(o, p, L, r);  // under everything else
+    WriteGridAndFrame(o, p, L, pl, x_step);
 
     WriteSeries(o, p, L, pl, pi);
     o << "</g>\n";
-    for (double t : fig.cut_x) {  // shot boundaries, over the curves
-      const double x = L.MapX(r, t);
-      if (x < r.x || x > r.x + r.w) continue;
-      o << "<line x1=\"" << F(x) << "\" y1=\"" << F(r.y) << "\" x2=\"" << F(x) << "\" y2=\""
-        << F(r.y + r.h) << "\" stroke=\"" << Rgb(CutLineColor()) << "\" stroke-width=\"2\"/>\n";
-    }
+    WriteCutLines(o, fig, L, r);  // over the curves
     WriteLegend(o, fig, L, pi);
     o << "</g>\n";
   }

@@ -63,7 +63,9 @@ TEST(AffineLkTest, AnotherPictureLeavesALargeResidual) {
   const AffinePatchFit wrong = AlignAffinePatch(anchor_image, {160, 120}, other, start, 8);
   ASSERT_TRUE(same.ok);
   EXPECT_LT(same.residual, 0.01);
-  if (wrong.ok) EXPECT_GT(wrong.residual, 0.3);
+  if (wrong.ok) {
+    EXPECT_GT(wrong.residual, 0.3);
+  }
 }
 
 // Degenerate cases: a flat patch (nothing to align: fails inside), a patch

@@ -31,26 +31,23 @@ double Correlation(const std::vector<double>& a, const std::vector<double>& b) {
 
 double Sign(double v) { return v < 0 ? -1.0 : 1.0; }
 
-ClassifiedSegment Label(const CameraPath& path, const ShotRange& shot, const CameraSignals& s,
-                        size_t i0, size_t i1, double depth, const ClassifierOptions& o) {
+// The segment's motion: translation in depth units of the start camera's
+// frame, accumulated angles, zoom change and the z/zoom correlation.
+ClassifiedSegment MeasureSegment(const CameraPath& path, const ShotRange& shot,
+                                 const CameraSignals& s, size_t i0, size_t i1, double depth) {
   ClassifiedSegment c;
   c.segment.start_s = s.time_s[i0];
   c.segment.end_s = s.time_s[i1];
-  // Rotation relative to the segment start, in the segment-start camera frame.
   const auto& f0 = path.frames[shot.first + i0];
   const auto& f1 = path.frames[shot.first + i1];
-  const Eigen::Matrix3d R0 = f0.world_from_cam.toRotationMatrix();
-  c.translation = R0.transpose() * (f1.center - f0.center) / depth;
-  double tilt = 0, pan = 0, roll = 0;
+  const Eigen::Matrix3d world_from_start = f0.world_from_cam.toRotationMatrix();
+  c.translation = world_from_start.transpose() * (f1.center - f0.center) / depth;
   // Accumulate frame-to-frame angle changes so turns beyond 180 deg count.
   for (size_t i = i0 + 1; i <= i1; ++i) {
-    tilt += s.tilt_rad[i] - s.tilt_rad[i - 1];
-    pan += s.pan_rad[i] - s.pan_rad[i - 1];
-    roll += s.roll_rad[i] - s.roll_rad[i - 1];
+    c.tilt_rad += s.tilt_rad[i] - s.tilt_rad[i - 1];
+    c.pan_rad += s.pan_rad[i] - s.pan_rad[i - 1];
+    c.roll_rad += s.roll_rad[i] - s.roll_rad[i - 1];
   }
-  c.tilt_rad = tilt;
-  c.pan_rad = pan;
-  c.roll_rad = roll;
   c.log_zoom = s.log_zoom[i1] - s.log_zoom[i0];
   std::vector<double> z, lz;
   for (size_t i = i0; i <= i1; ++i) {
@@ -58,14 +55,51 @@ ClassifiedSegment Label(const CameraPath& path, const ShotRange& shot, const Cam
     lz.push_back(s.log_zoom[i]);
   }
   c.z_zoom_correlation = Correlation(z, lz);
+  return c;
+}
 
+// A segment dominated by rotation: tilt, roll, or a pan (labelled as the
+// traveling it follows).
+void LabelRotation(const ClassifiedSegment& c, EffectSegment* e) {
+  const double rt = std::abs(c.tilt_rad), rp = std::abs(c.pan_rad), rr = std::abs(c.roll_rad);
+  if (rt >= rp && rt >= rr) {
+    e->effect = CameraEffect::kTilting;
+    e->intensity = Sign(c.tilt_rad);
+  } else if (rr >= rp) {
+    e->effect = CameraEffect::kDutchAngle;
+    e->intensity = Sign(c.roll_rad);
+  } else {
+    e->effect = CameraEffect::kTraveling;
+    e->intensity = -Sign(c.pan_rad);  // pan left (+) follows something moving left
+  }
+}
+
+// A segment dominated by translation: crane (vertical), traveling (sideways)
+// or a dolly along the view (labelled as a zoom).
+void LabelTranslation(const Eigen::Vector3d& t, EffectSegment* e) {
+  const double tx = std::abs(t.x()), ty = std::abs(t.y()), tz = std::abs(t.z());
+  if (ty >= tx && ty >= tz) {
+    e->effect = CameraEffect::kCraneShot;
+    e->intensity = Sign(t.y());
+  } else if (tx >= tz) {
+    e->effect = CameraEffect::kTraveling;
+    e->intensity = Sign(t.x());
+  } else {
+    e->effect = CameraEffect::kZoomIn;  // dolly in/out
+    e->intensity = -Sign(t.z());
+  }
+}
+
+ClassifiedSegment Label(const CameraPath& path, const ShotRange& shot, const CameraSignals& s,
+                        size_t i0, size_t i1, double depth, const ClassifierOptions& o) {
+  ClassifiedSegment c = MeasureSegment(path, shot, s, i0, i1, depth);
   const double sig = o.significant_change;
   const double tx = std::abs(c.translation.x()), ty = std::abs(c.translation.y()),
                tz = std::abs(c.translation.z());
-  const double rt = std::abs(tilt), rp = std::abs(pan), rr = std::abs(roll);
+  const double rp = std::abs(c.pan_rad);
   const double zm = std::abs(c.log_zoom);
   const double t_max = std::max({tx, ty, tz});
-  const double r_max = std::max({rt, rp, rr});
+  const double r_max = std::max({std::abs(c.tilt_rad), rp, std::abs(c.roll_rad)});
   EffectSegment& e = c.segment;
   e.intensity = 1;
   auto comparable = [](double a, double b) { return a > 0.25 * b && b > 0.25 * a; };
@@ -80,31 +114,13 @@ ClassifiedSegment Label(const CameraPath& path, const ShotRange& shot, const Cam
   } else if (zm > sig && zm >= 0.5 * std::max(t_max, r_max)) {
     e.effect = CameraEffect::kZoomIn;
     e.intensity = Sign(c.log_zoom);
-  } else if (rp > sig && tx > sig && c.translation.x() * pan > 0 && comparable(tx, rp) &&
+  } else if (rp > sig && tx > sig && c.translation.x() * c.pan_rad > 0 && comparable(tx, rp) &&
              tx >= ty) {
     e.effect = CameraEffect::kArcing;
   } else if (t_max > sig && t_max >= 0.5 * r_max) {
-    if (ty >= tx && ty >= tz) {
-      e.effect = CameraEffect::kCraneShot;
-      e.intensity = Sign(c.translation.y());
-    } else if (tx >= tz) {
-      e.effect = CameraEffect::kTraveling;
-      e.intensity = Sign(c.translation.x());
-    } else {
-      e.effect = CameraEffect::kZoomIn;  // dolly in/out
-      e.intensity = -Sign(c.translation.z());
-    }
+    LabelTranslation(c.translation, &e);
   } else if (r_max > sig) {
-    if (rt >= rp && rt >= rr) {
-      e.effect = CameraEffect::kTilting;
-      e.intensity = Sign(tilt);
-    } else if (rr >= rp) {
-      e.effect = CameraEffect::kDutchAngle;
-      e.intensity = Sign(roll);
-    } else {
-      e.effect = CameraEffect::kTraveling;
-      e.intensity = -Sign(pan);  // pan left (+) follows something moving left
-    }
+    LabelRotation(c, &e);
   } else {
     e.effect = CameraEffect::kNone;
   }

@@ -627,7 +627,9 @@ TEST(HapticModelEdits, ModelOverrideInOneShotIsThatModelThere) {
   bool labelled = false;
   for (const HapticSample& s : mixed.samples) {
     ASSERT_TRUE(s.effect.has_value());
-    if (s.time_s < kCut1 || s.time_s >= kCut2) EXPECT_EQ(*s.effect, "none");
+    if (s.time_s < kCut1 || s.time_s >= kCut2) {
+      EXPECT_EQ(*s.effect, "none");
+    }
     labelled = labelled || *s.effect != "none";
   }
   EXPECT_TRUE(labelled);

@@ -102,7 +102,9 @@ TEST(SemanticModel, CrabWalkAlternatesAndFollowsTheDirection) {
     const double dr = v[At(t + 0.01)][R].x() - v[At(t - 0.01)][R].x();
     const double dl = v[At(t + 0.01)][L].x() - v[At(t - 0.01)][L].x();
     const bool turning = std::abs(std::remainder(t - 1.0, 0.5)) < 0.03;  // a hand at rest or at its peak
-    if (!turning) EXPECT_LT(dr * dl, 0) << t;  // one returns while the other steps
+    if (!turning) {
+      EXPECT_LT(dr * dl, 0) << t;  // one returns while the other steps
+    }
   }
   EXPECT_GT(v[At(1.75)][L].x(), 0.02);
   EXPECT_GT(v[At(1.75)][R].x(), 0.02);  // both out, passing each other

@@ -29,29 +29,23 @@ void FsyncDirectoryOf(const std::string& path) {
     close(dfd);
   }
 }
-}  // namespace
 
-Journal::Journal(const std::string& path, const std::string& plan_id,
-                 const std::string& participant)
-    : path_(path) {
-  std::string content;
-  bool existed = false;
-  {
-    // A journal not yet written is created below; one that exists must be a
-    // regular file (a FIFO would block, a device never end).
-    std::error_code ec;
-    if (std::filesystem::exists(path, ec)) CheckRegularFile(path);
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      existed = true;
-      std::stringstream ss;
-      ss << in.rdbuf();
-      content = ss.str();
-    }
-  }
-  // Split into complete lines; a trailing fragment without '\n' is a write
-  // cut short by a crash.
-  size_t keep = 0;  // bytes of valid content to keep
+// The journal's bytes, or "" with *existed false when there is none yet. One
+// that exists must be a regular file (a FIFO would block, a device never end).
+std::string ReadExisting(const std::string& path, bool* existed) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) CheckRegularFile(path);
+  std::ifstream in(path, std::ios::binary);
+  *existed = static_cast<bool>(in);
+  if (!in) return "";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The complete lines; a trailing fragment without '\n' is a write cut short
+// by a crash and is left out.
+std::vector<std::string> CompleteLines(const std::string& content) {
   std::vector<std::string> lines;
   for (size_t pos = 0; pos < content.size();) {
     const size_t nl = content.find('\n', pos);
@@ -59,32 +53,54 @@ Journal::Journal(const std::string& path, const std::string& plan_id,
     lines.push_back(content.substr(pos, nl - pos));
     pos = nl + 1;
   }
-  size_t offset = 0;
+  return lines;
+}
+
+// The header line must name this plan and participant.
+void CheckHeader(const json& j, const std::string& path, const std::string& plan_id,
+                 const std::string& participant) {
+  if (!j.is_object() || j.value("format", "") != kFormat)
+    throw Error(path, "not a hapcine study journal");
+  const std::string jp = StringField(j, "plan_id", path, "line 1");
+  const std::string jpart = StringField(j, "participant", path, "line 1");
+  if (jp != plan_id) throw Error(path, "journal belongs to plan " + jp + ", not " + plan_id);
+  if (jpart != participant)
+    throw Error(path, "journal belongs to participant " + jpart + ", not " + participant);
+}
+
+}  // namespace
+
+size_t Journal::ParseRecords(const std::string& content, const std::vector<std::string>& lines,
+                             const std::string& plan_id, const std::string& participant) {
+  size_t offset = 0;  // bytes of valid content so far
   for (size_t i = 0; i < lines.size(); ++i) {
-    const std::string where = "line " + std::to_string(i + 1);
     json j;
     try {
       j = json::parse(lines[i]);
     } catch (const json::exception&) {
+      // A last line that does not parse is a torn write: dropped, not fatal.
       if (i + 1 == lines.size() && offset + lines[i].size() + 1 == content.size()) break;
-      throw Error(path + ":" + std::to_string(i + 1), "corrupt journal line (not JSON)");
+      throw Error(path_ + ":" + std::to_string(i + 1), "corrupt journal line (not JSON)");
     }
     if (i == 0) {
-      if (!j.is_object() || j.value("format", "") != kFormat)
-        throw Error(path, "not a hapcine study journal");
-      const std::string jp = StringField(j, "plan_id", path, where);
-      const std::string jpart = StringField(j, "participant", path, where);
-      if (jp != plan_id) throw Error(path, "journal belongs to plan " + jp + ", not " + plan_id);
-      if (jpart != participant)
-        throw Error(path, "journal belongs to participant " + jpart + ", not " + participant);
+      CheckHeader(j, path_, plan_id, participant);
     } else {
       if (!j.is_object())
-        throw Error(path + ":" + std::to_string(i + 1), "journal record is not an object");
+        throw Error(path_ + ":" + std::to_string(i + 1), "journal record is not an object");
       records_.push_back(std::move(j));
     }
     offset += lines[i].size() + 1;
-    keep = offset;
   }
+  return offset;
+}
+
+Journal::Journal(const std::string& path, const std::string& plan_id,
+                 const std::string& participant)
+    : path_(path) {
+  bool existed = false;
+  const std::string content = ReadExisting(path, &existed);
+  const std::vector<std::string> lines = CompleteLines(content);
+  const size_t keep = ParseRecords(content, lines, plan_id, participant);
   fd_ = open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw Error(path, std::string("cannot open journal: ") + std::strerror(errno));
   if (keep < content.size()) {

@@ -30,6 +30,10 @@ class Journal {
   const std::string& path() const { return path_; }
 
  private:
+  // Reads the records after the header into records_; returns the bytes of
+  // `content` that are valid (a torn last line is not).
+  size_t ParseRecords(const std::string& content, const std::vector<std::string>& lines,
+                      const std::string& plan_id, const std::string& participant);
   void WriteLine(const std::string& line);
   std::string path_;
   int fd_ = -1;

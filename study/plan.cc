@@ -124,6 +124,74 @@ int TrialsPerParticipant(const std::vector<StudyClip>& clips) {
   return n;
 }
 
+namespace {
+
+// Conditions whose tracks are identical form one group: each condition joins
+// the first earlier group whose representative track it matches.
+std::vector<std::vector<std::string>> GroupIdenticalTracks(
+    const std::vector<std::string>& conditions, const std::vector<HapticTrack>& tracks,
+    double tolerance_m) {
+  std::vector<std::vector<std::string>> groups;
+  std::vector<size_t> rep;  // index of each group's representative condition
+  for (size_t i = 0; i < conditions.size(); ++i) {
+    size_t g = 0;
+    while (g < rep.size() && !TracksIdentical(tracks[rep[g]], tracks[i], tolerance_m)) ++g;
+    if (g == rep.size()) {
+      rep.push_back(i);
+      groups.emplace_back();
+    }
+    groups[g].push_back(conditions[i]);
+  }
+  return groups;
+}
+
+// Hashes a located clip's files and groups its conditions by identical tracks.
+void HashAndGroup(const std::string& clip_path, const PlanOptions& options, std::ostream* log,
+                  StudyClip* out) {
+  StudyClip& clip = *out;
+  clip.video_hash = HashFile(clip.video);
+  std::vector<HapticTrack> tracks;
+  for (const auto& c : options.conditions) {
+    clip.tracks[c].hash = HashFile(clip.tracks[c].path);
+    tracks.push_back(ReadHapticTrackFile(clip.tracks[c].path));
+  }
+  clip.groups = GroupIdenticalTracks(options.conditions, tracks, options.identical_tolerance_m);
+  if (log)
+    for (const auto& g : clip.groups)
+      if (g.size() > 1) {
+        *log << "  " << clip.name << ": identical tracks for";
+        for (const auto& c : g) *log << " " << c;
+        *log << " (tested once, a choice scores for all)\n";
+      }
+  if (clip.groups.size() < 2)
+    throw Error(clip_path, "all condition tracks are identical: nothing to compare");
+}
+
+// One participant's training clips and trials, shuffled by their own seed.
+ParticipantPlan PlanParticipant(int number, const PlanOptions& options,
+                                const std::vector<StudyClip>& clips) {
+  ParticipantPlan p;
+  p.number = number;
+  p.id = ParticipantId(number, options.participants);
+  p.seed = ParticipantSeed(options.seed, number);
+  StudyRng rng(p.seed);
+  // Training (section 5.2): every clip once, with one condition drawn at
+  // random for this participant, in random order.
+  p.training_condition = options.conditions[rng.Below(options.conditions.size())];
+  for (const auto& c : clips) p.training.push_back({c.name, p.training_condition});
+  rng.Shuffle(p.training);
+  // Trials: every ordered pair of distinct groups (a pair and its inverse).
+  for (const auto& c : clips)
+    for (size_t i = 0; i < c.groups.size(); ++i)
+      for (size_t j = 0; j < c.groups.size(); ++j)
+        if (i != j) p.trials.push_back({0, c.name, c.groups[i], c.groups[j]});
+  rng.Shuffle(p.trials);
+  for (size_t k = 0; k < p.trials.size(); ++k) p.trials[k].index = static_cast<int>(k);
+  return p;
+}
+
+}  // namespace
+
 StudyPlan MakePlan(const PlanOptions& options, std::ostream* log) {
   options.Check();
   StudyPlan plan;
@@ -138,60 +206,11 @@ StudyPlan MakePlan(const PlanOptions& options, std::ostream* log) {
     if (log)
       *log << "[" << ci + 1 << "/" << options.clips.size() << "] " << clip.name << ": hashing and "
            << "comparing tracks\n";
-    clip.video_hash = HashFile(clip.video);
-    std::vector<HapticTrack> tracks;
-    for (const auto& c : options.conditions) {
-      clip.tracks[c].hash = HashFile(clip.tracks[c].path);
-      tracks.push_back(ReadHapticTrackFile(clip.tracks[c].path));
-    }
-    // Group identical tracks: each condition joins the first earlier group
-    // whose representative track it matches.
-    std::vector<int> rep;  // index of each group's representative condition
-    for (size_t i = 0; i < options.conditions.size(); ++i) {
-      bool joined = false;
-      for (size_t g = 0; g < rep.size() && !joined; ++g) {
-        if (TracksIdentical(tracks[rep[g]], tracks[i], options.identical_tolerance_m)) {
-          clip.groups[g].push_back(options.conditions[i]);
-          joined = true;
-        }
-      }
-      if (!joined) {
-        rep.push_back(static_cast<int>(i));
-        clip.groups.push_back({options.conditions[i]});
-      }
-    }
-    if (log)
-      for (const auto& g : clip.groups)
-        if (g.size() > 1) {
-          *log << "  " << clip.name << ": identical tracks for";
-          for (const auto& c : g) *log << " " << c;
-          *log << " (tested once, a choice scores for all)\n";
-        }
-    if (clip.groups.size() < 2)
-      throw Error(options.clips[ci], "all condition tracks are identical: nothing to compare");
+    HashAndGroup(options.clips[ci], options, log, &clip);
     plan.clips.push_back(std::move(clip));
   }
-
-  for (int number = 1; number <= options.participants; ++number) {
-    ParticipantPlan p;
-    p.number = number;
-    p.id = ParticipantId(number, options.participants);
-    p.seed = ParticipantSeed(options.seed, number);
-    StudyRng rng(p.seed);
-    // Training (section 5.2): every clip once, with one condition drawn at
-    // random for this participant, in random order.
-    p.training_condition = options.conditions[rng.Below(options.conditions.size())];
-    for (const auto& c : plan.clips) p.training.push_back({c.name, p.training_condition});
-    rng.Shuffle(p.training);
-    // Trials: every ordered pair of distinct groups (a pair and its inverse).
-    for (const auto& c : plan.clips)
-      for (size_t i = 0; i < c.groups.size(); ++i)
-        for (size_t j = 0; j < c.groups.size(); ++j)
-          if (i != j) p.trials.push_back({0, c.name, c.groups[i], c.groups[j]});
-    rng.Shuffle(p.trials);
-    for (size_t k = 0; k < p.trials.size(); ++k) p.trials[k].index = static_cast<int>(k);
-    plan.participants.push_back(std::move(p));
-  }
+  for (int number = 1; number <= options.participants; ++number)
+    plan.participants.push_back(PlanParticipant(number, options, plan.clips));
   plan.questionnaire = options.questionnaire;
   plan.plan_id = ComputePlanId(plan);
   return plan;
@@ -263,8 +282,7 @@ void ValidateClips(const StudyPlan& plan, const std::string& src) {
   const std::set<std::string> conds(plan.conditions.begin(), plan.conditions.end());
   if (conds.size() != plan.conditions.size() || conds.size() < 2 || conds.count(""))
     throw Error(src, "conditions must be at least two distinct names");
-  if (!(plan.identical_tolerance_m >= 0))
-    throw Error(src, "identical_tolerance_m must be >= 0");
+  if (!(plan.identical_tolerance_m >= 0)) throw Error(src, "identical_tolerance_m must be >= 0");
   if (plan.clips.empty()) throw Error(src, "no clips");
   std::set<std::string> names;
   for (const StudyClip& c : plan.clips) {

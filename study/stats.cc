@@ -172,8 +172,7 @@ std::vector<double> ShapiroWilkCoefficients(int n) {
   if (n > 5) {
     i1 = 3;
     const double a2 = -a[2] / ssumm2 + Poly(c2, 6, rsn);
-    fac =
-        std::sqrt((summ2 - 2 * a[1] * a[1] - 2 * a[2] * a[2]) / (1 - 2 * a1 * a1 - 2 * a2 * a2));
+    fac = std::sqrt((summ2 - 2 * a[1] * a[1] - 2 * a[2] * a[2]) / (1 - 2 * a1 * a1 - 2 * a2 * a2));
     a[2] = a2;
   } else {
     i1 = 2;
@@ -245,6 +244,39 @@ double ShapiroWilkP(int n, double w1) {
   return std::clamp(NormalSf((y - m) / s), 0.0, 1.0);
 }
 
+// Sum over the groups of equal values of t^3 - t (t: the group's size), the
+// tie correction of rank tests' variances.
+double TieCorrection(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const int n = static_cast<int>(values.size());
+  double sum = 0;
+  for (int i = 0; i < n;) {
+    int j = i;
+    while (j + 1 < n && values[j + 1] == values[i]) ++j;
+    const double t = j - i + 1;
+    sum += t * t * t - t;
+    i = j + 1;
+  }
+  return sum;
+}
+
+// Two-sided p of the signed-rank statistic v over n untied, non-zero
+// differences: counts the subsets of {1..n} by rank sum (v is then an integer).
+double ExactSignedRankP(int n, double v) {
+  const int max_sum = n * (n + 1) / 2;
+  std::vector<double> count(max_sum + 1, 0.0);
+  count[0] = 1;
+  for (int i = 1; i <= n; ++i)
+    for (int s = max_sum; s >= i; --s) count[s] += count[s - i];
+  const int vi = static_cast<int>(std::lround(v));
+  double lower = 0, upper = 0;  // P(V <= v), P(V >= v)
+  for (int s = 0; s <= max_sum; ++s) {
+    if (s <= vi) lower += count[s];
+    if (s >= vi) upper += count[s];
+  }
+  return std::min(1.0, 2 * std::min(lower, upper) / std::ldexp(1.0, n));
+}
+
 }  // namespace
 
 ShapiroWilkResult ShapiroWilk(std::vector<double> x) {
@@ -286,15 +318,7 @@ FriedmanResult FriedmanTest(const std::vector<std::vector<double>>& data) {
     }
     const auto r = AverageRanks(snapped);
     for (int j = 0; j < k; ++j) rank_sum[j] += r[j];
-    std::vector<double> sorted = snapped;
-    std::sort(sorted.begin(), sorted.end());
-    for (int i = 0; i < k;) {
-      int j = i;
-      while (j + 1 < k && sorted[j + 1] == sorted[i]) ++j;
-      const double t = j - i + 1;
-      tie_sum += t * t * t - t;
-      i = j + 1;
-    }
+    tie_sum += TieCorrection(snapped);
   }
   double ss = 0;
   const double expected = n * (k + 1) / 2.0;
@@ -346,36 +370,10 @@ WilcoxonResult WilcoxonSignedRank(const std::vector<double>& x, const std::vecto
   for (int i = 0; i < n; ++i)
     if (d[i] > 0) v += r[i];
   res.v = v;
-  // Tie groups among |d|.
-  std::vector<double> sorted = absd;
-  std::sort(sorted.begin(), sorted.end());
-  bool ties = false;
-  double tie_sum = 0;
-  for (int i = 0; i < n;) {
-    int j = i;
-    while (j + 1 < n && sorted[j + 1] == sorted[i]) ++j;
-    const double t = j - i + 1;
-    if (t > 1) ties = true;
-    tie_sum += t * t * t - t;
-    i = j + 1;
-  }
-
-  if (n < 50 && !ties && !zeroes) {
-    // Exact: count subsets of {1..n} by rank sum (V is then an integer).
-    const int max_sum = n * (n + 1) / 2;
-    std::vector<double> count(max_sum + 1, 0.0);
-    count[0] = 1;
-    for (int i = 1; i <= n; ++i)
-      for (int s = max_sum; s >= i; --s) count[s] += count[s - i];
-    const double total = std::ldexp(1.0, n);
-    const int vi = static_cast<int>(std::lround(v));
-    double lower = 0, upper = 0;  // P(V <= v), P(V >= v)
-    for (int s = 0; s <= max_sum; ++s) {
-      if (s <= vi) lower += count[s];
-      if (s >= vi) upper += count[s];
-    }
+  const double tie_sum = TieCorrection(absd);  // 0 exactly when no two |d| tie
+  if (n < 50 && tie_sum == 0 && !zeroes) {
     res.exact = true;
-    res.p = std::min(1.0, 2 * std::min(lower, upper) / total);
+    res.p = ExactSignedRankP(n, v);
     return res;
   }
   const double mean = n * (n + 1) / 4.0;
