@@ -226,6 +226,80 @@ TEST(ZoomEvidence, TrackPairedZClustersTheGainByTrack) {
   EXPECT_EQ(TrackPairedZ({}, {}, {}, sigma), 0.0);
 }
 
+// Ten tracks of three observations; `taken_better` tracks fit the taken
+// reading better by 1 chi2 per observation, the rest the other reading.
+struct TwoReadings {
+  std::vector<double> taken, other;
+  std::vector<int> track;
+};
+TwoReadings Readings(int taken_better) {
+  TwoReadings r;
+  for (int i = 0; i < 30; ++i) {
+    const bool better = i / 3 < taken_better;
+    r.taken.push_back(better ? 1.0 : std::sqrt(2.0));
+    r.other.push_back(better ? std::sqrt(2.0) : 1.0);
+    r.track.push_back(i / 3);
+  }
+  return r;
+}
+
+// Each branch right in turn: the comparison follows the shared tracks.
+TEST(ZoomEvidence, BranchReadingsComparedOnTheSharedTracks) {
+  const std::vector<char> none(10, 0);
+  const TwoReadings taken_right = Readings(10), other_right = Readings(0);
+  const BranchFit a = CompareBranchReadings(taken_right.taken, taken_right.other, taken_right.track, none, none, 1);
+  EXPECT_NEAR(a.gain, 30, 1e-9);
+  EXPECT_NEAR(a.z, 30 / std::sqrt(90.0), 1e-9);
+  EXPECT_EQ(a.tracks_left_out, 0);
+  const BranchFit b = CompareBranchReadings(other_right.taken, other_right.other, other_right.track, none, none, 1);
+  EXPECT_NEAR(b.gain, -30, 1e-9);
+  EXPECT_NEAR(b.z, -30 / std::sqrt(90.0), 1e-9);
+}
+
+// The other reading left two tracks at infinity (its solve's start, not
+// evidence): capped residuals there made the taken reading look better;
+// without them the other reading is better on every track both explain.
+TEST(ZoomEvidence, TracksAtInfinityUnderEitherReadingAreLeftOutOfBoth) {
+  TwoReadings r = Readings(0);
+  for (int i = 0; i < 6; ++i) r.other[i] = 1e9;  // tracks 0 and 1: clipped, capped at 9
+  std::vector<char> other_at_bound(10, 0), none(10, 0);
+  other_at_bound[0] = other_at_bound[1] = 1;
+  const BranchFit all = CompareBranchReadings(r.taken, r.other, r.track, none, none, 1);
+  EXPECT_GT(all.gain, 0);  // 6 x (9 - 2) - 24 x 1
+  const BranchFit shared = CompareBranchReadings(r.taken, r.other, r.track, none, other_at_bound, 1);
+  EXPECT_NEAR(shared.gain, -24, 1e-9);
+  EXPECT_NEAR(shared.z, -24 / std::sqrt(8 * 9.0), 1e-9);
+  EXPECT_EQ(shared.tracks_left_out, 2);
+  // The same whichever reading has them at its bound.
+  const BranchFit swapped = CompareBranchReadings(r.taken, r.other, r.track, other_at_bound, none, 1);
+  EXPECT_NEAR(swapped.gain, shared.gain, 1e-12);
+}
+
+// Degenerate: every track at infinity under one reading, or no observations:
+// no evidence either way (the tie-break cues decide, then the lesser zoom).
+TEST(ZoomEvidence, NoSharedTrackIsNoEvidence) {
+  const TwoReadings r = Readings(10);
+  const BranchFit f = CompareBranchReadings(r.taken, r.other, r.track, std::vector<char>(10, 1), {}, 1);
+  EXPECT_EQ(f.gain, 0.0);
+  EXPECT_EQ(f.z, 0.0);
+  EXPECT_EQ(f.tracks_left_out, 10);
+  const BranchFit empty = CompareBranchReadings({}, {}, {}, {}, {}, 1);
+  EXPECT_EQ(empty.gain, 0.0);
+  EXPECT_EQ(empty.z, 0.0);
+  EXPECT_TRUE(IsAmbiguous(Branch(f.gain, 100, 0.5, f.z)));
+  EXPECT_TRUE(PreferOtherBranch(Branch(f.gain, 100, 0.5, f.z), 0.04, 0.0));
+}
+
+// A fit that decides for the other reading takes it, as one that decides for
+// the taken one keeps it; under either gate the cues decide.
+TEST(ZoomEvidence, FitDecidingForTheOtherBranchTakesIt) {
+  EXPECT_TRUE(PreferOtherBranch(Branch(-60, 100, 0.04, -2.5), 0.5, 0.0));
+  EXPECT_TRUE(PreferOtherBranch(Branch(-60, 100, 0.04, -2.5), 0.5, 1.5, 20, 0));  // over cues under their gate
+  EXPECT_FALSE(PreferOtherBranch(Branch(-60, 100, 0.04, -2.5), 0.5, 3.0));       // the overrule gate wins
+  EXPECT_FALSE(PreferOtherBranch(Branch(-40, 100, 0.04, -2.5), 0.5, 0.0));  // under half a threshold
+  EXPECT_FALSE(PreferOtherBranch(Branch(-60, 100, 0.04, -1.5), 0.5, 0.0));  // under two sigma
+}
+
 TEST(ZoomEvidence, TotalLogZoomOverChosenIntervals) {
   std::vector<BaCamera> cams(3);
   cams[0].log_focal = 0;
