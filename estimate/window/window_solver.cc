@@ -552,16 +552,16 @@ void RecordFocalDecision(const WindowProblem& p, FocalCandidateScores* scores, c
 // Along the axis, where no cue ruled a branch out, the fit chose the branch:
 // how clearly (ZoomDecision "branch") against the best reading of the other
 // branch, and where it cannot tell, the reading with less zoom
-// (PreferOtherBranch). `constant`: candidate 0, zoomed[c]: c + 1;
+// (PreferOtherBranch). `constant_cams`: candidate 0, zoomed[c]: c + 1;
 // `votes[c]`: candidate c's report with its occlusion votes.
 void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, const std::vector<char>& ruled_out,
-                          const Candidate& constant, const std::vector<Candidate>& zoomed,
+                          const std::vector<BaCamera>& constant_cams, const std::vector<Candidate>& zoomed,
                           const std::vector<const std::vector<double>*>& errors,
                           const std::vector<WindowCandidate*>& votes, WindowReport* report) {
   FocalCandidateScores& s = *scores;
   std::vector<char> general(p.n, 0);
   for (int i = 1; i < p.n; ++i) general[i] = p.keyframes[i].model == MotionModel::kGeneral && !p.keyframes[i].fixed;
-  auto cams_of = [&](int c) -> const std::vector<BaCamera>& { return c == 0 ? constant.cams : zoomed[c - 1].cams; };
+  auto cams_of = [&](int c) -> const std::vector<BaCamera>& { return c == 0 ? constant_cams : zoomed[c - 1].cams; };
   auto score_of = [&](int c) { return c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty; };
   auto zoom_of = [&](int c) { return c == 0 ? 0.0 : TotalLogZoom(zoomed[c - 1].cams, general); };
   const int taken = s.best + 1;
@@ -573,16 +573,10 @@ void RecordBranchDecision(const WindowProblem& p, FocalCandidateScores* scores, 
     if (!out && d != 0 && d != direction && (other < 0 || score_of(c) < score_of(other))) other = c;
   }
   if (direction == 0 || other < 0) return;
+  ZoomDecision d{"branch", score_of(other) - score_of(taken), s.penalty, taken > 0, zoom_of(taken)};
   std::vector<int> point_of_obs;
   for (const BaObservation& o : p.obs) point_of_obs.push_back(o.point);
-  auto pts_of = [&](int c) -> const std::vector<BaPoint>& { return c == 0 ? constant.pts : zoomed[c - 1].pts; };
-  const BranchFit fit = CompareBranchReadings(*errors[taken], *errors[other], point_of_obs,
-                                              PointsAtInfinity(pts_of(taken)), PointsAtInfinity(pts_of(other)),
-                                              s.sigma);
-  // The same freedoms but where one reading holds the focal: its penalty.
-  const double penalty_gain = (other > 0 ? s.penalty : 0) - (taken > 0 ? s.penalty : 0);
-  ZoomDecision d{"branch", fit.gain + penalty_gain, s.penalty, taken > 0, zoom_of(taken)};
-  d.fit_z = fit.z;
+  d.fit_z = TrackPairedZ(*errors[taken], *errors[other], point_of_obs, s.sigma);
   auto count = [&](int c, bool agree) {  // -1: not counted
     if (c >= static_cast<int>(votes.size())) return 0;
     return std::max(0, agree ? votes[c]->occlusion_agree : votes[c]->occlusion_disagree);
@@ -640,7 +634,7 @@ void ChooseWindowFocal(const WindowProblem& p, std::future<Candidate>* from_chai
   RecordFocalDecision(p, &s, ruled_out, zoomed, report);  // may give up an undecided zoom
   std::vector<const std::vector<double>*> errors{&e_constant};  // [c + 1]: zoomed[c]'s
   for (const auto& e : ez) errors.push_back(&e);
-  if (axial) RecordBranchDecision(p, &s, ruled_out, *chosen, zoomed, errors, solved_reports, report);
+  if (axial) RecordBranchDecision(p, &s, ruled_out, chosen->cams, zoomed, errors, solved_reports, report);
   for (size_t c = 0; c < solved_reports.size(); ++c) {
     solved_reports[c]->ruled_out = c < ruled_out.size() && ruled_out[c];
     solved_reports[c]->score = c == 0 ? s.chi2_constant : s.chi2[c - 1] + s.penalty;

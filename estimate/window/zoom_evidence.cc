@@ -81,8 +81,6 @@ bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double p
   if (d.test != "branch") return false;
   if (std::abs(paired_z) >= kBranchOverruleZ) return paired_z < 0;
   if (BranchDecidedByFit(d)) return false;
-  // The fit on the shared tracks may decide for the other reading (CompareBranchReadings).
-  if (BicMargin(d) <= -kAmbiguousBelow && d.fit_z <= -kBranchFitZ) return true;
   // On the wrong branch no floor is parallel to the move: a plane under one reading only tells.
   if ((taken_floor > 0) != (other_floor > 0)) return other_floor > 0;
   if (std::abs(paired_z) >= kBranchTieBreakZ) return paired_z < 0;
@@ -101,37 +99,6 @@ double TrackPairedZ(const std::vector<double>& e_taken, const std::vector<double
     sum_sq += d * d;
   }
   return sum_sq > 0 ? sum / std::sqrt(sum_sq) : 0;
-}
-
-BranchFit CompareBranchReadings(const std::vector<double>& e_taken, const std::vector<double>& e_other,
-                                const std::vector<int>& point_of_obs, const std::vector<char>& taken_at_bound,
-                                const std::vector<char>& other_at_bound, double sigma) {
-  auto at_bound = [](const std::vector<char>& b, int k) { return k >= 0 && k < static_cast<int>(b.size()) && b[k]; };
-  const size_t n = std::min({e_taken.size(), e_other.size(), point_of_obs.size()});
-  std::vector<double> taken(n, 0), other(n, 0);  // left out: equal on both sides
-  std::map<int, char> left_out;
-  for (size_t i = 0; i < n; ++i) {
-    const int k = point_of_obs[i];
-    if (at_bound(taken_at_bound, k) || at_bound(other_at_bound, k)) {
-      left_out[k] = 1;
-      continue;
-    }
-    taken[i] = e_taken[i];
-    other[i] = e_other[i];
-  }
-  auto capped = [sigma](double e) { return std::isfinite(e) ? std::min(e * e / (sigma * sigma), 9.0) : 9.0; };
-  BranchFit fit;
-  for (size_t i = 0; i < n; ++i) fit.gain += capped(other[i]) - capped(taken[i]);
-  fit.z = TrackPairedZ(taken, other, std::vector<int>(point_of_obs.begin(), point_of_obs.begin() + n), sigma);
-  fit.tracks_left_out = static_cast<int>(left_out.size());
-  return fit;
-}
-
-std::vector<char> PointsAtInfinity(const std::vector<BaPoint>& points) {
-  std::vector<char> at(points.size(), 0);
-  // The solve's bound holds rho >= 0 exactly; a relative 1e-9 allows for the normalisation.
-  for (size_t k = 0; k < points.size(); ++k) at[k] = !(points[k].homogeneous(3) > 1e-9 * points[k].homogeneous.norm());
-  return at;
 }
 
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions) {

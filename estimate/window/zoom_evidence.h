@@ -130,30 +130,6 @@ bool PreferOtherBranch(const ZoomDecision& d, double other_zoom_change, double p
 double TrackPairedZ(const std::vector<double>& e_taken, const std::vector<double>& e_other,
                     const std::vector<int>& point_of_obs, double sigma);
 
-// Two branch readings compared on the tracks both represent. Along the
-// axis each branch leaves one shift of every inverse depth open (w' = w +
-// delta): where its solve put infinity is a start's choice, not evidence,
-// and the tracks beyond it stay at the cheirality bound (at infinity) with
-// whatever residual that leaves. With a focal per keyframe either branch
-// could shift its infinity past them, so a track at the bound under either
-// reading is left out of both sides: the readings are compared on the same
-// observations, those both explain with a point in front of the cameras.
-// `e_*`: each reading's errors on the window's observations (+inf behind a
-// camera), `point_of_obs[i]` observation i's point, `*_at_bound[k]` whether
-// point k sits at infinity under that reading. Sums of capped chi2 as
-// TrackPairedZ; `z` as TrackPairedZ over the tracks left.
-struct BranchFit {
-  double gain = 0;  // other's capped chi2 minus taken's, over the shared tracks
-  double z = 0;     // its paired z over those tracks
-  int tracks_left_out = 0;
-};
-BranchFit CompareBranchReadings(const std::vector<double>& e_taken, const std::vector<double>& e_other,
-                                const std::vector<int>& point_of_obs, const std::vector<char>& taken_at_bound,
-                                const std::vector<char>& other_at_bound, double sigma);
-
-// Points at the cheirality bound (inverse depth 0: at infinity) of a solution.
-std::vector<char> PointsAtInfinity(const std::vector<BaPoint>& points);
-
 // The least decisive of a window's decisions; 1 without any.
 double WindowDecisiveness(const std::vector<ZoomDecision>& decisions);
 
