@@ -2,7 +2,7 @@
 # Installs what is missing, builds, and runs every test:
 #   1. Release build: all tests (unit, end-to-end, Slurm cluster).
 #   2. AddressSanitizer + UBSan build: the unit tests.
-#   3. libFuzzer on every file reader, 45 s each (scripts/fuzz.sh; skip with
+#   3. libFuzzer on every file reader, 20 s each (scripts/fuzz.sh; skip with
 #      HAPCINE_SKIP_FUZZ=1).
 # Exit code non-zero if anything fails. Used by .ci/run.
 set -euo pipefail
@@ -26,6 +26,6 @@ if [ "${HAPCINE_SKIP_SANITIZERS:-0}" != "1" ]; then
 fi
 if [ "${HAPCINE_SKIP_FUZZ:-0}" != "1" ]; then
   echo "== Fuzzing the readers (clang, ASan/UBSan)"
-  bash scripts/fuzz.sh 45
+  bash scripts/fuzz.sh 20
 fi
 echo "== All tests passed"
