@@ -269,8 +269,9 @@ class FfmpegSource : public FrameSource {
   // leaves out), more than max(2 frames, 1 %) missing is an error; fewer,
   // a warning the caller reads (Warnings()).
   void CheckFramesDecoded() {
-    const int64_t listed = fmt_->streams[stream_index_]->nb_frames;
+    int64_t listed = fmt_->streams[stream_index_]->nb_frames;
     if (listed <= 0) return;  // no frame count (Matroska): CheckNotTruncated's times
+    if (SlotsHaveGaps()) listed = video_packets_;  // the empty slots hold no frame
     const long declared = static_cast<long>(listed) - discarded_packets_;
     long missing = declared - FramesGiven();
     // Skipping, a packet that failed to decode left its timestamp behind as
@@ -331,6 +332,19 @@ class FfmpegSource : public FrameSource {
     return 0;
   }
 
+  // AVI counts frames in slots of 1/fps and marks a dropped frame by an empty
+  // slot (a capture that skipped frames, a variable-rate export): such a file
+  // declares more frames than it holds and is whole, for its packets'
+  // timestamps reach the last slot. Frames are missing only where the
+  // packets end early (a truncated AVI loses its index, and its packets are
+  // numbered one slot each).
+  bool SlotsHaveGaps() const {
+    const int64_t slots = fmt_->streams[stream_index_]->nb_frames;
+    if (slots <= 0 || video_packets_ >= slots) return false;
+    const double period = info_.fps > 0 ? 1 / info_.fps : 1.0 / 24;
+    return read_end_s_ + std::max(0.5, 3 * period) >= static_cast<double>(slots) * period;
+  }
+
   // A file cut short (an interrupted copy or download) ends cleanly for the
   // demuxer, but before what its header declares: an error, not a shorter
   // video (the camera path would silently stop early). Truncated when the
@@ -347,8 +361,8 @@ class FfmpegSource : public FrameSource {
     // muxers still count it from the start, so either reading passes.
     const double read_end = from_zero ? std::max(read_end_s_, read_end_pts_s_) : read_end_s_;
     const bool short_time = declared > 0 && read_end + std::max(0.5, 3 * period) < declared;
-    const bool short_count =
-        declared_frames > 0 && video_packets_ + 1 < 0.95 * static_cast<double>(declared_frames);
+    const bool short_count = declared_frames > 0 && !SlotsHaveGaps() &&
+                             video_packets_ + 1 < 0.95 * static_cast<double>(declared_frames);
     if (!short_time && !short_count) return;
     char buf[160];
     if (short_time)

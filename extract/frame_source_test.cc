@@ -418,6 +418,26 @@ TEST_F(FrameSourceTest, TruncatedFileIsAnErrorAfterItsFrames) {
   ExpectError(stub, "");
 }
 
+// An AVI that dropped frames (a capture that skipped them, a variable-rate
+// export) keeps an empty slot for each: its header declares 46 frames, it
+// holds 16, and it is whole. Its frames come at their slots' times. The same
+// file cut in half is still truncated.
+TEST_F(FrameSourceTest, AviWithDroppedFrameSlotsIsWhole) {
+  const std::string sparse = Make("sparse.avi",
+                                  "-f lavfi -i testsrc=size=160x120:rate=24 -t 2 "
+                                  "-vf \"select='not(mod(n,3))'\" -fps_mode passthrough "
+                                  "-c:v mpeg4 -q:v 4");
+  const auto frames = ReadAll(sparse);
+  ASSERT_EQ(frames.size(), 16u);
+  EXPECT_NEAR(frames.back().time_s, 45.0 / 24, 1e-6);
+  for (size_t i = 1; i < frames.size(); ++i)
+    EXPECT_NEAR(frames[i].time_s - frames[i - 1].time_s, 3.0 / 24, 1e-6);
+  const std::string cut = Path("sparse_cut.avi");
+  fs::copy_file(sparse, cut, fs::copy_options::overwrite_existing);
+  fs::resize_file(cut, fs::file_size(sparse) / 2);
+  ExpectError(cut, "truncated");
+}
+
 // An MP4 with its index first whose data was spliced: the index still lists
 // all 48 frames, every packet is read, but past the splice the bytes are
 // another film's and do not decode. An error saying how many frames are
