@@ -205,6 +205,14 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
                "with --klt-anchor-frames: align each anchor's patch by an affine warp (follows its change of "
                "shape as the view turns); a track whose patch no longer aligns, or aligns worse than the "
                "frame's others (robust outlier), ends");
+  app.add_flag("--revisit-links", opt->tracker.revisit_links,
+               "link the views of a shot that KLT no longer connects but that look alike (an orbit "
+               "coming round) by descriptors, continuing the earlier view's tracks "
+               "(docs/extract.md \"Revisit links\")");
+  app.add_flag(
+      "--loop-bundle", opt->estimator.loop_bundle,
+      "after a translating shot's windows, adjust all its keyframes together where tracks close a "
+      "loop no window saw whole (with --revisit-links; docs/estimate.md \"Loop bundle\")");
   app.add_flag("--no-klt-predict", a->no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
@@ -259,9 +267,10 @@ void GroupTuningOptions(CLI::App& app) {
        {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor", "--track-rms-cut",
         "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise", "--keyframe-gap",
         "--no-smooth", "--smooth-sigma", "--klt-window", "--klt-anchor-frames", "--klt-anchor-min",
-        "--klt-anchor-affine", "--no-klt-predict", "--flat-field", "--match-fade-contrast", "--stills",
-        "--skip-loop-filter", "--decode-threads", "--pyramid-levels", "--klt-coarse-iterations",
-        "--klt-coarse-step", "--ba-iterations", "--focal-min-turn"})
+        "--klt-anchor-affine", "--revisit-links", "--loop-bundle", "--no-klt-predict", "--flat-field",
+        "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads",
+        "--pyramid-levels", "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations",
+        "--focal-min-turn"})
     app.get_option(name)->group("Tuning");
 }
 
@@ -297,7 +306,7 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
 // Estimates the path and writes it (and the report) atomically.
 int Estimate(const EstimateArgs& a, EstimatorOptions opt) {
   OutputSet outputs({{a.video, "VIDEO"}}, {{a.output, "-o"}, {a.report, "--report"}});
-  std::set<std::string> kinds{"stage", "window", "lens_distortion", "vignetting"};
+  std::set<std::string> kinds{"stage", "window", "lens_distortion", "vignetting", "loop_bundle"};
   if (a.report_detail) kinds.insert({"track_rms", "cut_cues", "descriptor_links", "focal_profile", "focal_pull",
                                     "track_drift"});
   JsonDiagnostics diagnostics(kinds);

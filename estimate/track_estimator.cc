@@ -98,6 +98,9 @@ void TrackCameraEstimator::StartShot(int shot) {
   scale_set_ = false;
   scene_depth_ = 1;
   split_log_focal_.reset();
+  loop_keyframes_.clear();
+  loop_keyframe_index_.clear();
+  shot_windows_ = 0;
 }
 
 void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
@@ -326,6 +329,7 @@ void TrackCameraEstimator::FinishShot() {
   if (!keyframes_.empty()) {
     BorrowStillsFocal();
     ProcessWindow(true);
+    if (options_.loop_bundle) AdjustShotLoop();
   } else {
     // No usable frame in the whole shot: nothing is placed; the placeholder
     // is the origin at the prior focal.

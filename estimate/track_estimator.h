@@ -35,6 +35,7 @@
 #include "estimate/geometry/motion_hypotheses.h"
 #include "estimate/geometry/motion_model.h"
 #include "estimate/lens_bundle.h"
+#include "estimate/window/loop_bundle.h"
 #include "estimate/window/window_solver.h"
 #include "extract/tracks.h"
 
@@ -102,6 +103,10 @@ struct TrackEstimatorOptions {
   // The first shot's first solved windows kept for the lens adjustment
   // (lens_bundle.h); 0: none is copied.
   int keep_solved_windows = 0;
+  // After the last window of a translating shot: its keyframes adjusted
+  // together where tracks close a loop no window saw whole (loop_bundle.h;
+  // the tracker's revisit links make them). Off: the windows' path as is.
+  bool loop_bundle = false;
   TwoViewOptions two_view;           // model selection
   // The camera's motion told from a large subject's (motion_hypotheses.h):
   // the frame's border, where the background is, decides.
@@ -185,6 +190,12 @@ class TrackCameraEstimator {
   void UpdateKeyframes(const std::vector<BaCamera>& cams, const std::vector<MotionModel>& labels);
   void Report(WindowReport report);
   void KeepSolvedWindow(const WindowOutcome& w);
+  // The loop bundle (loop_bundle.h): the window's keyframes as solved, then
+  // at the shot's end the adjustment and its correction of every frame.
+  void KeepLoopKeyframes();
+  void AdjustShotLoop();
+  void CorrectRawPoses(const std::vector<int>& raw_of_keyframe,
+                       const std::vector<BaCamera>& adjusted);
   // After the window's solve (track_estimator_frames.cc).
   void SetUnits(std::vector<BaPoint>* points);
   void EmitWindowFrames(const WindowOutcome& solution, bool final);
@@ -218,6 +229,9 @@ class TrackCameraEstimator {
   int buffer_start_ = 0;
   std::vector<Keyframe> keyframes_;  // of the current window
   std::vector<RawPose> raw_;         // emitted raw poses of the shot
+  std::vector<LoopKeyframe> loop_keyframes_;  // the shot's keyframes as solved (loop_bundle)
+  std::vector<int> loop_keyframe_index_;      // their frame indices
+  int shot_windows_ = 0;                      // windows solved in the shot
   std::set<long> outlier_tracks_;
   // Per track, the window's intervals in which it moved on its own (the
   // border's motion was the camera's and not its) and in which it followed

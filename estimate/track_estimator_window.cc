@@ -3,6 +3,7 @@
 // already written and the shot's units, then its frames
 // (track_estimator_frames.cc) and its report.
 
+#include <algorithm>
 #include <utility>
 
 #include "core/diagnostics.h"
@@ -101,12 +102,96 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
     for (RawPose& r : raw_) r.cam.log_focal += *w.written_log_focal_shift;
   if (w.focal_calibrated) focal_observed_ = true;
   if (w.translating && w.success) SetUnits(&w.points);
+  if (options_.loop_bundle) KeepLoopKeyframes();
   StageClock clock;
   EmitWindowFrames(w, final);
   w.report.last_frame = raw_.empty() ? w.report.first_frame : raw_.back().meta.index;
   w.report.timings_s.emplace_back("in_between_frames", clock.Lap());
   Report(std::move(w.report));
+  ++shot_windows_;
   if (!final) StartNextWindow();
+}
+
+// Each keyframe once, as the window that first solved it left it (in the
+// shot's units); an overlap keyframe, held in the next window, records
+// that it belongs to both.
+void TrackCameraEstimator::KeepLoopKeyframes() {
+  for (const Keyframe& k : keyframes_) {
+    const int index = At(k.pos).tracks.index;
+    const auto it = std::find(loop_keyframe_index_.begin(), loop_keyframe_index_.end(), index);
+    if (it != loop_keyframe_index_.end()) {
+      loop_keyframes_[it - loop_keyframe_index_.begin()].last_window = shot_windows_;
+      continue;
+    }
+    loop_keyframes_.push_back({k.cam, At(k.pos).u, shot_windows_, shot_windows_});
+    loop_keyframe_index_.push_back(index);
+  }
+}
+
+// A translating shot's keyframes adjusted over the loops its tracks close
+// (loop_bundle.h), then every frame of the shot moved with them.
+void TrackCameraEstimator::AdjustShotLoop() {
+  if (!scale_set_ || shot_windows_ < 2) return;
+  LoopBundleOptions o;
+  o.min_loop_tracks = options_.min_tracks;
+  o.max_points =
+      static_cast<int>(options_.max_points * options_.spread_points_factor) * shot_windows_;
+  o.point_grid_cells = options_.point_grid_cells;
+  o.track_rms_cut = options_.track_rms_cut_px / kReferenceWidthPx;
+  o.ba_iterations = options_.ba_iterations;
+  o.num_threads = options_.num_threads;
+  StageClock clock;
+  const LoopBundleResult r = AdjustLoop(loop_keyframes_, outlier_tracks_, true, o);
+  if (Wants(diagnostics_, "loop_bundle"))
+    diagnostics_->Record("loop_bundle", {{"shot", shot_},
+                                         {"keyframes", loop_keyframes_.size()},
+                                         {"loop_tracks", r.loop_tracks},
+                                         {"adjusted", r.adjusted},
+                                         {"points", r.points},
+                                         {"points_kept", r.points_kept},
+                                         {"observations", r.observations},
+                                         {"rms_px", r.rms_after_px},
+                                         {"seconds", clock.Lap()}});
+  if (!r.adjusted) return;
+  std::vector<int> raw_of_keyframe;
+  size_t i = 0;
+  for (int index : loop_keyframe_index_) {
+    while (i < raw_.size() && raw_[i].meta.index < index) ++i;
+    if (i == raw_.size() || raw_[i].meta.index != index)
+      return;  // not placed as a keyframe: leave the path
+    raw_of_keyframe.push_back(static_cast<int>(i));
+  }
+  CorrectRawPoses(raw_of_keyframe, r.cameras);
+}
+
+// Each keyframe's correction is a rigid motion of the world (the adjusted
+// pose from the solved one); a frame between two keyframes takes both
+// corrections blended by its place between them, one outside takes the
+// nearest keyframe's.
+void TrackCameraEstimator::CorrectRawPoses(const std::vector<int>& raw_of_keyframe,
+                                           const std::vector<BaCamera>& adjusted) {
+  const auto moved = [&](size_t k, const BaCamera& cam) {
+    const BaCamera& solved = loop_keyframes_[k].cam;
+    const Eigen::Quaterniond d = adjusted[k].world_from_cam * solved.world_from_cam.conjugate();
+    BaCamera out = cam;
+    out.world_from_cam = (d * cam.world_from_cam).normalized();
+    out.center = adjusted[k].center + d * (cam.center - solved.center);
+    return out;
+  };
+  size_t b = 0;
+  for (int i = 0; i < static_cast<int>(raw_.size()); ++i) {
+    while (b < raw_of_keyframe.size() && raw_of_keyframe[b] < i) ++b;
+    BaCamera& cam = raw_[i].cam;
+    if (b == 0 || b == raw_of_keyframe.size() || raw_of_keyframe[b] == i) {
+      cam = moved(b == raw_of_keyframe.size() ? b - 1 : b, cam);
+      continue;
+    }
+    const double s =
+        double(i - raw_of_keyframe[b - 1]) / (raw_of_keyframe[b] - raw_of_keyframe[b - 1]);
+    const BaCamera before = moved(b - 1, cam), after = moved(b, cam);
+    cam.world_from_cam = before.world_from_cam.slerp(s, after.world_from_cam).normalized();
+    cam.center = (1 - s) * before.center + s * after.center;
+  }
 }
 
 bool TrackCameraEstimator::solved_windows_complete() const {

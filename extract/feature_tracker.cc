@@ -142,6 +142,18 @@ constexpr size_t kStillsViewsBack = 8;
 // across stills splits (LinkEarlierShots): a bound on the matching per still.
 constexpr size_t kShotEndViews = 2;
 constexpr size_t kEarlierStillsShots = 8;
+// Revisit links (revisit_links): the views kept per shot (the oldest is
+// dropped beyond) and the earlier views one view is linked to at most, the
+// most alike first: a bound on the SIFT matching per view.
+constexpr size_t kRevisitViews = 64;
+constexpr size_t kRevisitTries = 3;
+// A frame becomes a revisit view once under this share of the last view's
+// tracks live (a fifth replaced: views a few degrees of an orbit apart, so
+// a revisit finds one near its own viewpoint). An earlier view is a revisit
+// candidate where at most kRevisitShared of its tracks still live: KLT
+// links it to this frame no more.
+constexpr double kRevisitViewKept = 0.8;
+constexpr double kRevisitShared = 0.1;
 
 }  // namespace
 
@@ -183,6 +195,13 @@ struct FeatureTracker::Impl {
   // oldest first: a frame KLT tracked per KLT window of motion (described
   // only when a jump needs it) and the jump frames themselves.
   std::deque<DescribedFrame> shot_views;
+  // Revisit links: the shot's revisit views, oldest first, each with its
+  // layout thumbnail (RevisitStep).
+  struct RevisitView {
+    DescribedFrame view;  // picture (copied), track points and ids; described when first linked
+    cv::Mat layout;
+  };
+  std::deque<RevisitView> revisit_views;
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -256,6 +275,7 @@ struct FeatureTracker::Impl {
     stills_views.clear();
     KeepStillsShotEnds();
     shot_views.clear();
+    revisit_views.clear();
     descriptor_mode = Stills();
     shot_tracked_frames = 0;
   }
@@ -1473,6 +1493,81 @@ struct FeatureTracker::Impl {
     KeepView(&shot_views, view);
   }
 
+  // Revisit links (revisit_links). A KLT frame becomes a revisit view once
+  // under kRevisitViewKept of the last view's tracks are still live here
+  // (closer views see the same points). Before it is kept, it is linked to
+  // the earlier views KLT no longer links it to (kRevisitShared), the
+  // kRevisitTries whose layout thumbnails look most like its own first (an
+  // orbit's views of the same side). A verified link (DescriptorLinker:
+  // beyond chance, checked against the two-view model) continues that
+  // view's tracks here by the guided KLT.
+  void RevisitStep(const Frame& frame, FrameWork* w) {
+    if (!options.revisit_links || descriptor_mode || Stills() || w->points.empty() ||
+        shots.layout().empty())
+      return;
+    if (!revisit_views.empty() && !RevisitViewDue(revisit_views.back().view, *w)) return;
+    const std::vector<size_t> candidates = RevisitCandidates(*w);
+    if (!candidates.empty()) {
+      DescribedFrame cur;
+      cur.gray = frame.gray;
+      linker.Describe(&cur);
+      std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
+      for (size_t c : candidates) {
+        DescribedFrame& view = revisit_views[c].view;
+        if (view.keypoints.empty()) linker.Describe(&view);
+        const LinkResult link = linker.Link(view, cur);
+        const size_t before = w->relinked;
+        if (link.ok()) TakeRevisitPoints(link, &taken, w);
+        RecordLink(frame, "revisit", link, w->relinked - before);
+      }
+    }
+    RevisitView kept{{}, shots.layout().clone()};
+    kept.view.gray = frame.gray.clone();
+    kept.view.points = w->points;
+    kept.view.ids = w->ids;
+    revisit_views.push_back(std::move(kept));
+    if (revisit_views.size() > kRevisitViews) revisit_views.pop_front();
+  }
+
+  // Every point the link carries whose track is not live here: also where
+  // a live track sits on the same corner (detected again under a new id),
+  // since the earlier id is what ties this view to the earlier turn.
+  void TakeRevisitPoints(const LinkResult& link, std::unordered_set<long>* taken, FrameWork* w) {
+    for (size_t i = 0; i < link.points.size(); ++i)
+      if (!taken->count(link.ids[i])) TakePoint(link, static_cast<int>(i), taken, w);
+  }
+
+  // Under kRevisitViewKept of `last`'s tracks live in this frame.
+  bool RevisitViewDue(const DescribedFrame& last, const FrameWork& w) {
+    const std::unordered_set<long> live(w.ids.begin(), w.ids.end());
+    const size_t still = std::count_if(last.ids.begin(), last.ids.end(),
+                                       [&](long id) { return live.count(id) > 0; });
+    return still < kRevisitViewKept * last.ids.size();
+  }
+
+  // The revisit views worth linking to this frame (indices, the most alike
+  // first, L1 distance of the layout thumbnails): those KLT no longer links.
+  std::vector<size_t> RevisitCandidates(const FrameWork& w) const {
+    if (revisit_views.size() < 2) return {};
+    const cv::Mat& now = shots.layout();
+    const auto distance = [&](const cv::Mat& layout) {
+      return layout.size() == now.size() ? cv::norm(layout, now, cv::NORM_L1) : HUGE_VAL;
+    };
+    const std::unordered_set<long> live(w.ids.begin(), w.ids.end());
+    std::vector<std::pair<double, size_t>> alike;
+    for (size_t v = 0; v + 1 < revisit_views.size(); ++v) {
+      const RevisitView& r = revisit_views[v];
+      const auto shared = std::count_if(r.view.ids.begin(), r.view.ids.end(),
+                                        [&](long id) { return live.count(id) > 0; });
+      if (shared > kRevisitShared * r.view.ids.size()) continue;
+      alike.emplace_back(distance(r.layout), v);
+    }
+    std::sort(alike.begin(), alike.end());
+    std::vector<size_t> out;
+    for (size_t i = 0; i < alike.size() && i < kRevisitTries; ++i) out.push_back(alike[i].second);
+    return out;
+  }
+
   FrameTracks Process(const Frame& frame) {
     if (frame.gray.empty() || frame.gray.type() != CV_8UC1)
       throw Error("frame " + std::to_string(frame.index), "tracker needs a CV_8UC1 gray image");
@@ -1501,6 +1596,7 @@ struct FeatureTracker::Impl {
       ProbeDescriptors(frame, &out, &w);
     }
     const size_t verified = w.had_tracks ? w.survived + w.relinked : w.points.size();
+    RevisitStep(frame, &w);
     TopUpIfThin(frame, &w);
     // Quality: verified (tracked or re-linked) share of the wanted tracks;
     // on a shot's first tracked frame nothing can be verified yet, so the

@@ -74,6 +74,13 @@ struct TrackerOptions {
   // most tracks) is a sequence of stills too, until a link measures a
   // motion within KLT's reach.
   bool stills_by_evidence = true;
+  // Revisit links: a video shot's views where half the last one's tracks
+  // ended are kept (pictures and tracks); at each new one, the earlier views
+  // that share no live track but look like it (layout thumbnail) are linked
+  // by descriptors, and their tracks continued here: an orbit that comes
+  // round again observes the points it triangulated a turn before, which
+  // KLT tracks (which die within a part of the turn) cannot. Off by default.
+  bool revisit_links = false;
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
   double blank_luma = 16;          // mean luma (0..255) under which a frame is blank

@@ -647,6 +647,69 @@ TEST(FeatureTrackerTest, JumpBackContinuesTracksOfTheFramesBeforeTheJump) {
   EXPECT_LE(off, continued / 20 + 1);
 }
 
+// A pan out and back over a wide picture (16 px a frame, within KLT's
+// reach): the tracks of the first frames leave the picture on the way out,
+// and on the way back the same part is seen again under new ids. Revisit
+// links continue the first frames' ids there, at the places the known
+// shift predicts.
+std::vector<FrameTracks> PanOutAndBack(const TrackerOptions& o, int out_frames, bool back) {
+  const cv::Mat texture = NoiseTexture({1900, 700}, 57);
+  FeatureTracker tracker(o);
+  std::vector<FrameTracks> frames;
+  const int n = back ? 2 * out_frames : out_frames;
+  for (int i = 0; i <= n; ++i) {
+    const int at = i <= out_frames ? i : 2 * out_frames - i;  // frames from the start
+    frames.push_back(tracker.Process(MakeFrame(Shifted(texture, -16.0 * at, 0, kDecoded), i, 0.5)));
+  }
+  return frames;
+}
+
+TEST(FeatureTrackerTest, RevisitLinksContinueTheIdsOfTheFirstPass) {
+  TrackerOptions o = SmallOptions();
+  o.revisit_links = true;
+  const int out = 60;
+  const std::vector<FrameTracks> on = PanOutAndBack(o, out, true);
+  const std::vector<FrameTracks> off = PanOutAndBack(SmallOptions(), out, true);
+  const auto first = ById(on[2]);  // frame 2: the view of frames 0-4
+  const auto count_first = [&](const FrameTracks& t, int* off_px) {
+    int n = 0;
+    for (const auto& p : t.points) {
+      const auto it = first.find(p.track_id);
+      if (it == first.end()) continue;
+      ++n;
+      // Frame 2 showed the picture 32 px further left than the start.
+      const double at = t.index <= out ? t.index : 2 * out - t.index;
+      if ((it->second + Eigen::Vector2d(16.0 * (2 - at), 0) - p.px).norm() > 1.5) ++*off_px;
+    }
+    return n;
+  };
+  int off_px = 0, ignored = 0;
+  EXPECT_EQ(count_first(on[out], &ignored), 0);  // gone at the far end
+  EXPECT_EQ(count_first(off.back(), &ignored), 0);
+  const int continued = count_first(on.back(), &off_px);
+  EXPECT_GE(continued, 30);
+  EXPECT_LE(off_px, continued / 20 + 1);
+  for (const FrameTracks& t : on) EXPECT_EQ(t.shot, 0);
+}
+
+// Degenerate: a pan that never comes back. No earlier view shows the
+// picture again, so no revisit link verifies, and the tracks are exactly
+// those without the option.
+TEST(FeatureTrackerTest, RevisitLinksChangeNothingWithoutARevisit) {
+  TrackerOptions o = SmallOptions();
+  o.revisit_links = true;
+  const std::vector<FrameTracks> on = PanOutAndBack(o, 70, false);
+  const std::vector<FrameTracks> off = PanOutAndBack(SmallOptions(), 70, false);
+  ASSERT_EQ(on.size(), off.size());
+  for (size_t i = 0; i < on.size(); ++i) {
+    ASSERT_EQ(on[i].points.size(), off[i].points.size()) << "frame " << i;
+    for (size_t k = 0; k < on[i].points.size(); ++k) {
+      EXPECT_EQ(on[i].points[k].track_id, off[i].points[k].track_id);
+      EXPECT_EQ(on[i].points[k].px, off[i].points[k].px);
+    }
+  }
+}
+
 TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
   const cv::Mat a = NoiseTexture({1000, 800}, 7, {0.8, 0.0, -0.6});
   const cv::Mat b = NoiseTexture({1000, 800}, 8, {-0.6, 0.2, 0.8});
