@@ -64,7 +64,8 @@ void ReadField(const std::string& name, const std::string& text, ShotQuality* q)
   else if (name == "focal_observable") SetIfValid(CheckedFlag(text), &q->focal_observable);
   else if (name == "zoom_ambiguous") SetIfValid(CheckedCount(text), &q->zoom_ambiguous);
   else if (name == "ambiguous_zoom_kept") SetIfValid(CheckedCount(text), &q->ambiguous_zoom_kept);
-  else if (name == "border_support") SetIfValid(CheckedDouble(text), &q->border_support);
+  else if (name == "border_support")
+    SetIfValid(CheckedDouble(text), &q->border_support);
   else if (name == "doubtful") SetIfValid(CheckedFlag(text), &q->doubtful);
 }
 

@@ -33,9 +33,10 @@ TEST(ShotQualityHeader, WrittenAndReadBack) {
   q.doubtful = true;
   CameraPath path;
   WriteShotQuality({q}, &path);
-  EXPECT_EQ(path.metadata.at("shot_quality.3"),
-            "first:10 last:29 frames:20 lost:2 median_confidence:0.250 inlier_ratio:0.875 rms_px:0.500 "
-            "focal_observable:0 zoom_ambiguous:7 ambiguous_zoom_kept:3 border_support:0.250 doubtful:1");
+  EXPECT_EQ(
+      path.metadata.at("shot_quality.3"),
+      "first:10 last:29 frames:20 lost:2 median_confidence:0.250 inlier_ratio:0.875 rms_px:0.500 "
+      "focal_observable:0 zoom_ambiguous:7 ambiguous_zoom_kept:3 border_support:0.250 doubtful:1");
   const std::vector<ShotQuality> back = ReadShotQuality(path);
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].shot, 3);
@@ -72,8 +73,9 @@ TEST(ShotQualityHeader, OrderedByShot) {
 // A hand-edited header with counts no int holds (or NaN): those fields are
 // ignored, the others read (no undefined conversion).
 TEST(ShotQualityHeader, CountsOutsideIntAreIgnored) {
-  const std::vector<ShotQuality> q =
-      ReadValue("first:1e300 last:7 frames:nan lost:99999999999999999999 zoom_ambiguous:inf border_support:nan doubtful:1");
+  const std::vector<ShotQuality> q = ReadValue(
+      "first:1e300 last:7 frames:nan lost:99999999999999999999 zoom_ambiguous:inf "
+      "border_support:nan doubtful:1");
   ASSERT_EQ(q.size(), 1u);
   EXPECT_EQ(q[0].first_frame, ShotQuality{}.first_frame);
   EXPECT_EQ(q[0].last_frame, 7);

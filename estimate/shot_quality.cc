@@ -73,7 +73,8 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
     t.sum_sq_px += w.rms_px * w.rms_px * w.observations;
     t.observations += w.observations;
     t.focal_observable |= w.focal_observable;
-    t.border_support.insert(t.border_support.end(), w.border_support.begin(), w.border_support.end());
+    t.border_support.insert(t.border_support.end(), w.border_support.begin(),
+                            w.border_support.end());
   }
   std::vector<ShotQuality> out;
   // A shot's frames need not be contiguous (stills shots linked across a
@@ -106,8 +107,8 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
       if (!t.border_support.empty()) q.border_support = Median(t.border_support);
       CountZoomAmbiguousFrames(windows, &q);
     }
-    q.doubtful = q.lost > kDoubtfulLostShare * q.frames || q.median_confidence < kDoubtfulMedianConfidence ||
-                 UnconfirmedMotion(q);
+    q.doubtful = q.lost > kDoubtfulLostShare * q.frames ||
+                 q.median_confidence < kDoubtfulMedianConfidence || UnconfirmedMotion(q);
   }
   return out;
 }
@@ -135,7 +136,8 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
   if (q.lost > 0) s += std::to_string(q.lost) + " of " + std::to_string(q.frames) + " frames lost, ";
   s += "median confidence " + FormatFixed(q.median_confidence, 2);
   if (UnconfirmedMotion(q))
-    s += ", border support " + FormatFixed(*q.border_support, 2) + " (the motion rests on a region inside the picture)";
+    s += ", border support " + FormatFixed(*q.border_support, 2) +
+         " (the motion rests on a region inside the picture)";
   return s;
 }
 

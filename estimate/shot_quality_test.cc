@@ -104,7 +104,8 @@ TEST(ShotQuality, BorderSupportRule) {
   EXPECT_TRUE(UnconfirmedMotion(q[0]));
   EXPECT_TRUE(q[0].doubtful);
   EXPECT_EQ(DoubtfulShotLine(q[0]),
-            "shot 0 (frames 0-19): doubtful: median confidence 0.30, border support 0.46 (the motion rests on a "
+            "shot 0 (frames 0-19): doubtful: median confidence 0.30, border support 0.46 (the "
+            "motion rests on a "
             "region inside the picture)");
   EXPECT_NEAR(*q[1].border_support, 0.5, 1e-12);  // half the edge: not below
   EXPECT_FALSE(q[1].doubtful);
