@@ -32,13 +32,19 @@ struct ShotQuality {
   // reading without zoom, a dolly or a fixed lens). Written only where
   // zoom_ambiguous is above 0; unknown in headers written before it.
   std::optional<int> ambiguous_zoom_kept;
+  // The median, over its keyframe intervals, of the share of the frame's
+  // edge cells holding the camera motion's inliers (1 for an interval read
+  // as still; estimate/geometry/border_support.h). Below one half: the
+  // motion rests on a region inside the picture, no background confirms it.
+  // Unknown without windows and in headers written before it.
+  std::optional<double> border_support;
   bool doubtful = false;
 };
 
 // `# shot_quality.<shot>=first:F last:L frames:N lost:K median_confidence:C
 // inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z
-// ambiguous_zoom_kept:K doubtful:0|1` (I, R, focal, Z absent when unknown;
-// K only where Z is above 0) into the path's metadata.
+// ambiguous_zoom_kept:K border_support:B doubtful:0|1` (I, R, focal, Z, B
+// absent when unknown; K only where Z is above 0) into the path's metadata.
 void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path);
 
 // The reverse, ordered by shot. A hand-edited value that is not what the

@@ -29,12 +29,14 @@ TEST(ShotQualityHeader, WrittenAndReadBack) {
   q.focal_observable = false;
   q.zoom_ambiguous = 7;
   q.ambiguous_zoom_kept = 3;
+  q.border_support = 0.25;
   q.doubtful = true;
   CameraPath path;
   WriteShotQuality({q}, &path);
-  EXPECT_EQ(path.metadata.at("shot_quality.3"),
-            "first:10 last:29 frames:20 lost:2 median_confidence:0.250 inlier_ratio:0.875 rms_px:0.500 "
-            "focal_observable:0 zoom_ambiguous:7 ambiguous_zoom_kept:3 doubtful:1");
+  EXPECT_EQ(
+      path.metadata.at("shot_quality.3"),
+      "first:10 last:29 frames:20 lost:2 median_confidence:0.250 inlier_ratio:0.875 rms_px:0.500 "
+      "focal_observable:0 zoom_ambiguous:7 ambiguous_zoom_kept:3 border_support:0.250 doubtful:1");
   const std::vector<ShotQuality> back = ReadShotQuality(path);
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].shot, 3);
@@ -48,6 +50,7 @@ TEST(ShotQualityHeader, WrittenAndReadBack) {
   EXPECT_EQ(back[0].focal_observable, false);
   EXPECT_EQ(back[0].zoom_ambiguous, 7);
   EXPECT_EQ(back[0].ambiguous_zoom_kept, 3);
+  EXPECT_EQ(back[0].border_support, 0.25);
   EXPECT_TRUE(back[0].doubtful);
   // Which reading was kept is written only where a decision was ambiguous.
   q.zoom_ambiguous = 0;
@@ -70,14 +73,16 @@ TEST(ShotQualityHeader, OrderedByShot) {
 // A hand-edited header with counts no int holds (or NaN): those fields are
 // ignored, the others read (no undefined conversion).
 TEST(ShotQualityHeader, CountsOutsideIntAreIgnored) {
-  const std::vector<ShotQuality> q =
-      ReadValue("first:1e300 last:7 frames:nan lost:99999999999999999999 zoom_ambiguous:inf doubtful:1");
+  const std::vector<ShotQuality> q = ReadValue(
+      "first:1e300 last:7 frames:nan lost:99999999999999999999 zoom_ambiguous:inf "
+      "border_support:nan doubtful:1");
   ASSERT_EQ(q.size(), 1u);
   EXPECT_EQ(q[0].first_frame, ShotQuality{}.first_frame);
   EXPECT_EQ(q[0].last_frame, 7);
   EXPECT_EQ(q[0].frames, ShotQuality{}.frames);
   EXPECT_EQ(q[0].lost, ShotQuality{}.lost);
   EXPECT_FALSE(q[0].zoom_ambiguous);
+  EXPECT_FALSE(q[0].border_support);
   EXPECT_TRUE(q[0].doubtful);
   // The edges of int: the largest reads, one more does not.
   EXPECT_EQ(ReadValue("lost:2147483647")[0].lost, 2147483647);

@@ -20,6 +20,7 @@ struct WindowTally {
   double sum_sq_px = 0;
   long observations = 0;
   bool focal_observable = false;
+  std::vector<double> border_support;  // per keyframe interval
 };
 
 // The frame's confidence as its file states it (a float held value, read as
@@ -58,6 +59,10 @@ void CountZoomAmbiguousFrames(const std::vector<WindowReport>& windows, ShotQual
 
 }  // namespace
 
+bool UnconfirmedMotion(const ShotQuality& q) {
+  return q.border_support && *q.border_support < kDoubtfulBorderSupport;
+}
+
 std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vector<WindowReport>& windows,
                                         int width) {
   std::map<int, WindowTally> tally;
@@ -68,6 +73,8 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
     t.sum_sq_px += w.rms_px * w.rms_px * w.observations;
     t.observations += w.observations;
     t.focal_observable |= w.focal_observable;
+    t.border_support.insert(t.border_support.end(), w.border_support.begin(),
+                            w.border_support.end());
   }
   std::vector<ShotQuality> out;
   // A shot's frames need not be contiguous (stills shots linked across a
@@ -97,9 +104,11 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
       if (t.observations > 0 && width > 0)
         q.rms_px = std::sqrt(t.sum_sq_px / t.observations) * kReferenceWidthPx / width;
       q.focal_observable = t.focal_observable;
+      if (!t.border_support.empty()) q.border_support = Median(t.border_support);
       CountZoomAmbiguousFrames(windows, &q);
     }
-    q.doubtful = q.lost > kDoubtfulLostShare * q.frames || q.median_confidence < kDoubtfulMedianConfidence;
+    q.doubtful = q.lost > kDoubtfulLostShare * q.frames ||
+                 q.median_confidence < kDoubtfulMedianConfidence || UnconfirmedMotion(q);
   }
   return out;
 }
@@ -117,6 +126,7 @@ nlohmann::json ShotQualityJson(const ShotQuality& q) {
           {"focal_observable", opt(q.focal_observable)},
           {"zoom_ambiguous", opt(q.zoom_ambiguous)},
           {"ambiguous_zoom_kept", opt(q.ambiguous_zoom_kept)},
+          {"border_support", opt(q.border_support)},
           {"doubtful", q.doubtful}};
 }
 
@@ -124,7 +134,11 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
   std::string s = "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
                   std::to_string(q.last_frame) + "): doubtful: ";
   if (q.lost > 0) s += std::to_string(q.lost) + " of " + std::to_string(q.frames) + " frames lost, ";
-  return s + "median confidence " + FormatFixed(q.median_confidence, 2);
+  s += "median confidence " + FormatFixed(q.median_confidence, 2);
+  if (UnconfirmedMotion(q))
+    s += ", border support " + FormatFixed(*q.border_support, 2) +
+         " (the motion rests on a region inside the picture)";
+  return s;
 }
 
 std::string AmbiguousZoomLine(const ShotQuality& q) {

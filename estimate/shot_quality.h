@@ -13,7 +13,14 @@
 // clean shots get: medians 0.21-0.91); below half of that, the inlier share
 // times the RMS likelihood exp(-0.5 (rms / 2 px)^2) is under 1/2: half the
 // tracks disagree with the pose, or the RMS exceeds 2.35 px (1.2 sigma of
-// the confidence's noise model).
+// the confidence's noise model). Or the camera's motion unconfirmed: a
+// median border support (core/shot_quality_header.h,
+// estimate/geometry/border_support.h) below one half, the motion's inliers
+// reaching fewer than half the frame's edge cells in most of the shot's
+// intervals. The background surrounds a subject; a motion it does not
+// confirm may be the subject's own (a face filling the frame over a dark,
+// defocused background), which the border rule (motion_hypotheses.h)
+// cannot tell without background tracks.
 
 #include <optional>
 #include <string>
@@ -29,6 +36,10 @@ namespace hapcine {
 
 constexpr double kDoubtfulLostShare = 0.05;
 constexpr double kDoubtfulMedianConfidence = 0.12;
+constexpr double kDoubtfulBorderSupport = 0.5;
+
+// The border support rule of the doubtful test (above).
+bool UnconfirmedMotion(const ShotQuality& q);
 
 // One entry per shot of `path`, in order. `width`: the decoded width.
 std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vector<WindowReport>& windows,
@@ -36,6 +47,8 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
 
 nlohmann::json ShotQualityJson(const ShotQuality& q);
 // "shot 2 (frames 120-260): doubtful: 14 frames lost, median confidence 0.21"
+// (", border support 0.42 (the motion rests on a region inside the picture)"
+// where that rule holds)
 std::string DoubtfulShotLine(const ShotQuality& q);
 // "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly,
 // zoom or none): the reading without zoom kept, confidence lowered" (or "the

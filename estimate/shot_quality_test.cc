@@ -86,6 +86,40 @@ TEST(ShotQuality, SummaryRuleAndHeaderRoundTrip) {
   EXPECT_EQ(ShotQualityJson(back[1]), ShotQualityJson(q[1]));
 }
 
+// The median border support over the shot's keyframe intervals, whichever
+// window they are in: below one half, the shot is doubtful even with a good
+// confidence (the motion rests on a region inside the picture); no
+// interval (no window, or none with a keyframe interval): unknown.
+TEST(ShotQuality, BorderSupportRule) {
+  CameraPath path = TwoShots();
+  for (CameraFrame& f : path.frames) f.confidence = 0.3, f.model = "rotation";
+  WindowReport a, b, other;
+  a.border_support = {5.0 / 12, 1.0};  // a still interval counts 1
+  b.border_support = {4.0 / 12, 6.0 / 12};
+  other.shot = 1;
+  other.border_support = {6.0 / 12};
+  std::vector<ShotQuality> q = SummariseShots(path, {a, b, other}, 960);
+  ASSERT_EQ(q.size(), 2u);
+  EXPECT_NEAR(*q[0].border_support, 5.5 / 12, 1e-12);
+  EXPECT_TRUE(UnconfirmedMotion(q[0]));
+  EXPECT_TRUE(q[0].doubtful);
+  EXPECT_EQ(DoubtfulShotLine(q[0]),
+            "shot 0 (frames 0-19): doubtful: median confidence 0.30, border support 0.46 (the "
+            "motion rests on a "
+            "region inside the picture)");
+  EXPECT_NEAR(*q[1].border_support, 0.5, 1e-12);  // half the edge: not below
+  EXPECT_FALSE(q[1].doubtful);
+  WriteShotQuality(q, &path);
+  EXPECT_EQ(path.metadata.at("shot_quality.0"),
+            "first:0 last:19 frames:20 lost:0 median_confidence:0.300 "
+            "focal_observable:0 zoom_ambiguous:0 border_support:0.458 doubtful:1");
+  EXPECT_NEAR(*ThroughTheFile(path)[0].border_support, 0.458, 1e-12);
+  // Degenerate: windows without keyframe intervals, or none at all.
+  EXPECT_FALSE(SummariseShots(path, {WindowReport{}}, 960)[0].border_support);
+  EXPECT_FALSE(SummariseShots(path, {}, 960)[0].border_support);
+  EXPECT_FALSE(SummariseShots(path, {}, 960)[0].doubtful);
+}
+
 // Each window writes the frames after the previous one's; those of a window
 // whose zoom decision sat within half a threshold of the other reading are
 // counted, the others not, and of them those whose window kept the zoom.

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/rotation.h"
 #include "core/statistics.h"
+#include "estimate/geometry/border_support.h"
 #include "estimate/geometry/smoothing.h"
 #include "estimate/geometry/two_view_geometry.h"
 
@@ -269,6 +270,11 @@ TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyfra
   k.correspondences = tv.num_points;
   k.inliers = tv.num_inliers;
   k.gric = tv.gric;
+  if (tv.model != MotionModel::kStatic) {
+    std::vector<Eigen::Vector2d> mid(u1.size());
+    for (size_t i = 0; i < u1.size(); ++i) mid[i] = 0.5 * (u1[i] + u2[i]);
+    k.border_support = BorderSupport(mid, tv.inliers, 0.5 * height_ / width_);
+  }
   const Eigen::Matrix3d R_ba = tv.cam2_from_cam1;
   const Eigen::Matrix3d R_wa = a.cam.world_from_cam.toRotationMatrix();
   k.cam.world_from_cam = Eigen::Quaterniond(R_wa * R_ba.transpose()).normalized();

@@ -153,6 +153,9 @@ class TrackCameraEstimator {
     // The interval's model selection, for the report: matches, inliers, GRIC per candidate.
     int correspondences = 0, inliers = 0;
     std::array<double, kNumCandidates> gric{};
+    // The share of the frame's edge cells holding the camera motion's inliers
+    // (border_support.h); 1 for a still camera, which needs no confirmation.
+    double border_support = 1;
   };
   struct RawPose {
     FrameTracks meta;                // index, time, shot, quality (points cleared)

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/rotation.h"
+#include "estimate/shot_quality.h"
 #include "estimate/test_scene.h"
 
 namespace hapcine {
@@ -117,6 +118,34 @@ TEST(TrackEstimator, PanIsRotationWithZeroTranslationAndCalibratedFocal) {
     EXPECT_GE(*f.confidence, 0.0);
     EXPECT_LE(*f.confidence, 1.0);
   }
+}
+
+// The shot quality's border support (border_support.h): a pan over a scene
+// that fills the frame holds every edge cell; the same pan seen only on a
+// compact cluster in the middle of the picture (a head over a background
+// that gives no tracks) holds none, and the shot is doubtful.
+ShotQuality PanShotQuality(const std::vector<Eigen::Vector3d>& pts) {
+  TrackCameraEstimator est(kW, kH, {});
+  std::mt19937 rng(7);
+  for (int i = 0; i < 90; ++i)
+    est.AddFrame(MakeFrameTracks(i, 25, PanCamera(i, 6, 800), pts, kW, kH, 0.3, 0.0, &rng));
+  const CameraPath path = est.Finish();
+  return SummariseShots(path, est.reports(), kW).at(0);
+}
+
+TEST(TrackEstimator, BorderSupportOfAPanOverTheSceneOrOverACompactCluster) {
+  const ShotQuality scene = PanShotQuality(RandomPoints(1500, 3, 30, 1.6, 1));
+  ASSERT_TRUE(scene.border_support);
+  EXPECT_GE(*scene.border_support, 11.0 / 12);
+  EXPECT_FALSE(UnconfirmedMotion(scene));
+  EXPECT_FALSE(scene.doubtful);
+  // 400 points within 0.25 m of the axis at 3-3.3 m: within 70 px of the
+  // centre of a 960 x 540 frame, 85 px more at the end of the pan.
+  const ShotQuality cluster = PanShotQuality(RandomPoints(400, 3, 3.3, 0.08, 2));
+  ASSERT_TRUE(cluster.border_support);
+  EXPECT_EQ(*cluster.border_support, 0.0);
+  EXPECT_TRUE(UnconfirmedMotion(cluster));
+  EXPECT_TRUE(cluster.doubtful);
 }
 
 TEST(TrackEstimator, ZoomIsZoomWithExactZeroTranslation) {

@@ -225,6 +225,7 @@ void TrackCameraEstimator::Report(WindowReport r) {
     if (k.chain_start || k.fixed) continue;
     r.inliers += k.inliers;
     r.correspondences += k.correspondences;
+    r.border_support.push_back(k.border_support);
   }
   if (Wants(diagnostics_, "window")) {
     nlohmann::json keyframes = nlohmann::json::array();
@@ -236,6 +237,7 @@ void TrackCameraEstimator::Report(WindowReport r) {
       if (!k.chain_start && !k.fixed) {
         j["correspondences"] = k.correspondences;
         j["inliers"] = k.inliers;
+        j["border_support"] = k.border_support;
         nlohmann::json gric;
         for (int c = 0; c < kNumCandidates; ++c) gric[kCandidateNames[c]] = k.gric[c];
         j["gric"] = gric;

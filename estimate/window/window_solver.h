@@ -120,6 +120,9 @@ struct WindowReport {
   // Two-view inliers and correspondences of the window's free keyframes
   // (set by the estimator; the shot quality summary, shot_quality.h).
   int inliers = 0, correspondences = 0;
+  // The same keyframes' border support (border_support.h; 1 where the
+  // camera is still), in order.
+  std::vector<double> border_support;
   // Every zoom decision the window's tests made, with its evidence
   // (zoom_evidence.h; the first solve's too when the labels were revised).
   std::vector<ZoomDecision> zoom_decisions;
