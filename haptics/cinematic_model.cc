@@ -31,7 +31,8 @@ double MaxRotationOffset(const CameraSignals& s, const SeatGeometry& seat, doubl
 }
 
 // Largest coordinate of f (Equation 3) over the shot, any actuator.
-double MaxCombinedOffset(const CameraSignals& s, const SeatGeometry& seat, const CinematicScale& c) {
+double MaxCombinedOffset(const CameraSignals& s, const SeatGeometry& seat,
+                         const CinematicScale& c) {
   double peak = 0;
   for (size_t i = 0; i < s.size(); ++i) {
     const ActuatorFrame f = CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i],
@@ -89,7 +90,7 @@ double CombinationGain(const CameraSignals& s, const SeatGeometry& seat, const C
 // k and m such that T, F and every R_A each stay within the usable range
 // (before the combination gain).
 CinematicScale BaseScaleForShot(const CameraSignals& s, const SeatGeometry& seat,
-                            const CinematicOptions& o) {
+                                const CinematicOptions& o) {
   const double usable = seat.usable_half_m;
   double peak_t = 0;
   for (size_t i = 0; i < s.size(); ++i) {
@@ -127,7 +128,8 @@ CinematicScale BaseScaleForShot(const CameraSignals& s, const SeatGeometry& seat
 
 // Lost frames are no motion: the actuators return to rest over them with
 // the cut crossfade's ramp (FadeToRestOverLostFrames).
-void FadeOverLostFrames(const CameraPath& path, const ShotRange& r, double ramp_s, CameraSignals* s) {
+void FadeOverLostFrames(const CameraPath& path, const ShotRange& r, double ramp_s,
+                        CameraSignals* s) {
   std::vector<bool> lost(s->size());
   bool any = false;
   for (size_t i = 0; i < s->size(); ++i) any |= lost[i] = IsLost(path.frames[r.first + i]);
@@ -159,8 +161,8 @@ std::vector<ActuatorFrame> ShotFrames(const CameraSignals& s, const CinematicSca
   std::vector<ActuatorFrame> out;
   out.reserve(s.size());
   for (size_t i = 0; i < s.size(); ++i) {
-    out.push_back(CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i],
-                                        s.roll_rad[i], s.zoom_forward_u[i], c, seat));
+    out.push_back(CinematicDisplacement(s.position_u[i], s.tilt_rad[i], s.pan_rad[i], s.roll_rad[i],
+                                        s.zoom_forward_u[i], c, seat));
   }
   return out;
 }
@@ -325,8 +327,10 @@ CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeome
   }
   // A shot of mostly low confidence is felt weakly: scaling must not blow
   // its confidence-weighted motion back up to the full range.
+  const std::set<int> doubtful = DoubtfulInHeader(path);
   for (size_t i = 0; i < shots.size(); ++i) {
-    const double quality = ShotQualityGain(FrameConfidenceGains(path, shots[i]));
+    const double quality =
+        ShotQualityGain(FrameConfidenceGains(path, shots[i]), doubtful.count(shots[i].shot) > 0);
     if (quality < 1) scaling.per_shot[i] = Scaled(scaling.per_shot[i], quality);
   }
   return scaling;
@@ -342,7 +346,8 @@ std::vector<ActuatorFrame> CinematicFrames(const CameraPath& path, const SeatGeo
   for (size_t k = 0; k < shots.size(); ++k) {
     const CinematicScale& c = scaling.ForShot(k);
     const double tau = w.mode == WashoutMode::kAdaptive ? c.return_tau_s : 0.0;
-    const std::vector<ActuatorFrame> f = Returned(signals[k], ShotFrames(signals[k], c, seat), tau, w);
+    const std::vector<ActuatorFrame> f =
+        Returned(signals[k], ShotFrames(signals[k], c, seat), tau, w);
     out.insert(out.end(), f.begin(), f.end());
   }
   return out;

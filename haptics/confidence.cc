@@ -22,7 +22,8 @@ double Median(std::vector<double> v) {
   return v[mid];
 }
 
-// The shots whose `shot_quality.<shot>` header line says doubtful:1 (docs/formats.md).
+}  // namespace
+
 std::set<int> DoubtfulInHeader(const CameraPath& path) {
   std::set<int> doubtful;
   for (const ShotQuality& q : ReadShotQuality(path))
@@ -30,11 +31,7 @@ std::set<int> DoubtfulInHeader(const CameraPath& path) {
   return doubtful;
 }
 
-}  // namespace
-
-double ConfidenceGain(double confidence) {
-  return SmootherStep(confidence / kFullGainConfidence);
-}
+double ConfidenceGain(double confidence) { return SmootherStep(confidence / kFullGainConfidence); }
 
 std::vector<double> FrameConfidenceGains(const CameraPath& path, const ShotRange& r) {
   const size_t n = r.last - r.first + 1;
@@ -76,7 +73,10 @@ void ApplyConfidenceGain(const std::vector<double>& g, CameraSignals* s) {
   }
 }
 
-double ShotQualityGain(const std::vector<double>& gains) { return Median(gains); }
+double ShotQualityGain(const std::vector<double>& gains, bool doubtful) {
+  const double g = Median(gains);
+  return doubtful ? std::min(g, ConfidenceGain(kLowMedianConfidence)) : g;
+}
 
 std::vector<ShotConfidence> AssessShotConfidence(const CameraPath& path,
                                                  const std::vector<ShotRange>& shots) {
@@ -94,8 +94,8 @@ std::vector<ShotConfidence> AssessShotConfidence(const CameraPath& path,
       c.lost += IsLost(path.frames[i]);
     }
     c.median_confidence = Median(conf);
-    c.gain = ShotQualityGain(FrameConfidenceGains(path, r));
     c.header_doubtful = doubtful_in_header.count(r.shot) > 0;
+    c.gain = ShotQualityGain(FrameConfidenceGains(path, r), c.header_doubtful);
     c.low = c.header_doubtful || c.lost > kLowLostShare * c.frames ||
             c.median_confidence < kLowMedianConfidence;
     out.push_back(c);

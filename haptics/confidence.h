@@ -18,6 +18,7 @@
 // are mostly of low confidence is scaled down by its median gain
 // (ShotQualityGain), so scaling cannot blow its weak motion back up.
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,16 @@ std::vector<double> FrameConfidenceGains(const CameraPath& path, const ShotRange
 // x_n = x_{n-1} + g_n (x_n - x_{n-1}) on every signal of the shot.
 void ApplyConfidenceGain(const std::vector<double>& gains, CameraSignals* s);
 
-// Median of the shot's frame gains: the factor its scaling is multiplied by.
-double ShotQualityGain(const std::vector<double>& gains);
+// The factor a shot's scaling is multiplied by: the median of its frame
+// gains, and at most the gain of the doubtful median confidence (1/2) where
+// the estimator flagged the shot doubtful: its lost frames or the lack of
+// any background confirming its motion (border support) make its motion no
+// more trustworthy than a shot at that confidence.
+double ShotQualityGain(const std::vector<double>& gains, bool doubtful);
+
+// The shots whose `shot_quality.<shot>` header line says doubtful:1
+// (docs/formats.md).
+std::set<int> DoubtfulInHeader(const CameraPath& path);
 
 struct ShotConfidence {
   int shot = 0;

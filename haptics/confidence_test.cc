@@ -90,6 +90,40 @@ TEST(Confidence, NoisyConfidenceDoesNotPumpTheGain) {
   EXPECT_EQ(t.metadata.at("rate_limited_samples"), "0");
 }
 
+// A shot the estimator flagged doubtful (here by its border support: every
+// frame confident) is felt at most at the doubtful median's gain, 1/2: its
+// scaling and its reported gain; the other shot keeps its own.
+TEST(Confidence, DoubtfulShotIsFeltAtMostAtHalfGain) {
+  CameraPath p = MakeEffectPath(CameraEffect::kTraveling);
+  for (CameraFrame& f : p.frames) f.shot = f.time_s < 3.5 ? 0 : 1;
+  for (CameraFrame& f : p.frames) f.confidence = 0.9;
+  const HapticTrack before = Cinematic(p);
+  p.metadata["shot_quality.1"] =
+      "first:105 last:209 frames:105 lost:0 median_confidence:0.9 border_support:0.25 doubtful:1";
+  const auto q = AssessShotConfidence(p, SplitShots(p));
+  EXPECT_EQ(q[0].gain, 1);
+  EXPECT_DOUBLE_EQ(q[1].gain, 0.5);
+  const HapticTrack after = Cinematic(p);
+  EXPECT_EQ(after.metadata.at("confidence_gain"), "1;0.5");
+  // Shot 1 moves half as far from where it starts; shot 0 is unchanged.
+  double reach_before = 0, reach_after = 0, shot0_diff = 0;
+  for (size_t i = 0; i < before.samples.size(); ++i) {
+    const auto& b = before.samples[i].pos_m[0];
+    const auto& a = after.samples[i].pos_m[0];
+    if (before.samples[i].time_s < 3.4) shot0_diff = std::max(shot0_diff, (a - b).norm());
+    if (before.samples[i].time_s > 4.5) {  // after the cut's crossfade
+      reach_before = std::max(reach_before, b.norm());
+      reach_after = std::max(reach_after, a.norm());
+    }
+  }
+  EXPECT_LT(shot0_diff, 1e-12);
+  ASSERT_GT(reach_before, 1e-3);
+  EXPECT_NEAR(reach_after / reach_before, 0.5, 0.1);
+  // Already below half: the flag takes nothing more away.
+  EXPECT_DOUBLE_EQ(ShotQualityGain({0.2, 0.3, 0.4}, true), 0.3);
+  EXPECT_DOUBLE_EQ(ShotQualityGain({0.8, 0.9, 1.0}, false), 0.9);
+}
+
 TEST(Confidence, LowQualityShots) {
   CameraPath p = MakeEffectPath(CameraEffect::kTraveling);
   for (CameraFrame& f : p.frames) f.shot = f.time_s < 3.5 ? 0 : 1;
@@ -98,7 +132,8 @@ TEST(Confidence, LowQualityShots) {
   ASSERT_EQ(q.size(), 2u);
   EXPECT_FALSE(q[0].low);
   EXPECT_FALSE(q[1].low);
-  p.metadata["shot_quality.1"] = "first:105 last:209 frames:105 lost:0 median_confidence:0.5 doubtful:1";
+  p.metadata["shot_quality.1"] =
+      "first:105 last:209 frames:105 lost:0 median_confidence:0.5 doubtful:1";
   q = AssessShotConfidence(p, SplitShots(p));
   EXPECT_FALSE(q[0].low);
   EXPECT_TRUE(q[1].low);
@@ -106,7 +141,8 @@ TEST(Confidence, LowQualityShots) {
   // Only the flag's own value: not a longer number, not another name ending in it.
   p.metadata["shot_quality.1"] = "first:105 last:209 frames:105 lost:0 not_doubtful:1 doubtful:10";
   EXPECT_FALSE(AssessShotConfidence(p, SplitShots(p))[1].header_doubtful);
-  p.metadata["shot_quality.1"] = "first:105 last:209 frames:105 lost:0 median_confidence:0.5 doubtful:1";
+  p.metadata["shot_quality.1"] =
+      "first:105 last:209 frames:105 lost:0 median_confidence:0.5 doubtful:1";
   // 5.7 % of shot 0 lost (6 frames of 105): low.
   for (int i = 40; i < 46; ++i) {
     p.frames[i].model = kLostModel;

@@ -136,7 +136,8 @@ std::vector<char> DenseIntervals(const std::vector<HapticSample>& s,
 
 // time_s with the kDenseRateHz rows (on the grid from time_s's first row,
 // the rows a 1 kHz track has) inside each dense interval.
-std::vector<double> AddDenseRows(const std::vector<double>& time_s, const std::vector<char>& dense) {
+std::vector<double> AddDenseRows(const std::vector<double>& time_s,
+                                 const std::vector<char>& dense) {
   const double t0 = time_s.front();
   std::vector<double> out;
   out.reserve(time_s.size());
@@ -181,7 +182,6 @@ std::vector<double> CutTimes(const CameraPath& path, const std::vector<ShotRange
   return cut_times;
 }
 
-
 std::string JoinScales(const CinematicScaling& s, bool rotation) {
   std::ostringstream out;
   for (size_t i = 0; i < s.per_shot.size(); ++i) {
@@ -222,12 +222,13 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
   }
   track->metadata["reference_depth"] = depths;
   std::string gains;
+  const std::set<int> doubtful = DoubtfulInHeader(path);
   for (const ShotRange& r : shots) {
-    gains += (gains.empty() ? "" : ";") + FormatDouble(ShotQualityGain(FrameConfidenceGains(path, r)));
+    const double gain = ShotQualityGain(FrameConfidenceGains(path, r), doubtful.count(r.shot) > 0);
+    gains += (gains.empty() ? "" : ";") + FormatDouble(gain);
   }
   track->metadata["confidence_gain"] = gains;
 }
-
 
 // The semantic segments of a path already joined across lost frames.
 std::vector<EffectSegment> EffectSegmentsOfJoinedPath(const CameraPath& path,
@@ -334,8 +335,8 @@ HapticOptions ShotOptions(const HapticOptions& o, const ShotEdit& e, const std::
 }
 
 bool SameWashout(const WashoutOptions& a, const WashoutOptions& b) {
-  return a.mode == b.mode && a.tau_s == b.tau_s && a.order == b.order &&
-         a.window_s == b.window_s && a.return_accel_m_s2 == b.return_accel_m_s2;
+  return a.mode == b.mode && a.tau_s == b.tau_s && a.order == b.order && a.window_s == b.window_s &&
+         a.return_accel_m_s2 == b.return_accel_m_s2;
 }
 
 // Whether the shot's samples must be made again (its model or, for the
@@ -392,14 +393,16 @@ void RunShotModel(const CameraPath& path, const CameraPath& read_path,
   const bool any_effect = std::any_of(shot_effects.begin(), shot_effects.end(),
                                       [](CameraEffect e) { return e != CameraEffect::kNone; });
   if (effects->empty() && any_effect) effects->assign(time_s.size(), CameraEffect::kNone);
-  if (!effects->empty()) std::copy(shot_effects.begin(), shot_effects.end(), effects->begin() + r.begin);
+  if (!effects->empty())
+    std::copy(shot_effects.begin(), shot_effects.end(), effects->begin() + r.begin);
 }
 
 // Throws Error(source) naming the first edited shot the path does not have.
 void CheckEditedShotsExist(const std::vector<ShotRange>& shots, const HapticEdits& edits,
                            const std::string& source) {
   for (const ShotEdit& e : edits.shots) {
-    if (std::none_of(shots.begin(), shots.end(), [&](const ShotRange& r) { return r.shot == e.shot; })) {
+    if (std::none_of(shots.begin(), shots.end(),
+                     [&](const ShotRange& r) { return r.shot == e.shot; })) {
       throw Error(source, "edits: shot " + std::to_string(e.shot) +
                               " is not in the camera path (its shots are " +
                               std::to_string(shots.front().shot) + " to " +
@@ -502,9 +505,9 @@ void HapticOptions::Check() const {
     throw UsageError("random cutoff must be below a quarter of the output rate");
   }
   if (!(max_gap_s > 0 && max_gap_s <= 600)) throw UsageError("max gap must be in (0, 600] s");
-  const bool semantic_shot = std::any_of(edits.shots.begin(), edits.shots.end(), [](const ShotEdit& e) {
-    return e.model == HapticModel::kSemantic;
-  });
+  const bool semantic_shot =
+      std::any_of(edits.shots.begin(), edits.shots.end(),
+                  [](const ShotEdit& e) { return e.model == HapticModel::kSemantic; });
   if (!keyframes_file.empty() && model != HapticModel::kSemantic && !semantic_shot) {
     throw UsageError("keyframes only apply to the semantic model");
   }
@@ -564,7 +567,8 @@ HapticTrack MakeHapticTrack(const CameraPath& read_path, const HapticOptions& o)
   track.metadata["max_step_m"] = FormatDouble(o.washout.max_speed_m_s / rate);
   track.metadata["rate_limited_samples"] = std::to_string(limited);
   track.metadata["clamped_samples"] = std::to_string(clamped);
-  const std::vector<ShotConfidence> quality = AssessShotConfidence(read_path, SplitShots(read_path));
+  const std::vector<ShotConfidence> quality =
+      AssessShotConfidence(read_path, SplitShots(read_path));
   track.metadata["low_quality_shots"] = std::to_string(
       std::count_if(quality.begin(), quality.end(), [](const ShotConfidence& c) { return c.low; }));
   LabelSamples(path, shots, effects, &track.samples);
