@@ -450,13 +450,14 @@ TEST(BatchOptionsTest, StepKeysSeparateEstimateFromHapticsSettings) {
 namespace hapcine::batch {
 namespace {
 
-// The counts batch reads from a camera path file holding `text`.
+// The counts batch reads from a camera path file holding `text` (in a folder
+// of its own: tests run in parallel processes).
 FilmOutcome CountsOfFile(const std::string& text) {
-  const std::string file = (std::filesystem::temp_directory_path() / "hapcine_batch_quality.camera.csv").string();
+  const TempDir dir("batch_quality");
+  const std::string file = dir.path() + "/film.camera.csv";
   { std::ofstream(file) << text; }
   FilmOutcome o;
   ReadShotQualityCounts(file, &o);
-  std::filesystem::remove(file);
   return o;
 }
 
