@@ -100,7 +100,6 @@ void TrackCameraEstimator::StartShot(int shot) {
   scene_depth_ = 1;
   split_log_focal_.reset();
   loop_keyframes_.clear();
-  loop_keyframe_index_.clear();
   shot_windows_ = 0;
 }
 

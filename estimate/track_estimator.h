@@ -233,7 +233,6 @@ class TrackCameraEstimator {
   std::vector<Keyframe> keyframes_;  // of the current window
   std::vector<RawPose> raw_;         // emitted raw poses of the shot
   std::vector<LoopKeyframe> loop_keyframes_;  // the shot's keyframes as solved (loop_bundle)
-  std::vector<int> loop_keyframe_index_;      // their frame indices
   int shot_windows_ = 0;                      // windows solved in the shot
   std::set<long> outlier_tracks_;
   // Per track, the window's intervals in which it moved on its own (the

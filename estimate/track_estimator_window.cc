@@ -118,13 +118,13 @@ void TrackCameraEstimator::ProcessWindow(bool final) {
 void TrackCameraEstimator::KeepLoopKeyframes() {
   for (const Keyframe& k : keyframes_) {
     const int index = At(k.pos).tracks.index;
-    const auto it = std::find(loop_keyframe_index_.begin(), loop_keyframe_index_.end(), index);
-    if (it != loop_keyframe_index_.end()) {
-      loop_keyframes_[it - loop_keyframe_index_.begin()].last_window = shot_windows_;
+    const auto it = std::find_if(loop_keyframes_.begin(), loop_keyframes_.end(),
+                                 [&](const LoopKeyframe& l) { return l.frame == index; });
+    if (it != loop_keyframes_.end()) {
+      it->last_window = shot_windows_;
       continue;
     }
-    loop_keyframes_.push_back({k.cam, At(k.pos).u, shot_windows_, shot_windows_});
-    loop_keyframe_index_.push_back(index);
+    loop_keyframes_.push_back({index, k.cam, At(k.pos).u, shot_windows_, shot_windows_});
   }
 }
 
@@ -155,9 +155,9 @@ void TrackCameraEstimator::AdjustShotLoop() {
   if (!r.adjusted) return;
   std::vector<int> raw_of_keyframe;
   size_t i = 0;
-  for (int index : loop_keyframe_index_) {
-    while (i < raw_.size() && raw_[i].meta.index < index) ++i;
-    if (i == raw_.size() || raw_[i].meta.index != index)
+  for (const LoopKeyframe& k : loop_keyframes_) {
+    while (i < raw_.size() && raw_[i].meta.index < k.frame) ++i;
+    if (i == raw_.size() || raw_[i].meta.index != k.frame)
       return;  // not placed as a keyframe: leave the path
     raw_of_keyframe.push_back(static_cast<int>(i));
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "core/statistics.h"
 #include "estimate/bundle/robust_bundle.h"
 
 namespace hapcine {
@@ -52,17 +53,19 @@ WindowTracks LoopPoints(const std::vector<const KeyframeTracks*>& tracks,
   return w;
 }
 
+// The upper median depth of the points in the first keyframe; 1 where none
+// is in front.
 double MedianDepth(const std::vector<LoopKeyframe>& keyframes, const std::vector<BaPoint>& points) {
+  const BaCamera& cam = keyframes.front().cam;
   std::vector<double> z;
   for (const BaPoint& p : points) {
     if (!(p.homogeneous(3) > 1e-12)) continue;
     const Eigen::Vector3d x = p.anchor + p.Direction() / p.homogeneous(3);
-    const BaCamera& cam = keyframes.front().cam;
     z.push_back((cam.world_from_cam.conjugate() * (x - cam.center)).z());
   }
   if (z.empty()) return 1;
-  std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
-  return z[z.size() / 2] > 0 ? z[z.size() / 2] : 1;
+  const double median = Quantile(z, 0.5);
+  return median > 0 ? median : 1;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 namespace hapcine {
 
 struct LoopKeyframe {
+  int frame = 0;         // frame index
   BaCamera cam;          // as its window solved it (the shot's units)
   KeyframeTracks u;      // its tracks, normalised coordinates
   int first_window = 0;  // the windows that solved it (an overlap keyframe: two)
