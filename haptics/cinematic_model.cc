@@ -327,10 +327,9 @@ CinematicScaling ComputeCinematicScaling(const CameraPath& path, const SeatGeome
   }
   // A shot of mostly low confidence is felt weakly: scaling must not blow
   // its confidence-weighted motion back up to the full range.
-  const std::set<int> doubtful = DoubtfulInHeader(path);
+  const std::vector<double> qualities = ShotQualityGains(path, shots);
   for (size_t i = 0; i < shots.size(); ++i) {
-    const double quality =
-        ShotQualityGain(FrameConfidenceGains(path, shots[i]), doubtful.count(shots[i].shot) > 0);
+    const double quality = qualities[i];
     if (quality < 1) scaling.per_shot[i] = Scaled(scaling.per_shot[i], quality);
   }
   return scaling;

@@ -22,14 +22,15 @@ double Median(std::vector<double> v) {
   return v[mid];
 }
 
-}  // namespace
-
+// The shots whose `shot_quality.<shot>` header line says doubtful:1 (docs/formats.md).
 std::set<int> DoubtfulInHeader(const CameraPath& path) {
   std::set<int> doubtful;
   for (const ShotQuality& q : ReadShotQuality(path))
     if (q.doubtful) doubtful.insert(q.shot);
   return doubtful;
 }
+
+}  // namespace
 
 double ConfidenceGain(double confidence) { return SmootherStep(confidence / kFullGainConfidence); }
 
@@ -76,6 +77,14 @@ void ApplyConfidenceGain(const std::vector<double>& g, CameraSignals* s) {
 double ShotQualityGain(const std::vector<double>& gains, bool doubtful) {
   const double g = Median(gains);
   return doubtful ? std::min(g, ConfidenceGain(kLowMedianConfidence)) : g;
+}
+
+std::vector<double> ShotQualityGains(const CameraPath& path, const std::vector<ShotRange>& shots) {
+  const std::set<int> doubtful = DoubtfulInHeader(path);
+  std::vector<double> gains;
+  for (const ShotRange& r : shots)
+    gains.push_back(ShotQualityGain(FrameConfidenceGains(path, r), doubtful.count(r.shot) > 0));
+  return gains;
 }
 
 std::vector<ShotConfidence> AssessShotConfidence(const CameraPath& path,

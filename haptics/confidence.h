@@ -18,7 +18,6 @@
 // are mostly of low confidence is scaled down by its median gain
 // (ShotQualityGain), so scaling cannot blow its weak motion back up.
 
-#include <set>
 #include <string>
 #include <vector>
 
@@ -49,9 +48,8 @@ void ApplyConfidenceGain(const std::vector<double>& gains, CameraSignals* s);
 // more trustworthy than a shot at that confidence.
 double ShotQualityGain(const std::vector<double>& gains, bool doubtful);
 
-// The shots whose `shot_quality.<shot>` header line says doubtful:1
-// (docs/formats.md).
-std::set<int> DoubtfulInHeader(const CameraPath& path);
+// ShotQualityGain of every shot, doubtful as the path's header says.
+std::vector<double> ShotQualityGains(const CameraPath& path, const std::vector<ShotRange>& shots);
 
 struct ShotConfidence {
   int shot = 0;

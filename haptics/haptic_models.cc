@@ -222,9 +222,7 @@ void MakeCinematicSamples(const CameraPath& path, const std::vector<ShotRange>& 
   }
   track->metadata["reference_depth"] = depths;
   std::string gains;
-  const std::set<int> doubtful = DoubtfulInHeader(path);
-  for (const ShotRange& r : shots) {
-    const double gain = ShotQualityGain(FrameConfidenceGains(path, r), doubtful.count(r.shot) > 0);
+  for (const double gain : ShotQualityGains(path, shots)) {
     gains += (gains.empty() ? "" : ";") + FormatDouble(gain);
   }
   track->metadata["confidence_gain"] = gains;
