@@ -23,10 +23,7 @@ function(hapcine_library name)
   if(HAPCINE_BUILD_TESTS AND _tests)
     add_executable(hapcine_${name}_tests ${_tests})
     target_link_libraries(hapcine_${name}_tests PRIVATE hapcine_${name} ${ARG_TEST_DEPS}
-                          GTest::gtest GTest::gtest_main GTest::gmock)
-    target_compile_definitions(hapcine_${name}_tests PRIVATE
-        HAPCINE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-        HAPCINE_BINARY_DIR="${PROJECT_BINARY_DIR}")
+                          hapcine_test_paths GTest::gtest GTest::gtest_main GTest::gmock)
     gtest_discover_tests(hapcine_${name}_tests DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
   endif()
 endfunction()

@@ -1,4 +1,5 @@
 #include "core/child_process.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "datasets/plot_png.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "datasets/preview.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

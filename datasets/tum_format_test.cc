@@ -1,4 +1,5 @@
 #include "datasets/tum_format.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

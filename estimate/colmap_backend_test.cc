@@ -4,6 +4,7 @@
 // naming the video, the child gone, the temporary folder removed.
 
 #include "estimate/colmap_backend.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -1,4 +1,5 @@
 #include "haptics/camera_signals.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "haptics/device_config.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "haptics/falcon_device.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

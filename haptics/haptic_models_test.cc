@@ -1,4 +1,5 @@
 #include "haptics/haptic_models.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "haptics/hjif_export.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>

@@ -1,4 +1,5 @@
 #include "haptics/seat_geometry.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "platform/motion_cueing.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

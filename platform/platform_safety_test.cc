@@ -1,4 +1,5 @@
 #include "platform/platform_safety.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "platform/stewart.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #include "player/play.h"
+#include "testpaths/test_paths.h"
 
 #include <gtest/gtest.h>
 

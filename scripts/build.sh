@@ -11,9 +11,11 @@ else
   EXTRA=(-DCMAKE_BUILD_TYPE=Release)
 fi
 # ccache, where installed, makes rebuilds of unchanged files (CI after a
-# local run, several work trees) nearly free.
+# local run, several work trees) nearly free: scripts/ccache_env.sh makes a
+# fresh clone in another folder hit the objects of an earlier build.
 if command -v ccache >/dev/null 2>&1; then
   EXTRA+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  source scripts/ccache_env.sh
 fi
 cmake -S . -B "$BUILD_DIR" "${EXTRA[@]}" >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" "$@"

@@ -27,6 +27,7 @@ CMAKE_ARGS=(-DCMAKE_CXX_COMPILER="${CXX_FUZZ:-clang++}" -DHAPCINE_FUZZ=ON
             -DHAPCINE_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo)
 if command -v ccache >/dev/null 2>&1; then
   CMAKE_ARGS+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  source scripts/ccache_env.sh
 fi
 # HAPCINE_FUZZ_NO_BUILD=1: use the targets as built (several runs in parallel on one build).
 if [ "${HAPCINE_FUZZ_NO_BUILD:-0}" != "1" ]; then

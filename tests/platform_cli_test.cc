@@ -12,6 +12,7 @@
 
 #include "core/haptic_track.h"
 #include "platform/platform_track.h"
+#include "testpaths/test_paths.h"
 #include "tests/run_hapcine.h"
 
 namespace fs = std::filesystem;

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "testpaths/test_paths.h"
+
 namespace hapcine_test {
 
 struct RunResult {

@@ -10,6 +10,7 @@
 // Eigen (through the test film) before httplib.h: the <resolv.h> it pulls in
 // defines `_res`, a parameter name inside Eigen's headers.
 #include "studio/test_film_for_test.h"
+#include "testpaths/test_paths.h"
 #include "tests/run_hapcine.h"
 
 #include <httplib.h>
