@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <thread>
@@ -13,6 +14,7 @@
 #include "estimate/lens_distortion.h"
 #include "estimate/shot_quality.h"
 #include "estimate/skipped_frames.h"
+#include "estimate/estimator_records.h"
 #include "estimate/stills_groups.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
@@ -294,12 +296,14 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
                             const ProgressFn& progress) {
   const VideoInfo& info = source.info();
   FeatureTracker tracker(StillsAware(options.tracker, info), options.diagnostics);
-  // The first estimator's window records wait for the lens decision.
-  HeldWindowRecords first_run_records(options.diagnostics);
+  // The estimator's records wait for the path's frame and shot numbers, and
+  // the first estimator's window records for the lens decision.
+  EstimatorRecords estimator_records(options.diagnostics);
+  HeldWindowRecords first_run_records(&estimator_records);
   const bool measure_lens = options.lens_bundle;
   std::unique_ptr<TrackCameraEstimator> estimator =
       NewEstimator(options, info, false, measure_lens ? options.lens_bundle_windows : 0,
-                   measure_lens ? &first_run_records : options.diagnostics);
+                   measure_lens ? static_cast<Diagnostics*>(&first_run_records) : &estimator_records);
   // Which stage of the estimation thread is on the critical path after
   // tracking ends (docs/estimate.md "Speed").
   StageLog stages(options.diagnostics);
@@ -334,7 +338,7 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   // a translating window's focal looks observable and is not (docs/estimate.md).
   auto replay = [&] {
     first_run_records.Release(false);
-    estimator = NewEstimator(options, info, !lens_bundle.focal_was_observable(), 0, options.diagnostics);
+    estimator = NewEstimator(options, info, !lens_bundle.focal_was_observable(), 0, &estimator_records);
     for (const FrameTracks& t : lens_bundle.TakeFrames()) estimator->AddFrame(t);
   };
   auto estimate = [&](FrameTracks& tracks) {
@@ -370,7 +374,9 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most (Check)
   if (k1 != 0) path.metadata["k1"] = Num(k1);
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
+  const std::map<int, int> shot_of_frame = ShotOfFrame(path);
   const std::vector<WindowReport> reports = stills.Restore(&path, estimator->reports());
+  estimator_records.Release(index_of_position, ShotNumbers(shot_of_frame, ShotOfFrame(path)));
   InsertSkippedFrames(skipped, info.width, &path);
   WriteShotQuality(SummariseShots(path, reports, info.width), &path);
   stages.Stage("estimation done");
