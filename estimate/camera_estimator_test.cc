@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "core/diagnostics.h"
 #include "core/error.h"
 #include "extract/test_frames.h"
 
@@ -200,6 +202,25 @@ TEST(EstimateCameraPath, SkippedFramesGetTheirIndexTimeAndAPoseBetweenNeighbours
     EXPECT_LT(path.frames[i].world_from_cam.angularDistance(path.frames[30].world_from_cam), 1e-12);
   // The pan itself is there: the camera turned between frames 0 and 30.
   EXPECT_GT(path.frames[30].world_from_cam.angularDistance(path.frames[0].world_from_cam), 1e-3);
+}
+
+// The report's windows name the path's frames, not positions among the
+// frames the decoder handed on (EstimatorRecords).
+TEST(EstimateCameraPath, WindowRecordsNameTheFramesOfThePath) {
+  SkippingPanSource source(31, 2);  // decodes 0, 2, ..., 30
+  EstimatorOptions options;
+  options.tracker.max_tracks = 150;
+  JsonDiagnostics diagnostics({"window"});
+  options.diagnostics = &diagnostics;
+  EstimateCameraPath(source, options);
+  const nlohmann::json windows = diagnostics.Document().at("windows");
+  ASSERT_FALSE(windows.empty());
+  int last = 0;
+  for (const nlohmann::json& w : windows) {
+    for (const nlohmann::json& k : w.at("keyframes")) EXPECT_EQ(k.at("frame").get<int>() % 2, 0) << k;
+    last = std::max(last, w.at("last_frame").get<int>());
+  }
+  EXPECT_EQ(last, 30);  // position 15 before the mapping
 }
 
 TEST(EstimateCameraPath, DecoderErrorReachesTheCaller) {
