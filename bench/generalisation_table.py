@@ -37,6 +37,7 @@ REALGT = {"kitti07": {"rot": 1.0, "ate": 2.0, "zoom": 1.0},
           "dino_sparse_ring": {"rot": 2.0},
           "vtest": {"rot": 0.1, "static": True}}
 MOVERS = {"head_turn": {"rot": 0.3, "static": True},
+          "head_turn_dark": {"rot": 0.3, "static": True},
           "crowd_static": {"rot": 0.3, "static": True},
           "head_push_in": {"rot": 0.1},         # a Table 1-like dolly
           "traveling_crossing": {"rot": 0.1},   # as traveling
@@ -154,7 +155,8 @@ def clips_of(set_):
     order = ("crane_shot dutch_angle arcing traveling tilting zoom_in vertigo slow_pan whip_pan "
              "handheld_shake telephoto_zoom_pan dolly_zoom_parallax low_texture noise_compression "
              "hard_cut fade_to_black static_camera kitti07 lego_orbit debug_moves dino_sparse_ring "
-             "vtest head_turn head_push_in pan_crossing traveling_crossing crowd_static").split()
+             "vtest head_turn head_turn_dark head_push_in pan_crossing traveling_crossing "
+             "crowd_static").split()
     return sorted(names, key=lambda n: (order.index(n) if n in order else 99, n))
 
 

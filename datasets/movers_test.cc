@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "datasets/render.h"
 #include "datasets/synth_clip.h"
 #include "datasets/synth_presets.h"
@@ -92,6 +94,35 @@ TEST(Movers, AreDeterministicInTheSeed) {
     diff += (a.parts[i].center - c.parts[i].center).norm();
   }
   EXPECT_GT(diff, 1);
+}
+
+// Mean absolute difference of neighbouring grey pixels (8-bit levels per pixel).
+double MeanGradient(const cv::Mat& bgr) {
+  cv::Mat grey;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  const cv::Rect inner(0, 0, grey.cols - 1, grey.rows - 1);
+  return 0.5 * (cv::mean(cv::abs(grey(inner + cv::Point(1, 0)) - grey(inner)))[0] +
+                cv::mean(cv::abs(grey(inner + cv::Point(0, 1)) - grey(inner)))[0]);
+}
+
+TEST(Movers, DarkHallIsTheLowTextureHallAtAFifthOfTheAlbedo) {
+  // head_turn_dark's background: the shading is linear in the albedo, so the dark hall is the
+  // low-texture hall at a fifth of its brightness (the same lights and geometry; textures are
+  // stored at 8 bits, hence the tolerance), dark but not black, and its picture changes by
+  // under one grey level per pixel on average (mostly at object edges): little to track.
+  EXPECT_EQ(FindSynthPreset("head_turn_dark").scene, SceneStyle::kDarkLowTexture);
+  const CameraView v = PresetView("head_turn_dark", 0, 160, 90);
+  RenderOptions o;
+  o.threads = 2;
+  const cv::Mat dark = RenderView(*SynthScene(5, SceneStyle::kDarkLowTexture, 2), v, o);
+  const cv::Mat flat = RenderView(*SynthScene(5, SceneStyle::kLowTexture, 2), v, o);
+  cv::Mat diff;
+  cv::absdiff(5 * dark, flat, diff);
+  EXPECT_LT(cv::mean(diff)[1], 0.02 * cv::mean(flat)[1]);
+  EXPECT_NEAR(cv::mean(flat)[1] / cv::mean(dark)[1], 5, 0.1);
+  EXPECT_GT(cv::mean(dark)[1], 5);
+  EXPECT_LT(MeanGradient(dark), 1);  // 0.65 measured; the textured hall's is 10
+  EXPECT_LT(MeanGradient(dark), 0.25 * MeanGradient(flat));
 }
 
 }  // namespace

@@ -13,7 +13,10 @@ constexpr double kPi = 3.14159265358979323846;
 class HallBuilder {
  public:
   HallBuilder(uint32_t seed, SceneStyle style, int threads)
-      : seed_(seed), flat_(style == SceneStyle::kLowTexture), threads_(threads) {
+      : seed_(seed),
+        flat_(style != SceneStyle::kTextured),
+        albedo_(style == SceneStyle::kDarkLowTexture ? 0.2f : 1.0f),
+        threads_(threads) {
     scene_ = std::make_shared<Scene>();
   }
 
@@ -40,7 +43,7 @@ class HallBuilder {
   // colour with faint large-scale shading.
   int AddTexture(const Painter& rich, Rgb flat_colour, double w_m, double h_m, double texel_m,
                  bool wrap, uint32_t k) {
-    Painter p = flat_ ? FlatPainter(Seed(k), flat_colour, 0.03f) : rich;
+    Painter p = flat_ ? FlatPainter(Seed(k), flat_colour * albedo_, 0.03f) : rich;
     if (flat_) texel_m = std::max(texel_m, 0.02);
     scene_->textures.push_back(std::make_shared<Texture>(p, w_m, h_m, texel_m, wrap, threads_));
     return static_cast<int>(scene_->textures.size()) - 1;
@@ -275,6 +278,7 @@ class HallBuilder {
 
   uint32_t seed_;
   bool flat_;
+  float albedo_;  // flat colours' factor (the dark style's)
   int threads_;
   std::shared_ptr<Scene> scene_;
 };

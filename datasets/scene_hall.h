@@ -19,6 +19,9 @@ namespace hapcine::synth {
 enum class SceneStyle {
   kTextured,    // rich, multi-scale texture everywhere
   kLowTexture,  // flat surfaces with faint low-frequency shading, no posters
+  // kLowTexture at a fifth of the albedo: a dark room whose surfaces give
+  // (almost) no trackable corners, as behind a face lit for a close-up.
+  kDarkLowTexture,
 };
 
 // Builds (paints) the hall. Deterministic in `seed`; takes a second or two

@@ -248,7 +248,9 @@ CameraPath SynthGroundTruth(const std::string& preset, const SynthOptions& optio
   m["duration_s"] = Num(options.duration_s);
   m["frames"] = std::to_string(n);
   m["units"] = "m";
-  m["scene"] = p.scene == synth::SceneStyle::kLowTexture ? "hall_low_texture" : "hall";
+  m["scene"] = p.scene == synth::SceneStyle::kLowTexture       ? "hall_low_texture"
+               : p.scene == synth::SceneStyle::kDarkLowTexture ? "hall_dark_low_texture"
+                                                               : "hall";
   m["pixel_centre"] = "i+0.5";  // pixel (i, j) centre at (i+0.5, j+0.5); principal point W/2 H/2
   const Look look = ClipLook(p, options);
   if (look.blur) m["shutter"] = Num(options.shutter);

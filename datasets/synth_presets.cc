@@ -125,17 +125,21 @@ const std::vector<PresetInfo>& SynthPresets() {
 const std::vector<PresetInfo>& SynthMoverPresets() {
   static const std::vector<PresetInfo> kPresets = [] {
     std::vector<PresetInfo> p;
-    auto add = [&p](const char* name, MoverKind kind, const char* desc) {
+    auto add = [&p](const char* name, MoverKind kind, const char* desc) -> PresetInfo& {
       PresetInfo i;
       i.name = name;
       i.group = "movers";
       i.description = desc;
       i.movers = kind;
       p.push_back(i);
+      return p.back();
     };
     add("head_turn", MoverKind::kHead,
         "static camera on a head and shoulders (~60 % of the frame height) that turns, nods, "
         "blinks and talks");
+    add("head_turn_dark", MoverKind::kHead,
+        "head_turn in a dark, weakly textured hall: the background gives few tracks")
+        .scene = SceneStyle::kDarkLowTexture;
     add("head_push_in", MoverKind::kHead,
         "the head_turn scene with a slow 0.2 m push-in (view direction fixed)");
     add("pan_crossing", MoverKind::kCrossing,
@@ -248,7 +252,7 @@ CameraState PresetCameraAt(const PresetInfo& preset, double t, const ClipTiming&
     c.pan_deg += Mix(0, 25, s);
   } else if (n == "static_camera" || n == "crowd_static") {
     // Framing only.
-  } else if (n == "head_turn" || n == "head_push_in") {
+  } else if (n == "head_turn" || n == "head_turn_dark" || n == "head_push_in") {
     // Frame the head slightly left of centre, as in a dialogue close-up.
     LookAt(c.center, MoverHeadCenter() + Vector3d(-0.05, -0.02, 0), &c.pan_deg, &c.tilt_deg);
     if (n == "head_push_in") c.center.z() -= Mix(0, 0.2, s);  // view direction fixed

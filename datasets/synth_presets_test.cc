@@ -238,7 +238,7 @@ TEST(SynthPresets, WhipPanIsFastAndFadeReturns) {
 
 TEST(SynthPresets, MoversLeaveTheCameraPathAlone) {
   // The movers are no part of --all, and the ground truth is the camera's only.
-  EXPECT_EQ(SynthMoverPresetNames().size(), 5u);
+  EXPECT_EQ(SynthMoverPresetNames().size(), 6u);
   const std::vector<std::string> all = SynthPresetNames();
   for (const std::string& name : SynthMoverPresetNames()) {
     EXPECT_EQ(std::count(all.begin(), all.end(), name), 0) << name;
@@ -249,6 +249,12 @@ TEST(SynthPresets, MoversLeaveTheCameraPathAlone) {
     EXPECT_EQ(f.model, "static");
     EXPECT_EQ(f.center, head.frames[0].center);
   }
+  // The dark head_turn is head_turn's camera in another hall.
+  const CameraPath dark = SynthGroundTruth("head_turn_dark", Opts());
+  EXPECT_EQ(dark.metadata.at("scene"), "hall_dark_low_texture");
+  ASSERT_EQ(dark.frames.size(), head.frames.size());
+  EXPECT_EQ(dark.frames.back().center, head.frames.back().center);
+  EXPECT_EQ(dark.frames.back().world_from_cam.coeffs(), head.frames.back().world_from_cam.coeffs());
   EXPECT_EQ(SynthGroundTruth("crowd_static", Opts()).frames.back().model, "static");
   // A camera move with walkers is the move without them.
   const CameraPath a = SynthGroundTruth("traveling_crossing", Opts());
