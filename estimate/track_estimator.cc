@@ -104,9 +104,12 @@ void TrackCameraEstimator::StartShot(int shot) {
 }
 
 void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
-  if (held_.empty()) {
+  // A cut the tracker may yet withdraw (the picture continued) is held too.
+  const bool cut = tracks.shot != source_shot_ || tracks.boundary == ShotBoundary::kCut ||
+                   tracks.boundary == ShotBoundary::kFade;
+  if (held_.empty() && !(tracks.bridging && cut && shot_ >= 0 && !keyframes_.empty())) {
     AddFrameNow(tracks);
-  } else if (tracks.bridging && tracks.shot == source_shot_ && tracks.boundary == ShotBoundary::kNone) {
+  } else if (tracks.bridging) {
     held_.push_back(tracks);
   } else {
     ResolveHeld(&tracks);
@@ -123,6 +126,8 @@ void TrackCameraEstimator::ResolveHeld(const FrameTracks* next) {
   if (next && ContinuesLastKeyframe(*next)) {
     for (FrameTracks& f : held) {
       f.points.clear();  // no usable tracks: lost
+      f.shot = source_shot_;  // a cut held here was withdrawn: the same take
+      f.boundary = ShotBoundary::kNone;
       AddFrameNow(f);
     }
   } else {

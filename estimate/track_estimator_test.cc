@@ -945,6 +945,29 @@ TEST(TrackEstimator, UnbridgedBreakSplitsTheShotAsBefore) {
   }
 }
 
+// A cut the tracker withdrew (a flash: the histogram cut, but frame 44
+// continued frame 39's tracks): frames 40-43 came as a new shot, flagged
+// bridging; they are lost and the shot goes on.
+TEST(TrackEstimator, WithdrawnCutKeepsTheShot) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun run = SimulateFrames(90, [](int i) { return PanCamera(i, 20, 800); },
+                                    [&](int i, const SceneCamera& c, std::mt19937* rng) {
+                                      FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+                                      const bool flash = i >= 40 && i < 44;
+                                      if (flash)
+                                        for (auto& p : ft.points) p.track_id += 100000;
+                                      ft.shot = flash ? 1 : 0;
+                                      ft.boundary = i == 40 ? ShotBoundary::kCut : ft.boundary;
+                                      ft.bridging = flash;
+                                      return ft;
+                                    });
+  for (int i = 0; i < 90; ++i) {
+    EXPECT_EQ(*run.path.frames[i].shot, 0) << i;
+    EXPECT_EQ(IsLost(run.path.frames[i]), i >= 40 && i < 44) << i;
+  }
+  EXPECT_LT(AngleBetweenDeg(run.path.frames[60].world_from_cam, run.truth[60].world_from_cam), 0.3);
+}
+
 // A video that ends inside a bridged break: the held frames are added as
 // they came when the path is finished.
 TEST(TrackEstimator, BreakBridgedUntilTheEndIsNotDropped) {

@@ -215,6 +215,10 @@ struct FeatureTracker::Impl {
   DescribedFrame break_anchor;
   double break_time_s = 0;
   int break_tries = 0;
+  int break_shot = 0;  // the anchor's shot (a cut the bridge withdraws returns to it)
+  // This frame: the shot detector's cut, whose picture continues the last
+  // (CutMayBeABreak), and whether the bridge began here.
+  bool cut_may_be_a_break = false, break_began = false;
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -853,6 +857,7 @@ struct FeatureTracker::Impl {
   // The shot boundary of this frame: a cut or fade starts a new shot unless
   // tracked camera motion or a fade through black within the shot explains it.
   void DecideBoundary(const Frame& frame, const ShotDecision& decision, FrameTracks* out) {
+    cut_may_be_a_break = break_began = false;
     if (first) {
       out->boundary = ShotBoundary::kStart;
       first = false;
@@ -871,9 +876,13 @@ struct FeatureTracker::Impl {
     } else if (decision.boundary != ShotBoundary::kNone ||
                IsLookAlikeDissolve(decision, frame.gray.size())) {
       out->boundary = decision.boundary != ShotBoundary::kNone ? decision.boundary : ShotBoundary::kFade;
+      cut_may_be_a_break = CutMayBeABreak(decision);
+      if (cut_may_be_a_break && break_anchor.empty()) StartBreak(frame);
+      DescribedFrame anchor = cut_may_be_a_break ? std::move(break_anchor) : DescribedFrame{};
       ++shot;
       DropTracks();
       bridge = {};
+      break_anchor = std::move(anchor);
     }
     if (!decision.transition) {
       run_tracked = true;
@@ -1598,14 +1607,10 @@ struct FeatureTracker::Impl {
   // pass (the estimator then splits the shot where it broke). Frames in
   // between are flagged `bridging`. Costs nothing while tracking holds.
   void BridgeBreak(const Frame& frame, FrameTracks* out, FrameWork* w) {
-    if (out->boundary != ShotBoundary::kNone) break_anchor = {};  // a new shot: nothing to bridge
-    if (break_anchor.empty()) {
-      if (!BrokeHere(*out, *w)) return;
-      break_anchor.gray = prev_pyramid[0].clone();  // the pyramids' buffers are reused
-      break_anchor.points = prev_points;
-      break_anchor.ids = prev_ids;
-      break_time_s = frame.time_s;
-      break_tries = 0;
+    if (out->boundary != ShotBoundary::kNone && !cut_may_be_a_break) break_anchor = {};  // a new shot
+    if (break_anchor.empty() && BrokeHere(*out, *w)) StartBreak(frame);
+    if (break_anchor.empty()) return;
+    if (break_began) {  // links from the next frame on (the probe tried this one)
       out->bridging = true;
       return;
     }
@@ -1624,11 +1629,39 @@ struct FeatureTracker::Impl {
       out->recovered = true;
       out->jump = out->jump || link.median_motion_px >= options.klt_window;
       break_anchor = {};
+      out->boundary = ShotBoundary::kNone;  // the same take: cuts seen since are withdrawn
+      out->shot = shot = break_shot;
     } else if (frame.time_s - break_time_s > kBridgeSeconds || break_tries >= kBridgeTries) {
       break_anchor = {};  // gave up: the estimator splits where the shot broke
     } else {
       out->bridging = true;
     }
+  }
+
+  // The last frame (picture copied: the pyramids' buffers are reused, and
+  // its tracks) becomes the anchor the next frames are linked back to.
+  void StartBreak(const Frame& frame) {
+    break_anchor = {};
+    break_anchor.gray = prev_pyramid[0].clone();
+    break_anchor.points = prev_points;
+    break_anchor.ids = prev_ids;
+    break_time_s = frame.time_s;
+    break_tries = 0;
+    break_shot = shot;
+    break_began = true;
+  }
+
+  // The shot detector's cut (histogram) on a picture that continues the
+  // last one (ShotDecision::continuity: the last picture shifted, at 64 px),
+  // after a tracked frame: heavy blur (which flattens the histogram) or a
+  // flash, not another picture (cuts measured at 0.24-0.64, docs/extract.md).
+  // The tracks end as at any cut, but the bridge links the next frames back
+  // to the last frame before it; one that links withdraws the cut.
+  bool CutMayBeABreak(const ShotDecision& decision) const {
+    if (!options.bridge_breaks || !options.descriptor_linking || Stills() ||
+        decision.boundary != ShotBoundary::kCut || decision.continuity < kContinuousPicture)
+      return false;
+    return !break_anchor.empty() || (prev_points.size() >= kMinTracksForCollapse && !prev_pyramid.empty());
   }
 
   // The anchor's tracks the link carries, but for those the frame has (the

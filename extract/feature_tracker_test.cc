@@ -736,13 +736,16 @@ TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
 // blurred past what KLT, the ORB re-links and the SIFT probe can follow (a
 // blur burst inside a take), then sharp again: the picture is `after` from
 // then on (the same texture: the take goes on; another one: a cut).
+// `flash`: the burst's frames also washed out towards white (0.4 x + 150),
+// which moves the histogram past the hard cut's threshold.
 std::vector<FrameTracks> TrackBlurBurst(const cv::Mat& before, const cv::Mat& after, int blurred,
-                                        const TrackerOptions& options) {
+                                        const TrackerOptions& options, bool flash = false) {
   FeatureTracker tracker(options);
   std::vector<FrameTracks> out;
   for (int i = 0; i < 20 + blurred; ++i) {
     cv::Mat picture = Shifted(i < 10 + blurred ? before : after, 3.0 * i, 0, kDecoded);
     if (i >= 10 && i < 10 + blurred) cv::GaussianBlur(picture, picture, cv::Size(0, 0), 12);
+    if (flash && i >= 10 && i < 10 + blurred) picture.convertTo(picture, -1, 0.4, 150);
     out.push_back(tracker.Process(MakeFrame(picture, i, 0.5)));
   }
   return out;
@@ -779,6 +782,24 @@ TEST(FeatureTrackerTest, BlurBurstIsBridgedToTheFrameBeforeIt) {
   const std::vector<FrameTracks> plain = TrackBlurBurst(texture, texture, 4, off);
   EXPECT_LT(ContinuedOnThePan(plain[9], plain[14]), 12);
   for (const FrameTracks& t : plain) EXPECT_FALSE(t.bridging);
+}
+
+// A flash with the blur: the shot detector cuts on the histogram, but the
+// picture continues the last one; the first sharp frame links back to the
+// frame before the flash, and the cuts are withdrawn (the same shot).
+TEST(FeatureTrackerTest, CutOnAFlashIsWithdrawnWhenTheTakeGoesOn) {
+  const cv::Mat texture = NoiseTexture({1000, 800}, 31);
+  const std::vector<FrameTracks> out = TrackBlurBurst(texture, texture, 4, SmallOptions(), true);
+  EXPECT_EQ(out[10].boundary, ShotBoundary::kCut) << "the flash must cut for this test";
+  for (const FrameTracks& t : out) EXPECT_EQ(t.bridging, t.index >= 10 && t.index < 14) << t.index;
+  for (size_t i = 14; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].shot, 0) << i;
+    EXPECT_EQ(out[i].boundary, ShotBoundary::kNone) << i;
+  }
+  EXPECT_GE(ContinuedOnThePan(out[9], out[14]), 40);
+  TrackerOptions off = SmallOptions();
+  off.bridge_breaks = false;
+  EXPECT_GE(TrackBlurBurst(texture, texture, 4, off, true).back().shot, 1);
 }
 
 // A cut right after the burst (another picture with the same colours):
