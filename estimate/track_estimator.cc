@@ -125,7 +125,7 @@ void TrackCameraEstimator::ResolveHeld(const FrameTracks* next) {
   held_.clear();
   if (next && ContinuesLastKeyframe(*next)) {
     for (FrameTracks& f : held) {
-      f.points.clear();  // no usable tracks: lost
+      f.points.clear();       // no usable tracks: lost
       f.shot = source_shot_;  // a cut held here was withdrawn: the same take
       f.boundary = ShotBoundary::kNone;
       AddFrameNow(f);

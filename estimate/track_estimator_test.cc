@@ -896,14 +896,15 @@ TEST(TrackEstimator, RepeatedChainBreaksAreLostNotOneFrameShots) {
 // verified: the tracker gave up).
 SimRun PanWithABridgedBreak(bool bridged) {
   const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
-  return SimulateFrames(90, [](int i) { return PanCamera(i, 20, 800); },
-                        [&](int i, const SceneCamera& c, std::mt19937* rng) {
-                          FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
-                          const int generation = i < 40 ? 0 : i < 44 ? i - 39 : bridged ? 0 : 5;
-                          for (auto& p : ft.points) p.track_id += 100000 * generation;
-                          ft.bridging = i >= 40 && i < 44;
-                          return ft;
-                        });
+  return SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const int generation = i < 40 ? 0 : i < 44 ? i - 39 : bridged ? 0 : 5;
+        for (auto& p : ft.points) p.track_id += 100000 * generation;
+        ft.bridging = i >= 40 && i < 44;
+        return ft;
+      });
 }
 
 // Bridged: one shot, the break's frames lost (they placed nothing), the pose
@@ -927,13 +928,14 @@ TEST(TrackEstimator, BridgedBreakKeepsTheShotAndLosesOnlyTheBreak) {
 TEST(TrackEstimator, UnbridgedBreakSplitsTheShotAsBefore) {
   const SimRun run = PanWithABridgedBreak(false);
   const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
-  const SimRun plain = SimulateFrames(90, [](int i) { return PanCamera(i, 20, 800); },
-                                      [&](int i, const SceneCamera& c, std::mt19937* rng) {
-                                        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
-                                        const int generation = i < 40 ? 0 : i < 44 ? i - 39 : 5;
-                                        for (auto& p : ft.points) p.track_id += 100000 * generation;
-                                        return ft;
-                                      });
+  const SimRun plain = SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const int generation = i < 40 ? 0 : i < 44 ? i - 39 : 5;
+        for (auto& p : ft.points) p.track_id += 100000 * generation;
+        return ft;
+      });
   ASSERT_EQ(run.path.frames.size(), 90u);
   EXPECT_EQ(*run.path.frames[89].shot, 1);
   for (int i = 0; i < 90; ++i) {
@@ -950,17 +952,18 @@ TEST(TrackEstimator, UnbridgedBreakSplitsTheShotAsBefore) {
 // bridging; they are lost and the shot goes on.
 TEST(TrackEstimator, WithdrawnCutKeepsTheShot) {
   const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
-  const SimRun run = SimulateFrames(90, [](int i) { return PanCamera(i, 20, 800); },
-                                    [&](int i, const SceneCamera& c, std::mt19937* rng) {
-                                      FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
-                                      const bool flash = i >= 40 && i < 44;
-                                      if (flash)
-                                        for (auto& p : ft.points) p.track_id += 100000;
-                                      ft.shot = flash ? 1 : 0;
-                                      ft.boundary = i == 40 ? ShotBoundary::kCut : ft.boundary;
-                                      ft.bridging = flash;
-                                      return ft;
-                                    });
+  const SimRun run = SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const bool flash = i >= 40 && i < 44;
+        if (flash)
+          for (auto& p : ft.points) p.track_id += 100000;
+        ft.shot = flash ? 1 : 0;
+        ft.boundary = i == 40 ? ShotBoundary::kCut : ft.boundary;
+        ft.bridging = flash;
+        return ft;
+      });
   for (int i = 0; i < 90; ++i) {
     EXPECT_EQ(*run.path.frames[i].shot, 0) << i;
     EXPECT_EQ(IsLost(run.path.frames[i]), i >= 40 && i < 44) << i;
@@ -972,13 +975,14 @@ TEST(TrackEstimator, WithdrawnCutKeepsTheShot) {
 // they came when the path is finished.
 TEST(TrackEstimator, BreakBridgedUntilTheEndIsNotDropped) {
   const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
-  const SimRun run = SimulateFrames(44, [](int i) { return PanCamera(i, 20, 800); },
-                                    [&](int i, const SceneCamera& c, std::mt19937* rng) {
-                                      FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
-                                      for (auto& p : ft.points) p.track_id += 100000 * std::max(0, i - 39);
-                                      ft.bridging = i >= 40;
-                                      return ft;
-                                    });
+  const SimRun run = SimulateFrames(
+      44, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        for (auto& p : ft.points) p.track_id += 100000 * std::max(0, i - 39);
+        ft.bridging = i >= 40;
+        return ft;
+      });
   ASSERT_EQ(run.path.frames.size(), 44u);
   for (int i = 0; i < 44; ++i) EXPECT_EQ(ValidateCameraFrame(run.path.frames[i]), "") << i;
   EXPECT_EQ(*run.path.frames[43].shot, 1);

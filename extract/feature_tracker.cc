@@ -1596,8 +1596,9 @@ struct FeatureTracker::Impl {
   // detector saw no cut: the picture continues, blurred or covered).
   bool BrokeHere(const FrameTracks& out, const FrameWork& w) const {
     return options.bridge_breaks && options.descriptor_linking && !Stills() &&
-           out.boundary == ShotBoundary::kNone && w.had_tracks && w.before >= kMinTracksForCollapse &&
-           w.collapsed && w.survived + w.relinked < kMinTracksForCollapse && !prev_pyramid.empty();
+           out.boundary == ShotBoundary::kNone && w.had_tracks &&
+           w.before >= kMinTracksForCollapse && w.collapsed &&
+           w.survived + w.relinked < kMinTracksForCollapse && !prev_pyramid.empty();
   }
 
   // Tracking broke inside the shot (BrokeHere): the frames after the break
@@ -1607,7 +1608,8 @@ struct FeatureTracker::Impl {
   // pass (the estimator then splits the shot where it broke). Frames in
   // between are flagged `bridging`. Costs nothing while tracking holds.
   void BridgeBreak(const Frame& frame, FrameTracks* out, FrameWork* w) {
-    if (out->boundary != ShotBoundary::kNone && !cut_may_be_a_break) break_anchor = {};  // a new shot
+    if (out->boundary != ShotBoundary::kNone && !cut_may_be_a_break)
+      break_anchor = {};  // a new shot
     if (break_anchor.empty() && BrokeHere(*out, *w)) StartBreak(frame);
     if (break_anchor.empty()) return;
     if (break_began) {  // links from the next frame on (the probe tried this one)
@@ -1661,7 +1663,8 @@ struct FeatureTracker::Impl {
     if (!options.bridge_breaks || !options.descriptor_linking || Stills() ||
         decision.boundary != ShotBoundary::kCut || decision.continuity < kContinuousPicture)
       return false;
-    return !break_anchor.empty() || (prev_points.size() >= kMinTracksForCollapse && !prev_pyramid.empty());
+    return !break_anchor.empty() ||
+           (prev_points.size() >= kMinTracksForCollapse && !prev_pyramid.empty());
   }
 
   // The anchor's tracks the link carries, but for those the frame has (the

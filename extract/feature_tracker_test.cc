@@ -758,7 +758,8 @@ int ContinuedOnThePan(const FrameTracks& a, const FrameTracks& b) {
   int n = 0;
   for (const TrackPoint& p : b.points) {
     const auto it = at_a.find(p.track_id);
-    if (it != at_a.end() && (p.px - it->second - Eigen::Vector2d(3.0 * (b.index - a.index), 0)).norm() < 1)
+    if (it != at_a.end() &&
+        (p.px - it->second - Eigen::Vector2d(3.0 * (b.index - a.index), 0)).norm() < 1)
       ++n;
   }
   return n;
@@ -806,8 +807,8 @@ TEST(FeatureTrackerTest, CutOnAFlashIsWithdrawnWhenTheTakeGoesOn) {
 // no track of frame 9 reaches the new picture (here the shot detector's
 // look-alike cut cues see the cut; the bridge ends with the shot).
 TEST(FeatureTrackerTest, CutRightAfterABlurBurstIsNotBridged) {
-  const std::vector<FrameTracks> out =
-      TrackBlurBurst(NoiseTexture({1000, 800}, 31), NoiseTexture({1000, 800}, 32), 4, SmallOptions());
+  const std::vector<FrameTracks> out = TrackBlurBurst(
+      NoiseTexture({1000, 800}, 31), NoiseTexture({1000, 800}, 32), 4, SmallOptions());
   const std::map<long, Eigen::Vector2d> before = ById(out[9]);
   for (size_t i = 10; i < out.size(); ++i) {
     for (const TrackPoint& p : out[i].points) EXPECT_EQ(before.count(p.track_id), 0u) << i;
