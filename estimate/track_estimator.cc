@@ -104,6 +104,51 @@ void TrackCameraEstimator::StartShot(int shot) {
 }
 
 void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
+  // A cut the tracker may yet withdraw (the picture continued) is held too.
+  const bool cut = tracks.shot != source_shot_ || tracks.boundary == ShotBoundary::kCut ||
+                   tracks.boundary == ShotBoundary::kFade;
+  if (held_.empty() && !(tracks.bridging && cut && shot_ >= 0 && !keyframes_.empty())) {
+    AddFrameNow(tracks);
+  } else if (tracks.bridging) {
+    held_.push_back(tracks);
+  } else {
+    ResolveHeld(&tracks);
+  }
+}
+
+// The tracker bridged the break if `next` (none at the end) continues the
+// last keyframe's tracks: the held frames placed nothing and are lost, the
+// shot goes on. Otherwise they are added as they came: the shot splits
+// where it broke, as it would have without the bridge.
+void TrackCameraEstimator::ResolveHeld(const FrameTracks* next) {
+  std::vector<FrameTracks> held = std::move(held_);
+  held_.clear();
+  if (next && ContinuesLastKeyframe(*next)) {
+    for (FrameTracks& f : held) {
+      f.points.clear();       // no usable tracks: lost
+      f.shot = source_shot_;  // a cut held here was withdrawn: the same take
+      f.boundary = ShotBoundary::kNone;
+      AddFrameNow(f);
+    }
+  } else {
+    replaying_held_ = true;
+    for (const FrameTracks& f : held) AddFrameNow(f);
+    replaying_held_ = false;
+  }
+  if (next) AddFrameNow(*next);
+}
+
+bool TrackCameraEstimator::ContinuesLastKeyframe(const FrameTracks& tracks) const {
+  if (tracks.shot != source_shot_ || tracks.boundary == ShotBoundary::kCut ||
+      tracks.boundary == ShotBoundary::kFade || tracks.blank || keyframes_.empty())
+    return false;
+  KeyframeTracks u;
+  for (const auto& p : tracks.points)
+    if (p.px.allFinite()) u[p.track_id] = Normalise(p.px);
+  return SharedWithLastKeyframe(u) >= options_.min_tracks;
+}
+
+void TrackCameraEstimator::AddFrameNow(const FrameTracks& tracks) {
   const bool new_shot = shot_ < 0 || tracks.shot != source_shot_ ||
                         tracks.boundary == ShotBoundary::kCut ||
                         tracks.boundary == ShotBoundary::kFade;
@@ -123,6 +168,10 @@ void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
   }
   f.usable = !tracks.blank && static_cast<int>(f.u.size()) >= options_.min_tracks;
   if (f.usable && !keyframes_.empty() && SharedWithLastKeyframe(f.u) < options_.min_tracks) {
+    if (tracks.bridging && !replaying_held_) {
+      held_.push_back(tracks);  // the tracker may yet link a later frame across
+      return;
+    }
     if (keyframes_.size() > 1) {
       SplitShot(tracks);
       return;
@@ -447,6 +496,7 @@ void TrackCameraEstimator::SmoothShot(std::vector<Eigen::Quaterniond>* q, std::v
 }
 
 CameraPath TrackCameraEstimator::Finish() {
+  if (!held_.empty()) ResolveHeld(nullptr);
   FinishShot();
   shot_ = -1;
   return path_;

@@ -173,6 +173,12 @@ class TrackCameraEstimator {
   // the last keyframe): the shot ends and a new one starts at `tracks`.
   void SplitShot(const FrameTracks& tracks);
   void RestartChain();
+  // Tracking broke and the tracker is bridging (FrameTracks::bridging): the
+  // frames are held until one is not, then lost if that one continues the
+  // last keyframe's tracks, else added as they came (the shot splits).
+  void AddFrameNow(const FrameTracks& tracks);
+  void ResolveHeld(const FrameTracks* next);
+  bool ContinuesLastKeyframe(const FrameTracks& tracks) const;
   bool SplitOfStills(const FrameTracks& tracks) const;
   void BorrowStillsFocal();
   void KeepStillsFocal();
@@ -219,6 +225,10 @@ class TrackCameraEstimator {
   // Current shot.
   int shot_ = -1;
   int source_shot_ = -1;             // the tracker's shot index of the current shot
+  // Frames held while the tracker bridges a break (FrameTracks::bridging),
+  // and whether they are being added as they came (the break not bridged).
+  std::vector<FrameTracks> held_;
+  bool replaying_held_ = false;
   // After a split: the focal the new shot starts from, and whether it was observed.
   std::optional<double> split_log_focal_;
   std::optional<double> last_log_focal_;  // the last placed frame's, set by FinishShot

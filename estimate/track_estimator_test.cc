@@ -889,6 +889,105 @@ TEST(TrackEstimator, RepeatedChainBreaksAreLostNotOneFrameShots) {
   EXPECT_EQ(run.path.frames[102].center, Eigen::Vector3d::Zero());  // the new shot's origin
 }
 
+// Tracking breaks inside a pan (frames 40-43: new ids every frame, as KLT
+// re-detects through a blur burst) while the tracker bridges the break
+// (FrameTracks::bridging); frame 44 continues the tracks of frame 39 (the
+// descriptor link) when `bridged`, else it has ids of its own (no link
+// verified: the tracker gave up).
+SimRun PanWithABridgedBreak(bool bridged) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  return SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const int generation = i < 40 ? 0 : i < 44 ? i - 39 : bridged ? 0 : 5;
+        for (auto& p : ft.points) p.track_id += 100000 * generation;
+        ft.bridging = i >= 40 && i < 44;
+        return ft;
+      });
+}
+
+// Bridged: one shot, the break's frames lost (they placed nothing), the pose
+// after it continuous with the pose before it.
+TEST(TrackEstimator, BridgedBreakKeepsTheShotAndLosesOnlyTheBreak) {
+  const SimRun run = PanWithABridgedBreak(true);
+  ASSERT_EQ(run.path.frames.size(), 90u);
+  for (int i = 0; i < 90; ++i) {
+    const CameraFrame& f = run.path.frames[i];
+    EXPECT_EQ(*f.shot, 0) << i;
+    EXPECT_EQ(IsLost(f), i >= 40 && i < 44) << i;
+    if (!IsLost(f))
+      EXPECT_LT(AngleBetweenDeg(f.world_from_cam, run.truth[i].world_from_cam), 0.3) << i;
+  }
+}
+
+// Not bridged (the degenerate case: the link never verified): exactly what
+// the estimator does without the tracker's bridge, a split where tracking
+// broke, the break's frames up to the last one the lost lead-in of the new
+// shot.
+TEST(TrackEstimator, UnbridgedBreakSplitsTheShotAsBefore) {
+  const SimRun run = PanWithABridgedBreak(false);
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun plain = SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const int generation = i < 40 ? 0 : i < 44 ? i - 39 : 5;
+        for (auto& p : ft.points) p.track_id += 100000 * generation;
+        return ft;
+      });
+  ASSERT_EQ(run.path.frames.size(), 90u);
+  EXPECT_EQ(*run.path.frames[89].shot, 1);
+  for (int i = 0; i < 90; ++i) {
+    const CameraFrame& a = run.path.frames[i];
+    const CameraFrame& b = plain.path.frames[i];
+    EXPECT_EQ(*a.shot, *b.shot) << i;
+    EXPECT_EQ(IsLost(a), IsLost(b)) << i;
+    EXPECT_EQ(a.world_from_cam.coeffs(), b.world_from_cam.coeffs()) << i;
+  }
+}
+
+// A cut the tracker withdrew (a flash: the histogram cut, but frame 44
+// continued frame 39's tracks): frames 40-43 came as a new shot, flagged
+// bridging; they are lost and the shot goes on.
+TEST(TrackEstimator, WithdrawnCutKeepsTheShot) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun run = SimulateFrames(
+      90, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        const bool flash = i >= 40 && i < 44;
+        if (flash)
+          for (auto& p : ft.points) p.track_id += 100000;
+        ft.shot = flash ? 1 : 0;
+        ft.boundary = i == 40 ? ShotBoundary::kCut : ft.boundary;
+        ft.bridging = flash;
+        return ft;
+      });
+  for (int i = 0; i < 90; ++i) {
+    EXPECT_EQ(*run.path.frames[i].shot, 0) << i;
+    EXPECT_EQ(IsLost(run.path.frames[i]), i >= 40 && i < 44) << i;
+  }
+  EXPECT_LT(AngleBetweenDeg(run.path.frames[60].world_from_cam, run.truth[60].world_from_cam), 0.3);
+}
+
+// A video that ends inside a bridged break: the held frames are added as
+// they came when the path is finished.
+TEST(TrackEstimator, BreakBridgedUntilTheEndIsNotDropped) {
+  const auto pts = RandomPoints(1500, 3, 30, 1.6, 4);
+  const SimRun run = SimulateFrames(
+      44, [](int i) { return PanCamera(i, 20, 800); },
+      [&](int i, const SceneCamera& c, std::mt19937* rng) {
+        FrameTracks ft = MakeFrameTracks(i, 25, c, pts, kW, kH, 0.3, 0.0, rng);
+        for (auto& p : ft.points) p.track_id += 100000 * std::max(0, i - 39);
+        ft.bridging = i >= 40;
+        return ft;
+      });
+  ASSERT_EQ(run.path.frames.size(), 44u);
+  for (int i = 0; i < 44; ++i) EXPECT_EQ(ValidateCameraFrame(run.path.frames[i]), "") << i;
+  EXPECT_EQ(*run.path.frames[43].shot, 1);
+}
+
 // Tracking goes blank mid-shot (frames 40-42) and comes back with new
 // tracks: the blank frames are lost (confidence 0, the last placed pose as
 // placeholder, not smoothed), no pose is held silently, and the frames

@@ -154,6 +154,13 @@ constexpr size_t kRevisitTries = 3;
 // links it to this frame no more.
 constexpr double kRevisitViewKept = 0.8;
 constexpr double kRevisitShared = 0.1;
+// A break inside a take (BridgeBreak): the later frames are linked back to
+// the last frame before it for at most this long. Blur, a flash or an
+// occluder passing the lens lose a few frames; after half a second the camera
+// may be anywhere and a split is the honest answer. The tries bound the
+// SIFT cost at high frame rates.
+constexpr double kBridgeSeconds = 0.5;
+constexpr int kBridgeTries = 15;
 
 }  // namespace
 
@@ -202,6 +209,16 @@ struct FeatureTracker::Impl {
     cv::Mat layout;
   };
   std::deque<RevisitView> revisit_views;
+  // A break inside the shot (BridgeBreak): the last frame before it (picture
+  // copied, its tracks; described at the first try) while the later frames
+  // are linked back to it, when the break began and the tries so far.
+  DescribedFrame break_anchor;
+  double break_time_s = 0;
+  int break_tries = 0;
+  int break_shot = 0;  // the anchor's shot (a cut the bridge withdraws returns to it)
+  // This frame: the shot detector's cut, whose picture continues the last
+  // (CutMayBeABreak), and whether the bridge began here.
+  bool cut_may_be_a_break = false, break_began = false;
   bool first = true;
   int shot = 0;
   long next_id = 0;
@@ -276,6 +293,7 @@ struct FeatureTracker::Impl {
     KeepStillsShotEnds();
     shot_views.clear();
     revisit_views.clear();
+    break_anchor = {};
     descriptor_mode = Stills();
     shot_tracked_frames = 0;
   }
@@ -839,6 +857,7 @@ struct FeatureTracker::Impl {
   // The shot boundary of this frame: a cut or fade starts a new shot unless
   // tracked camera motion or a fade through black within the shot explains it.
   void DecideBoundary(const Frame& frame, const ShotDecision& decision, FrameTracks* out) {
+    cut_may_be_a_break = break_began = false;
     if (first) {
       out->boundary = ShotBoundary::kStart;
       first = false;
@@ -857,9 +876,13 @@ struct FeatureTracker::Impl {
     } else if (decision.boundary != ShotBoundary::kNone ||
                IsLookAlikeDissolve(decision, frame.gray.size())) {
       out->boundary = decision.boundary != ShotBoundary::kNone ? decision.boundary : ShotBoundary::kFade;
+      cut_may_be_a_break = CutMayBeABreak(decision);
+      if (cut_may_be_a_break && break_anchor.empty()) StartBreak(frame);
+      DescribedFrame anchor = cut_may_be_a_break ? std::move(break_anchor) : DescribedFrame{};
       ++shot;
       DropTracks();
       bridge = {};
+      break_anchor = std::move(anchor);
     }
     if (!decision.transition) {
       run_tracked = true;
@@ -1568,6 +1591,90 @@ struct FeatureTracker::Impl {
     return out;
   }
 
+  // A break inside the shot: KLT lost the last frame's tracks and neither
+  // the ORB re-links nor the SIFT probe linked this frame to it (the shot
+  // detector saw no cut: the picture continues, blurred or covered).
+  bool BrokeHere(const FrameTracks& out, const FrameWork& w) const {
+    return options.bridge_breaks && options.descriptor_linking && !Stills() &&
+           out.boundary == ShotBoundary::kNone && w.had_tracks &&
+           w.before >= kMinTracksForCollapse && w.collapsed &&
+           w.survived + w.relinked < kMinTracksForCollapse && !prev_pyramid.empty();
+  }
+
+  // Tracking broke inside the shot (BrokeHere): the frames after the break
+  // are linked by SIFT to the last frame before it (as any link: verified
+  // against the two-view geometry), until one links, which continues that
+  // frame's tracks (the shot goes on across the break), or kBridgeSeconds
+  // pass (the estimator then splits the shot where it broke). Frames in
+  // between are flagged `bridging`. Costs nothing while tracking holds.
+  void BridgeBreak(const Frame& frame, FrameTracks* out, FrameWork* w) {
+    if (out->boundary != ShotBoundary::kNone && !cut_may_be_a_break)
+      break_anchor = {};  // a new shot
+    if (break_anchor.empty() && BrokeHere(*out, *w)) StartBreak(frame);
+    if (break_anchor.empty()) return;
+    if (break_began) {  // links from the next frame on (the probe tried this one)
+      out->bridging = true;
+      return;
+    }
+    if (break_anchor.keypoints.empty()) linker.Describe(&break_anchor);
+    DescribedFrame cur;
+    cur.gray = frame.gray;
+    linker.Describe(&cur);
+    const LinkResult link = linker.Link(break_anchor, cur);
+    ++break_tries;
+    const size_t before = w->relinked;
+    if (link.ok()) TakeBridgedPoints(link, w);
+    RecordLink(frame, "bridge", link, w->relinked - before);
+    // A link carrying a few tracks (a blurred frame's handful of matches)
+    // places nothing: the next frame may link better.
+    if (w->relinked - before >= kMinTracksForCollapse) {
+      out->recovered = true;
+      out->jump = out->jump || link.median_motion_px >= options.klt_window;
+      break_anchor = {};
+      out->boundary = ShotBoundary::kNone;  // the same take: cuts seen since are withdrawn
+      out->shot = shot = break_shot;
+    } else if (frame.time_s - break_time_s > kBridgeSeconds || break_tries >= kBridgeTries) {
+      break_anchor = {};  // gave up: the estimator splits where the shot broke
+    } else {
+      out->bridging = true;
+    }
+  }
+
+  // The last frame (picture copied: the pyramids' buffers are reused, and
+  // its tracks) becomes the anchor the next frames are linked back to.
+  void StartBreak(const Frame& frame) {
+    break_anchor = {};
+    break_anchor.gray = prev_pyramid[0].clone();
+    break_anchor.points = prev_points;
+    break_anchor.ids = prev_ids;
+    break_time_s = frame.time_s;
+    break_tries = 0;
+    break_shot = shot;
+    break_began = true;
+  }
+
+  // The shot detector's cut (histogram) on a picture that continues the
+  // last one (ShotDecision::continuity: the last picture shifted, at 64 px),
+  // after a tracked frame: heavy blur (which flattens the histogram) or a
+  // flash, not another picture (cuts measured at 0.24-0.64, docs/extract.md).
+  // The tracks end as at any cut, but the bridge links the next frames back
+  // to the last frame before it; one that links withdraws the cut.
+  bool CutMayBeABreak(const ShotDecision& decision) const {
+    if (!options.bridge_breaks || !options.descriptor_linking || Stills() ||
+        decision.boundary != ShotBoundary::kCut || decision.continuity < kContinuousPicture)
+      return false;
+    return !break_anchor.empty() ||
+           (prev_points.size() >= kMinTracksForCollapse && !prev_pyramid.empty());
+  }
+
+  // The anchor's tracks the link carries, but for those the frame has (the
+  // frame's own tracks began in the break and tie it to nothing placed).
+  void TakeBridgedPoints(const LinkResult& link, FrameWork* w) {
+    std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
+    for (size_t i = 0; i < link.points.size(); ++i)
+      if (!taken.count(link.ids[i])) TakePoint(link, static_cast<int>(i), &taken, w);
+  }
+
   FrameTracks Process(const Frame& frame) {
     if (frame.gray.empty() || frame.gray.type() != CV_8UC1)
       throw Error("frame " + std::to_string(frame.index), "tracker needs a CV_8UC1 gray image");
@@ -1580,6 +1687,7 @@ struct FeatureTracker::Impl {
     const ShotDecision decision = shots.Update(frame);
     DecideBoundary(frame, decision, &out);
     if (decision.blank) {
+      out.bridging = !break_anchor.empty() && out.boundary == ShotBoundary::kNone;
       EndTracksAtBlank();
       last_layout.release();
       return out;
@@ -1595,6 +1703,7 @@ struct FeatureTracker::Impl {
       CheckCut(frame, decision, &out, &w);
       ProbeDescriptors(frame, &out, &w);
     }
+    BridgeBreak(frame, &out, &w);
     const size_t verified = w.had_tracks ? w.survived + w.relinked : w.points.size();
     RevisitStep(frame, &w);
     TopUpIfThin(frame, &w);

@@ -81,6 +81,12 @@ struct TrackerOptions {
   // round again observes the points it triangulated a turn before, which
   // KLT tracks (which die within a part of the turn) cannot. Off by default.
   bool revisit_links = false;
+  // A break inside a video shot (KLT, the ORB re-links and the SIFT probe
+  // all lost the last frame, and no cut was seen: blur, a flash, an
+  // occluder): the next frames, for up to half a second, are linked by SIFT to
+  // the last frame before the break; the first that links continues its
+  // tracks, so the shot goes on (FrameTracks::bridging).
+  bool bridge_breaks = true;
   // Shot detection
   double cut_threshold = 0.5;      // histogram distance for a hard cut
   double blank_luma = 16;          // mean luma (0..255) under which a frame is blank

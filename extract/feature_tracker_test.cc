@@ -732,6 +732,108 @@ TEST(FeatureTrackerTest, CutDropsAllTracksAndStartsNewIds) {
   }
 }
 
+// A pan (3 decoded px a frame) whose frames 10 to 10 + blurred - 1 are
+// blurred past what KLT, the ORB re-links and the SIFT probe can follow (a
+// blur burst inside a take), then sharp again: the picture is `after` from
+// then on (the same texture: the take goes on; another one: a cut).
+// `flash`: the burst's frames also washed out towards white (0.4 x + 150),
+// which moves the histogram past the hard cut's threshold.
+std::vector<FrameTracks> TrackBlurBurst(const cv::Mat& before, const cv::Mat& after, int blurred,
+                                        const TrackerOptions& options, bool flash = false) {
+  FeatureTracker tracker(options);
+  std::vector<FrameTracks> out;
+  for (int i = 0; i < 20 + blurred; ++i) {
+    cv::Mat picture = Shifted(i < 10 + blurred ? before : after, 3.0 * i, 0, kDecoded);
+    if (i >= 10 && i < 10 + blurred) cv::GaussianBlur(picture, picture, cv::Size(0, 0), 12);
+    if (flash && i >= 10 && i < 10 + blurred) picture.convertTo(picture, -1, 0.4, 150);
+    out.push_back(tracker.Process(MakeFrame(picture, i, 0.5)));
+  }
+  return out;
+}
+
+// How many of frame `a`'s tracks frame `b` continues within 1 decoded px of
+// where the pan takes them (3 px a frame to the right).
+int ContinuedOnThePan(const FrameTracks& a, const FrameTracks& b) {
+  const std::map<long, Eigen::Vector2d> at_a = ById(a);
+  int n = 0;
+  for (const TrackPoint& p : b.points) {
+    const auto it = at_a.find(p.track_id);
+    if (it != at_a.end() &&
+        (p.px - it->second - Eigen::Vector2d(3.0 * (b.index - a.index), 0)).norm() < 1)
+      ++n;
+  }
+  return n;
+}
+
+// Inside the burst no track survives from frame 9; the first sharp frame is
+// linked back to frame 9 by descriptors and continues its tracks, so the
+// estimator keeps one shot. Without the bridge, nothing ties them.
+TEST(FeatureTrackerTest, BlurBurstIsBridgedToTheFrameBeforeIt) {
+  const cv::Mat texture = NoiseTexture({1000, 800}, 31);
+  const std::vector<FrameTracks> out = TrackBlurBurst(texture, texture, 4, SmallOptions());
+  for (const FrameTracks& t : out) {
+    EXPECT_EQ(t.shot, 0) << t.index;
+    EXPECT_EQ(t.bridging, t.index >= 10 && t.index < 14) << t.index;
+  }
+  EXPECT_EQ(ContinuedOnThePan(out[9], out[10]), 0) << "the blur must break tracking for this test";
+  EXPECT_TRUE(out[14].recovered);
+  EXPECT_GE(ContinuedOnThePan(out[9], out[14]), 40);
+  TrackerOptions off = SmallOptions();
+  off.bridge_breaks = false;
+  const std::vector<FrameTracks> plain = TrackBlurBurst(texture, texture, 4, off);
+  EXPECT_LT(ContinuedOnThePan(plain[9], plain[14]), 12);
+  for (const FrameTracks& t : plain) EXPECT_FALSE(t.bridging);
+}
+
+// A flash with the blur: the shot detector cuts on the histogram, but the
+// picture continues the last one; the first sharp frame links back to the
+// frame before the flash, and the cuts are withdrawn (the same shot).
+TEST(FeatureTrackerTest, CutOnAFlashIsWithdrawnWhenTheTakeGoesOn) {
+  const cv::Mat texture = NoiseTexture({1000, 800}, 31);
+  const std::vector<FrameTracks> out = TrackBlurBurst(texture, texture, 4, SmallOptions(), true);
+  EXPECT_EQ(out[10].boundary, ShotBoundary::kCut) << "the flash must cut for this test";
+  for (const FrameTracks& t : out) EXPECT_EQ(t.bridging, t.index >= 10 && t.index < 14) << t.index;
+  for (size_t i = 14; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].shot, 0) << i;
+    EXPECT_EQ(out[i].boundary, ShotBoundary::kNone) << i;
+  }
+  EXPECT_GE(ContinuedOnThePan(out[9], out[14]), 40);
+  TrackerOptions off = SmallOptions();
+  off.bridge_breaks = false;
+  EXPECT_GE(TrackBlurBurst(texture, texture, 4, off, true).back().shot, 1);
+}
+
+// A cut right after the burst (another picture with the same colours):
+// no track of frame 9 reaches the new picture (here the shot detector's
+// look-alike cut cues see the cut; the bridge ends with the shot).
+TEST(FeatureTrackerTest, CutRightAfterABlurBurstIsNotBridged) {
+  const std::vector<FrameTracks> out = TrackBlurBurst(
+      NoiseTexture({1000, 800}, 31), NoiseTexture({1000, 800}, 32), 4, SmallOptions());
+  const std::map<long, Eigen::Vector2d> before = ById(out[9]);
+  for (size_t i = 10; i < out.size(); ++i) {
+    for (const TrackPoint& p : out[i].points) EXPECT_EQ(before.count(p.track_id), 0u) << i;
+    EXPECT_EQ(out[i].bridging, i < 14) << i;
+  }
+  EXPECT_EQ(out.back().shot, 1);
+}
+
+// A burst longer than the bridge (16 frames at 24 fps): the later frames
+// are linked back for half a second, then the tracker gives up and the
+// sharp frames after the burst do not continue frame 9's tracks (the
+// estimator splits where tracking broke, as without the bridge). A later
+// collapse inside the blur is a break of its own.
+TEST(FeatureTrackerTest, BlurBurstLongerThanTheBridgeIsNotBridged) {
+  const cv::Mat texture = NoiseTexture({1000, 800}, 31);
+  const std::vector<FrameTracks> out = TrackBlurBurst(texture, texture, 16, SmallOptions());
+  EXPECT_TRUE(out[10].bridging);
+  size_t gave_up = 11;
+  while (gave_up < out.size() && out[gave_up].bridging) ++gave_up;
+  ASSERT_LT(gave_up, out.size());
+  EXPECT_LE(out[gave_up].time_s - out[10].time_s, 0.5 + 1 / 24.0 + 1e-9);
+  for (const FrameTracks& t : out) EXPECT_EQ(t.shot, 0) << t.index;
+  EXPECT_LT(ContinuedOnThePan(out[9], out[26]), 12);
+}
+
 // A cut between two views of the same set: the histograms stay close (under
 // the cut threshold), but tracking collapses at once and the descriptors find
 // nothing in common, on a frame whose histogram distance jumps well above the

@@ -75,6 +75,14 @@ struct FrameTracks {
   // matches a link needs (the tracker's "well linked"): a weak first
   // interval for a chain to start from.
   bool weak_link = false;
+  // Tracking broke inside the shot at or before this frame (KLT, the ORB
+  // re-links and the SIFT probe all lost the last frame: blur, a flash, an
+  // occluder) and the tracker is still trying to link a later frame back to
+  // the last frame before the break by descriptors. The estimator holds its
+  // split decision until a frame without it: one that continues the tracks
+  // of the frame before the break (the break's frames are lost, the shot
+  // goes on) or not (the shot is split where it broke, as without the link).
+  bool bridging = false;
   std::vector<TrackPoint> points;  // tracks alive in this frame
 };
 
