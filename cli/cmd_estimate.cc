@@ -44,6 +44,7 @@ struct EstimateArgs {
   bool fast = false, draft = false, quiet = false, report_detail = false;
   // Flags that switch off a default of EstimatorOptions.
   bool no_smooth = false, no_freedom_test = false, no_plane_prior = false, no_klt_predict = false;
+  bool no_bridge_breaks = false;
 };
 
 // The preset goes in first, so options given beside --fast or --draft still
@@ -216,6 +217,10 @@ void AddTrackerOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
   app.add_flag("--no-klt-predict", a->no_klt_predict,
                "start each KLT search at zero motion; by default a track moving more than a "
                "KLT window per frame starts where its last motion takes it (whip pans)");
+  app.add_flag("--no-bridge-breaks", a->no_bridge_breaks,
+               "split a shot wherever tracking breaks without a cut; by default the frames after a "
+               "break are linked by descriptors to the frame before it for up to half a second, and "
+               "the first that links continues the shot (docs/extract.md \"Breaks inside a take\")");
   app.add_flag("--flat-field", opt->tracker.flat_field_vignetting,
                "estimate the lens's vignetting from the tracks' brightness as they cross the picture and, "
                "once it shows the picture darkening towards its corners (5 % or more), track frames "
@@ -267,7 +272,8 @@ void GroupTuningOptions(CLI::App& app) {
        {"--tracks", "--window", "--points", "--point-grid", "--spread-points-factor", "--track-rms-cut",
         "--no-freedom-test", "--no-plane-prior", "--drift-weights", "--blur-noise", "--keyframe-gap",
         "--no-smooth", "--smooth-sigma", "--klt-window", "--klt-anchor-frames", "--klt-anchor-min",
-        "--klt-anchor-affine", "--revisit-links", "--loop-bundle", "--no-klt-predict", "--flat-field",
+        "--klt-anchor-affine", "--revisit-links", "--loop-bundle", "--no-klt-predict", "--no-bridge-breaks",
+        "--flat-field",
         "--match-fade-contrast", "--stills", "--skip-loop-filter", "--decode-threads",
         "--pyramid-levels", "--klt-coarse-iterations", "--klt-coarse-step", "--ba-iterations",
         "--focal-min-turn"})
@@ -280,6 +286,7 @@ void CompleteOptions(const EstimateArgs& a, EstimatorOptions* opt) {
   if (a.no_freedom_test) opt->estimator.freedom_test = false;
   if (a.no_plane_prior) opt->estimator.motion_plane_prior = false;
   if (a.no_klt_predict) opt->tracker.klt_predict = false;
+  if (a.no_bridge_breaks) opt->tracker.bridge_breaks = false;
   if (a.fps > 0) {
     std::error_code ec;
     if (a.video.find('%') == std::string::npos && !std::filesystem::is_directory(a.video, ec))

@@ -86,6 +86,12 @@ TEST(ShotContinuityTest, BlurBurstInAPanIsLostButKeepsTheShot) {
       EXPECT_LT(error, 0.1) << i;
     }
   }
+  // --no-bridge-breaks: the break splits the shot, as before the bridge.
+  const fs::path split = dir / "split.camera.csv";
+  const RunResult run = RunHapcine(
+      "estimate " + Quote(dir / "blurred.mp4") + " -q --no-bridge-breaks -o " + Quote(split), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_GT(hapcine::ReadCameraPathFile(split.string()).frames.back().shot.value_or(0), 0);
   std::error_code ec;
   fs::remove_all(dir, ec);
 }
