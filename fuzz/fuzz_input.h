@@ -32,21 +32,31 @@ void AcceptOnlyError(Read&& read) {
 }
 
 // One private directory per process for readers that take only a path:
-// created on first use, removed at exit.
+// created on first use, removed at exit. The removal is registered after the
+// path is made: exit runs it before the path's destructor (the reverse order
+// of registration), so it still sees the path.
+inline std::filesystem::path MakeScratchDir() {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/hapcine-fuzz-XXXXXX";
+  std::vector<char> buf(pattern.begin(), pattern.end());
+  buf.push_back('\0');
+  if (!mkdtemp(buf.data())) {
+    std::perror("hapcine fuzz: mkdtemp");
+    std::abort();
+  }
+  return std::filesystem::path(buf.data());
+}
+
 inline const std::filesystem::path& ScratchDir() {
-  static const std::filesystem::path dir = [] {
-    const char* tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/hapcine-fuzz-XXXXXX";
-    std::vector<char> buf(pattern.begin(), pattern.end());
-    buf.push_back('\0');
-    if (!mkdtemp(buf.data())) {
-      std::perror("hapcine fuzz: mkdtemp");
-      std::abort();
-    }
-    std::filesystem::path made(buf.data());
-    std::atexit([] { std::filesystem::remove_all(ScratchDir()); });
-    return made;
+  static const std::filesystem::path dir = MakeScratchDir();
+  static const bool removed_at_exit = [] {
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(ScratchDir(), ignored);
+    });
+    return true;
   }();
+  (void)removed_at_exit;
   return dir;
 }
 
