@@ -27,6 +27,7 @@ TEST(AtomicFileTest, NothingUnderTheFinalNameUntilCommit) {
     f.Commit();
   }
   EXPECT_EQ(Slurp(path), "hello");
+  std::remove(path.c_str());
 }
 
 TEST(AtomicFileTest, AbandonedWriteKeepsTheOldFileAndRemovesTheTemporary) {
@@ -40,6 +41,7 @@ TEST(AtomicFileTest, AbandonedWriteKeepsTheOldFileAndRemovesTheTemporary) {
   }
   EXPECT_EQ(Slurp(path), "old");
   EXPECT_FALSE(std::ifstream(temp).good());
+  std::remove(path.c_str());
 }
 
 TEST(AtomicFileTest, UnwritableFolderIsAClearError) {
