@@ -1540,7 +1540,7 @@ struct FeatureTracker::Impl {
         if (view.keypoints.empty()) linker.Describe(&view);
         const LinkResult link = linker.Link(view, cur);
         const size_t before = w->relinked;
-        if (link.ok()) TakeRevisitPoints(link, &taken, w);
+        if (link.ok()) TakeUntakenPoints(link, &taken, w);
         RecordLink(frame, "revisit", link, w->relinked - before);
       }
     }
@@ -1552,10 +1552,12 @@ struct FeatureTracker::Impl {
     if (revisit_views.size() > kRevisitViews) revisit_views.pop_front();
   }
 
-  // Every point the link carries whose track is not live here: also where
-  // a live track sits on the same corner (detected again under a new id),
-  // since the earlier id is what ties this view to the earlier turn.
-  void TakeRevisitPoints(const LinkResult& link, std::unordered_set<long>* taken, FrameWork* w) {
+  // Every point the link carries whose track is not in `taken`. A revisit
+  // takes it also where a live track sits on the same corner (detected again
+  // under a new id), since the earlier id is what ties this view to the
+  // earlier turn; a bridge takes the anchor's tracks but for those the frame
+  // has (its own tracks began in the break and tie it to nothing placed).
+  void TakeUntakenPoints(const LinkResult& link, std::unordered_set<long>* taken, FrameWork* w) {
     for (size_t i = 0; i < link.points.size(); ++i)
       if (!taken->count(link.ids[i])) TakePoint(link, static_cast<int>(i), taken, w);
   }
@@ -1608,8 +1610,8 @@ struct FeatureTracker::Impl {
   // pass (the estimator then splits the shot where it broke). Frames in
   // between are flagged `bridging`. Costs nothing while tracking holds.
   void BridgeBreak(const Frame& frame, FrameTracks* out, FrameWork* w) {
-    if (out->boundary != ShotBoundary::kNone && !cut_may_be_a_break)
-      break_anchor = {};  // a new shot
+    // (A new shot dropped the anchor with its tracks, DropTracks, unless its
+    // cut may be a break.)
     if (break_anchor.empty() && BrokeHere(*out, *w)) StartBreak(frame);
     if (break_anchor.empty()) return;
     if (break_began) {  // links from the next frame on (the probe tried this one)
@@ -1623,7 +1625,10 @@ struct FeatureTracker::Impl {
     const LinkResult link = linker.Link(break_anchor, cur);
     ++break_tries;
     const size_t before = w->relinked;
-    if (link.ok()) TakeBridgedPoints(link, w);
+    if (link.ok()) {
+      std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
+      TakeUntakenPoints(link, &taken, w);
+    }
     RecordLink(frame, "bridge", link, w->relinked - before);
     // A link carrying a few tracks (a blurred frame's handful of matches)
     // places nothing: the next frame may link better.
@@ -1665,14 +1670,6 @@ struct FeatureTracker::Impl {
       return false;
     return !break_anchor.empty() ||
            (prev_points.size() >= kMinTracksForCollapse && !prev_pyramid.empty());
-  }
-
-  // The anchor's tracks the link carries, but for those the frame has (the
-  // frame's own tracks began in the break and tie it to nothing placed).
-  void TakeBridgedPoints(const LinkResult& link, FrameWork* w) {
-    std::unordered_set<long> taken(w->ids.begin(), w->ids.end());
-    for (size_t i = 0; i < link.points.size(); ++i)
-      if (!taken.count(link.ids[i])) TakePoint(link, static_cast<int>(i), &taken, w);
   }
 
   FrameTracks Process(const Frame& frame) {
