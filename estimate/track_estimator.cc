@@ -103,10 +103,15 @@ void TrackCameraEstimator::StartShot(int shot) {
   shot_windows_ = 0;
 }
 
+// The tracker started a new shot at `tracks` (another shot index, a cut or a fade).
+bool TrackCameraEstimator::EndsTheShot(const FrameTracks& tracks) const {
+  return tracks.shot != source_shot_ || tracks.boundary == ShotBoundary::kCut ||
+         tracks.boundary == ShotBoundary::kFade;
+}
+
 void TrackCameraEstimator::AddFrame(const FrameTracks& tracks) {
   // A cut the tracker may yet withdraw (the picture continued) is held too.
-  const bool cut = tracks.shot != source_shot_ || tracks.boundary == ShotBoundary::kCut ||
-                   tracks.boundary == ShotBoundary::kFade;
+  const bool cut = EndsTheShot(tracks);
   if (held_.empty() && !(tracks.bridging && cut && shot_ >= 0 && !keyframes_.empty())) {
     AddFrameNow(tracks);
   } else if (tracks.bridging) {
@@ -139,9 +144,7 @@ void TrackCameraEstimator::ResolveHeld(const FrameTracks* next) {
 }
 
 bool TrackCameraEstimator::ContinuesLastKeyframe(const FrameTracks& tracks) const {
-  if (tracks.shot != source_shot_ || tracks.boundary == ShotBoundary::kCut ||
-      tracks.boundary == ShotBoundary::kFade || tracks.blank || keyframes_.empty())
-    return false;
+  if (EndsTheShot(tracks) || tracks.blank || keyframes_.empty()) return false;
   KeyframeTracks u;
   for (const auto& p : tracks.points)
     if (p.px.allFinite()) u[p.track_id] = Normalise(p.px);
@@ -149,9 +152,7 @@ bool TrackCameraEstimator::ContinuesLastKeyframe(const FrameTracks& tracks) cons
 }
 
 void TrackCameraEstimator::AddFrameNow(const FrameTracks& tracks) {
-  const bool new_shot = shot_ < 0 || tracks.shot != source_shot_ ||
-                        tracks.boundary == ShotBoundary::kCut ||
-                        tracks.boundary == ShotBoundary::kFade;
+  const bool new_shot = shot_ < 0 || EndsTheShot(tracks);
   if (new_shot) {
     const bool stills_split = SplitOfStills(tracks);
     if (shot_ >= 0) FinishShot();

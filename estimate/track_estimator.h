@@ -179,6 +179,7 @@ class TrackCameraEstimator {
   void AddFrameNow(const FrameTracks& tracks);
   void ResolveHeld(const FrameTracks* next);
   bool ContinuesLastKeyframe(const FrameTracks& tracks) const;
+  bool EndsTheShot(const FrameTracks& tracks) const;
   bool SplitOfStills(const FrameTracks& tracks) const;
   void BorrowStillsFocal();
   void KeepStillsFocal();

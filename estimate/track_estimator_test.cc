@@ -916,8 +916,9 @@ TEST(TrackEstimator, BridgedBreakKeepsTheShotAndLosesOnlyTheBreak) {
     const CameraFrame& f = run.path.frames[i];
     EXPECT_EQ(*f.shot, 0) << i;
     EXPECT_EQ(IsLost(f), i >= 40 && i < 44) << i;
-    if (!IsLost(f))
+    if (!IsLost(f)) {
       EXPECT_LT(AngleBetweenDeg(f.world_from_cam, run.truth[i].world_from_cam), 0.3) << i;
+    }
   }
 }
 
