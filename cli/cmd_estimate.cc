@@ -305,6 +305,8 @@ void PrintWarnings(const std::string& video, const CameraPath& path) {
   // rules: estimate/shot_quality.h), even with --quiet.
   for (const ShotQuality& q : ReadShotQuality(path)) {
     if (q.doubtful) std::cerr << "hapcine estimate: " << video << ": " << DoubtfulShotLine(q) << "\n";
+    if (q.still_border)
+      std::cerr << "hapcine estimate: " << video << ": " << StillBorderLine(q) << "\n";
     if (q.zoom_ambiguous.value_or(0) > 0)
       std::cerr << "hapcine estimate: " << video << ": warning: " << AmbiguousZoomLine(q) << "\n";
   }

@@ -66,6 +66,8 @@ void ReadField(const std::string& name, const std::string& text, ShotQuality* q)
   else if (name == "ambiguous_zoom_kept") SetIfValid(CheckedCount(text), &q->ambiguous_zoom_kept);
   else if (name == "border_support")
     SetIfValid(CheckedDouble(text), &q->border_support);
+  else if (name == "still_border")
+    SetIfValid(CheckedFlag(text), &q->still_border);
   else if (name == "doubtful") SetIfValid(CheckedFlag(text), &q->doubtful);
 }
 
@@ -83,6 +85,7 @@ void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path) {
     if (q.zoom_ambiguous.value_or(0) > 0 && q.ambiguous_zoom_kept)
       v << " ambiguous_zoom_kept:" << *q.ambiguous_zoom_kept;
     if (q.border_support) v << " border_support:" << FormatFixed(*q.border_support, 3);
+    if (q.still_border) v << " still_border:1";
     v << " doubtful:" << (q.doubtful ? 1 : 0);
     path->metadata[kKeyPrefix + std::to_string(q.shot)] = v.str();
   }

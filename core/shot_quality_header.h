@@ -38,13 +38,19 @@ struct ShotQuality {
   // motion rests on a region inside the picture, no background confirms it.
   // Unknown without windows and in headers written before it.
   std::optional<double> border_support;
+  // The motion was unconfirmed and the border stayed still where it would
+  // have moved it (estimate/geometry/border_support.h,
+  // StillBorderAroundMotion): read as a subject moving before a still
+  // camera, every frame of the shot held at its first pose.
+  bool still_border = false;
   bool doubtful = false;
 };
 
 // `# shot_quality.<shot>=first:F last:L frames:N lost:K median_confidence:C
 // inlier_ratio:I rms_px:R focal_observable:0|1 zoom_ambiguous:Z
-// ambiguous_zoom_kept:K border_support:B doubtful:0|1` (I, R, focal, Z, B
-// absent when unknown; K only where Z is above 0) into the path's metadata.
+// ambiguous_zoom_kept:K border_support:B still_border:1 doubtful:0|1` (I, R,
+// focal, Z, B absent when unknown; K only where Z is above 0; still_border
+// only where set) into the path's metadata.
 void WriteShotQuality(const std::vector<ShotQuality>& shots, CameraPath* path);
 
 // The reverse, ordered by shot. A hand-edited value that is not what the

@@ -52,10 +52,20 @@ TEST(ShotQualityHeader, WrittenAndReadBack) {
   EXPECT_EQ(back[0].ambiguous_zoom_kept, 3);
   EXPECT_EQ(back[0].border_support, 0.25);
   EXPECT_TRUE(back[0].doubtful);
+  EXPECT_FALSE(back[0].still_border);
   // Which reading was kept is written only where a decision was ambiguous.
   q.zoom_ambiguous = 0;
   WriteShotQuality({q}, &path);
   EXPECT_EQ(path.metadata.at("shot_quality.3").find("ambiguous_zoom_kept"), std::string::npos);
+  // A shot read as a still camera before a subject says so; others do not.
+  EXPECT_EQ(path.metadata.at("shot_quality.3").find("still_border"), std::string::npos);
+  q.still_border = true;
+  WriteShotQuality({q}, &path);
+  EXPECT_NE(
+      path.metadata.at("shot_quality.3").find(" border_support:0.250 still_border:1 doubtful:1"),
+      std::string::npos);
+  EXPECT_TRUE(ReadShotQuality(path)[0].still_border);
+  EXPECT_FALSE(ReadValue("still_border:2")[0].still_border);  // not a flag: ignored
 }
 
 // Shots in number order, not in the key's text order ("10" < "2").

@@ -20,6 +20,7 @@ struct WindowTally {
   double sum_sq_px = 0;
   long observations = 0;
   bool focal_observable = false;
+  bool held_still = false;
   std::vector<double> border_support;  // per keyframe interval
 };
 
@@ -60,7 +61,7 @@ void CountZoomAmbiguousFrames(const std::vector<WindowReport>& windows, ShotQual
 }  // namespace
 
 bool UnconfirmedMotion(const ShotQuality& q) {
-  return q.border_support && *q.border_support < kDoubtfulBorderSupport;
+  return !q.still_border && q.border_support && *q.border_support < kDoubtfulBorderSupport;
 }
 
 std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vector<WindowReport>& windows,
@@ -73,6 +74,7 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
     t.sum_sq_px += w.rms_px * w.rms_px * w.observations;
     t.observations += w.observations;
     t.focal_observable |= w.focal_observable;
+    t.held_still |= w.shot_held_still;
     t.border_support.insert(t.border_support.end(), w.border_support.begin(),
                             w.border_support.end());
   }
@@ -105,7 +107,13 @@ std::vector<ShotQuality> SummariseShots(const CameraPath& path, const std::vecto
         q.rms_px = std::sqrt(t.sum_sq_px / t.observations) * kReferenceWidthPx / width;
       q.focal_observable = t.focal_observable;
       if (!t.border_support.empty()) q.border_support = Median(t.border_support);
-      CountZoomAmbiguousFrames(windows, &q);
+      q.still_border = t.held_still;
+      // A shot held still writes no zoom: no zoom decision of its windows stands.
+      if (q.still_border) {
+        q.zoom_ambiguous = 0;
+      } else {
+        CountZoomAmbiguousFrames(windows, &q);
+      }
     }
     q.doubtful = q.lost > kDoubtfulLostShare * q.frames ||
                  q.median_confidence < kDoubtfulMedianConfidence || UnconfirmedMotion(q);
@@ -127,6 +135,7 @@ nlohmann::json ShotQualityJson(const ShotQuality& q) {
           {"zoom_ambiguous", opt(q.zoom_ambiguous)},
           {"ambiguous_zoom_kept", opt(q.ambiguous_zoom_kept)},
           {"border_support", opt(q.border_support)},
+          {"still_border", q.still_border},
           {"doubtful", q.doubtful}};
 }
 
@@ -139,6 +148,14 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
     s += ", border support " + FormatFixed(*q.border_support, 2) +
          " (the motion rests on a region inside the picture)";
   return s;
+}
+
+std::string StillBorderLine(const ShotQuality& q) {
+  return "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
+         std::to_string(q.last_frame) +
+         "): read as a still camera: its motion rests on a region inside the " +
+         "picture (border support " + FormatFixed(q.border_support.value_or(0), 2) +
+         ") while the border stays where that motion would move it (a subject's motion)";
 }
 
 std::string AmbiguousZoomLine(const ShotQuality& q) {

@@ -13,8 +13,9 @@
 // clean shots get: medians 0.21-0.91); below half of that, the inlier share
 // times the RMS likelihood exp(-0.5 (rms / 2 px)^2) is under 1/2: half the
 // tracks disagree with the pose, or the RMS exceeds 2.35 px (1.2 sigma of
-// the confidence's noise model). Or the camera's motion unconfirmed: a
-// median border support (core/shot_quality_header.h,
+// the confidence's noise model). Or the camera's motion unconfirmed (and
+// not read as a subject's before a still border, ShotQuality::still_border):
+// a median border support (core/shot_quality_header.h,
 // estimate/geometry/border_support.h) below one half, the motion's inliers
 // reaching fewer than half the frame's edge cells in most of the shot's
 // intervals. The background surrounds a subject; a motion it does not
@@ -30,15 +31,17 @@
 
 #include "core/camera_path.h"
 #include "core/shot_quality_header.h"
+#include "estimate/geometry/border_support.h"
 #include "estimate/window/window_solver.h"
 
 namespace hapcine {
 
 constexpr double kDoubtfulLostShare = 0.05;
 constexpr double kDoubtfulMedianConfidence = 0.12;
-constexpr double kDoubtfulBorderSupport = 0.5;
+constexpr double kDoubtfulBorderSupport = kUnconfirmedBorderSupport;
 
-// The border support rule of the doubtful test (above).
+// The border support rule of the doubtful test (above): false once the shot
+// was read as a still camera (its still border confirms that reading).
 bool UnconfirmedMotion(const ShotQuality& q);
 
 // One entry per shot of `path`, in order. `width`: the decoded width.
@@ -50,6 +53,10 @@ nlohmann::json ShotQualityJson(const ShotQuality& q);
 // (", border support 0.42 (the motion rests on a region inside the picture)"
 // where that rule holds)
 std::string DoubtfulShotLine(const ShotQuality& q);
+// "shot 3 (frames 200-269): read as a still camera: its motion rests on a
+// region inside the picture (border support 0.46) while the border stays
+// where that motion would move it (a subject's motion)"
+std::string StillBorderLine(const ShotQuality& q);
 // "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly,
 // zoom or none): the reading without zoom kept, confidence lowered" (or "the
 // zoom kept", or "the zoom kept in 10, the reading without zoom in 31"; no

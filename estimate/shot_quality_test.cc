@@ -120,6 +120,36 @@ TEST(ShotQuality, BorderSupportRule) {
   EXPECT_FALSE(SummariseShots(path, {}, 960)[0].doubtful);
 }
 
+// A shot the estimator read as a still camera before a moving subject
+// (WindowReport::shot_held_still on its last window): its low border
+// support no longer makes it doubtful (the still border confirms the still
+// camera), the header says still_border:1 and the line says why.
+TEST(ShotQuality, StillBorderShotIsNotDoubtfulByItsBorder) {
+  CameraPath path = TwoShots();
+  for (CameraFrame& f : path.frames) f.confidence = 0.3, f.model = "static";
+  WindowReport a, b;
+  a.border_support = {4.0 / 12, 5.0 / 12};
+  a.last_frame = 19;
+  a.zoom_decisions.push_back({"focal", 110, 100, true, 0.2});  // ambiguous, the zoom kept
+  b.border_support = {3.0 / 12};
+  b.shot_held_still = true;
+  std::vector<ShotQuality> q = SummariseShots(path, {a, b}, 960);
+  ASSERT_EQ(q.size(), 2u);
+  EXPECT_TRUE(q[0].still_border);
+  EXPECT_FALSE(UnconfirmedMotion(q[0]));
+  EXPECT_FALSE(q[0].doubtful);
+  EXPECT_EQ(q[0].zoom_ambiguous, 0);  // the shot writes no zoom
+  EXPECT_EQ(
+      StillBorderLine(q[0]),
+      "shot 0 (frames 0-19): read as a still camera: its motion rests on a region inside the "
+      "picture (border support 0.33) while the border stays where that motion would move it (a "
+      "subject's motion)");
+  EXPECT_FALSE(q[1].still_border);
+  WriteShotQuality(q, &path);
+  EXPECT_TRUE(ThroughTheFile(path)[0].still_border);
+  EXPECT_EQ(ShotQualityJson(q[0])["still_border"], true);
+}
+
 // Each window writes the frames after the previous one's; those of a window
 // whose zoom decision sat within half a threshold of the other reading are
 // counted, the others not, and of them those whose window kept the zoom.

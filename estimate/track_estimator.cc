@@ -95,6 +95,8 @@ void TrackCameraEstimator::StartShot(int shot) {
   outlier_tracks_.clear();
   mover_intervals_.clear();
   focal_samples_.clear();
+  shot_border_support_.clear();
+  shot_border_still_.clear();
   focal_observed_ = false;
   scale_set_ = false;
   scene_depth_ = 1;
@@ -323,6 +325,10 @@ TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyfra
     std::vector<Eigen::Vector2d> mid(u1.size());
     for (size_t i = 0; i < u1.size(); ++i) mid[i] = 0.5 * (u1[i] + u2[i]);
     k.border_support = BorderSupport(mid, tv.inliers, 0.5 * height_ / width_);
+    const StillBorder still =
+        StillBorderTracks(tv, u1, u2, TwoViewThreshold(tv, options_.two_view),
+                          0.5 * height_ / width_, options_.movers.border_radius);
+    k.border_still = still.moved_by_turn >= kMinStillBorderTracks ? still.still : -1;
   }
   const Eigen::Matrix3d R_ba = tv.cam2_from_cam1;
   const Eigen::Matrix3d R_wa = a.cam.world_from_cam.toRotationMatrix();
@@ -385,6 +391,9 @@ void TrackCameraEstimator::FinishShot() {
     BorrowStillsFocal();
     ProcessWindow(true);
     if (options_.loop_bundle) AdjustShotLoop();
+    if (options_.movers.enabled &&
+        StillBorderAroundMotion(shot_border_support_, shot_border_still_))
+      HoldStillBeforeMover();
   } else {
     // No usable frame in the whole shot: nothing is placed; the placeholder
     // is the origin at the prior focal.
@@ -428,6 +437,21 @@ void TrackCameraEstimator::FinishShot() {
   }
   raw_.clear();
   KeepStillsFocal();
+}
+
+// Why the origin: a still camera stays where the shot started, at the
+// focal it started with (a subject's motion observes no focal either).
+void TrackCameraEstimator::HoldStillBeforeMover() {
+  const auto origin =
+      std::find_if(raw_.begin(), raw_.end(), [](const RawPose& r) { return !r.lost; });
+  if (origin == raw_.end()) return;
+  const BaCamera still = origin->cam;
+  for (RawPose& r : raw_) {
+    if (r.lost) continue;
+    r.cam = still;
+    r.model = MotionModel::kStatic;
+  }
+  if (!reports_.empty() && reports_.back().shot == shot_) reports_.back().shot_held_still = true;
 }
 
 // A lost frame's pose is the last placed pose as written (after smoothing);

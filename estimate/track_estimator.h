@@ -156,6 +156,10 @@ class TrackCameraEstimator {
     // The share of the frame's edge cells holding the camera motion's inliers
     // (border_support.h); 1 for a still camera, which needs no confirmation.
     double border_support = 1;
+    // Tracks at the border the interval's turn and zoom would move and that
+    // stayed where they were (StillBorderTracks); -1 where it would move
+    // fewer than kMinStillBorderTracks of them (a still camera too).
+    int border_still = -1;
   };
   struct RawPose {
     FrameTracks meta;                // index, time, shot, quality (points cleared)
@@ -188,6 +192,9 @@ class TrackCameraEstimator {
   void HoldPlaceholders(std::vector<Eigen::Quaterniond>* q, std::vector<Eigen::Vector3d>* c,
                         std::vector<double>* lf) const;
   RawPose LostPose(const FrameTracks& meta, const BaCamera& placeholder) const;
+  // The shot's motion rests on a subject while its border stays still
+  // (StillBorderAroundMotion): every placed frame takes the shot's origin.
+  void HoldStillBeforeMover();
   void AddKeyframe(int pos, bool first);  // first: the chain's start (the shot's origin)
   int SharedWithLastKeyframe(const KeyframeTracks& u) const;
   Keyframe ChainStart(int pos) const;  // held, no interval of its own; camera left to the caller
@@ -253,6 +260,10 @@ class TrackCameraEstimator {
   // start of a traveling, stays in).
   std::map<long, std::pair<int, int>> mover_intervals_;
   std::vector<double> focal_samples_;  // log f from rotation pairs with enough turn
+  // The shot's keyframe intervals as reported (Report): border support and
+  // still border tracks, for the still-border rule (border_support.h).
+  std::vector<double> shot_border_support_;
+  std::vector<int> shot_border_still_;
   bool focal_observed_ = false;
   bool scale_set_ = false;
   double scene_depth_ = 1;

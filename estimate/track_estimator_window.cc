@@ -226,6 +226,9 @@ void TrackCameraEstimator::Report(WindowReport r) {
     r.inliers += k.inliers;
     r.correspondences += k.correspondences;
     r.border_support.push_back(k.border_support);
+    r.border_still.push_back(k.border_still);
+    shot_border_support_.push_back(k.border_support);
+    shot_border_still_.push_back(k.border_still);
   }
   if (Wants(diagnostics_, "window")) {
     nlohmann::json keyframes = nlohmann::json::array();
@@ -238,6 +241,7 @@ void TrackCameraEstimator::Report(WindowReport r) {
         j["correspondences"] = k.correspondences;
         j["inliers"] = k.inliers;
         j["border_support"] = k.border_support;
+        j["border_still"] = k.border_still;
         nlohmann::json gric;
         for (int c = 0; c < kNumCandidates; ++c) gric[kCandidateNames[c]] = k.gric[c];
         j["gric"] = gric;

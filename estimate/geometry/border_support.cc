@@ -1,7 +1,11 @@
 #include "estimate/geometry/border_support.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+
+#include "core/statistics.h"
+#include "estimate/geometry/motion_hypotheses.h"
 
 namespace hapcine {
 namespace {
@@ -33,6 +37,34 @@ double BorderSupport(const std::vector<Eigen::Vector2d>& u, const std::vector<ch
       edge_held += held[row * n + col];
     }
   return static_cast<double>(edge_held) / edge;
+}
+
+StillBorder StillBorderTracks(const TwoViewResult& motion, const std::vector<Eigen::Vector2d>& u1,
+                              const std::vector<Eigen::Vector2d>& u2, double threshold,
+                              double half_height, double border_radius) {
+  StillBorder out;
+  for (size_t i = 0; i < u1.size() && i < u2.size(); ++i) {
+    if (BorderRadius(0.5 * (u1[i] + u2[i]), half_height) < border_radius) continue;
+    const Eigen::Vector2d x = u1[i] / motion.f1;
+    const Eigen::Vector3d ray = motion.cam2_from_cam1 * x.homogeneous();
+    if (!(ray.z() > 0) || !((motion.f2 * ray.hnormalized() - u1[i]).norm() >= 2 * threshold))
+      continue;
+    ++out.moved_by_turn;
+    out.still += (u2[i] - u1[i]).norm() <= threshold;
+  }
+  return out;
+}
+
+bool StillBorderAroundMotion(const std::vector<double>& support, const std::vector<int>& still) {
+  if (support.empty() || support.size() != still.size()) return false;
+  if (!(Median(support) < kUnconfirmedBorderSupport)) return false;
+  int moving = 0, held = 0;
+  for (int s : still) {
+    if (s < 0) continue;  // nothing the turn would move
+    ++moving;
+    held += s >= kMinStillBorderTracks;
+  }
+  return moving > 0 && 2 * held > moving;
 }
 
 }  // namespace hapcine

@@ -18,9 +18,14 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "estimate/geometry/model_selection.h"
+
 namespace hapcine {
 
 constexpr int kBorderGridCells = 4;
+// Below this border support the motion rests on a region inside the picture
+// (most of the edge cells hold none of its inliers).
+constexpr double kUnconfirmedBorderSupport = 0.5;
 
 // The share (0-1) of the edge ring's cells holding a point `u[i]` with
 // `inlier[i]` set. `u`: normalised coordinates ((px - c) / width, x within
@@ -29,5 +34,40 @@ constexpr int kBorderGridCells = 4;
 // supports the motion).
 double BorderSupport(const std::vector<Eigen::Vector2d>& u, const std::vector<char>& inlier,
                      double half_height);
+
+// A still border around an unconfirmed motion. Where a camera turns or
+// zooms, every part of the picture moves with it but an overlay and what
+// lies exactly at the depth where its translation cancels its turn; tracks
+// at the frame's border that stay where they were while the interval's
+// turn and zoom would move them are the background of a still camera, and
+// the motion is a subject's. Counted over the matches in the border band
+// (Chebyshev radius >= `border_radius`, motion_hypotheses.h) that
+// `motion`'s rotation and zoom (its homography at infinity) move by at
+// least twice `threshold` (normalised units): `moved_by_turn` of them, and
+// `still` of those that moved at most `threshold` (the still reading a
+// threshold clear of the moving one). A translation alone leaves far
+// points still and tests none.
+struct StillBorder {
+  int moved_by_turn = 0;
+  int still = 0;
+};
+StillBorder StillBorderTracks(const TwoViewResult& motion, const std::vector<Eigen::Vector2d>& u1,
+                              const std::vector<Eigen::Vector2d>& u2, double threshold,
+                              double half_height, double border_radius);
+
+// The shot rule, over its keyframe intervals in order: `support` each
+// interval's border support (1 for a still one), `still` its still border
+// tracks, -1 where the interval's turn and zoom move fewer than
+// kMinStillBorderTracks of the border's tracks (a still interval, a
+// translation, a turn under the noise: nothing to contradict). The shot is
+// a still camera before a moving subject when its motion is unconfirmed
+// (median support below kUnconfirmedBorderSupport, the doubtful rule of
+// shot_quality.h) and the border stays still in most of the intervals that
+// test it: at least kMinStillBorderTracks in more than half of them.
+// Persistent: a stray stuck track or a moment of overlay does not make a
+// shot still. With no tracks at the border at all (an object turned over
+// an empty background) nothing contradicts the motion, and it stays.
+constexpr int kMinStillBorderTracks = 3;
+bool StillBorderAroundMotion(const std::vector<double>& support, const std::vector<int>& still);
 
 }  // namespace hapcine

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 #include <random>
+
+#include "estimate/geometry/motion_hypotheses.h"
 
 namespace hapcine {
 namespace {
@@ -64,6 +68,91 @@ TEST(BorderSupport, Degenerate) {
                    1.0 / 12);  // the top right corner
   // A frame of no height places no point.
   EXPECT_DOUBLE_EQ(BorderSupport(u, std::vector<char>(u.size(), 1), 0.0), 0.0);
+}
+
+// A pan of 2 degrees at a focal of 1 (normalised): every point of a rigid
+// scene moves by about 0.035 of the width.
+TwoViewResult Pan(double deg) {
+  TwoViewResult r;
+  r.valid = true;
+  r.model = MotionModel::kRotation;
+  r.cam2_from_cam1 =
+      Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  return r;
+}
+
+std::vector<Eigen::Vector2d> Moved(const TwoViewResult& r, const std::vector<Eigen::Vector2d>& u) {
+  std::vector<Eigen::Vector2d> out;
+  for (const Eigen::Vector2d& p : u)
+    out.push_back((r.cam2_from_cam1 * p.homogeneous()).hnormalized());
+  return out;
+}
+
+constexpr double kThreshold = 1.5 / 960;
+constexpr double kRadius = 0.8;
+
+// Border tracks that stay where the pan would move them are counted; those
+// inside the band are not (a subject), nor those that moved with the pan.
+TEST(StillBorderTracks, CountsTheBorderTracksAPanWouldMoveThatStayed) {
+  const TwoViewResult pan = Pan(2);
+  const std::vector<Eigen::Vector2d> u1 = Within(1, 300, 7);
+  int border = 0;
+  for (const Eigen::Vector2d& p : u1) border += BorderRadius(p, kHalfHeight) >= kRadius;
+  const StillBorder moving =
+      StillBorderTracks(pan, u1, Moved(pan, u1), kThreshold, kHalfHeight, kRadius);
+  EXPECT_GT(moving.moved_by_turn, border * 9 / 10);  // the midpoint may fall just inside the band
+  EXPECT_EQ(moving.still, 0);
+  const StillBorder still = StillBorderTracks(pan, u1, u1, kThreshold, kHalfHeight, kRadius);
+  EXPECT_EQ(still.still, still.moved_by_turn);
+  EXPECT_EQ(still.moved_by_turn, border);
+}
+
+// A translation alone, or a turn under the noise, tests nothing: far points
+// stay still under a traveling, and a still point is no contradiction.
+TEST(StillBorderTracks, ATranslationOrATinyTurnTestsNothing) {
+  const std::vector<Eigen::Vector2d> u1 = Within(1, 300, 8);
+  TwoViewResult travel;
+  travel.valid = true;
+  travel.model = MotionModel::kGeneral;
+  travel.translation = Eigen::Vector3d(1, 0, 0);
+  EXPECT_EQ(StillBorderTracks(travel, u1, u1, kThreshold, kHalfHeight, kRadius).moved_by_turn, 0);
+  EXPECT_EQ(StillBorderTracks(Pan(0.1), u1, u1, kThreshold, kHalfHeight, kRadius).moved_by_turn, 0);
+}
+
+// Degenerate: no tracks, mismatched lists, points behind the camera after
+// the turn, non-finite points.
+TEST(StillBorderTracks, Degenerate) {
+  const TwoViewResult pan = Pan(2);
+  EXPECT_EQ(StillBorderTracks(pan, {}, {}, kThreshold, kHalfHeight, kRadius).moved_by_turn, 0);
+  const std::vector<Eigen::Vector2d> u1 = Within(1, 20, 9);
+  EXPECT_EQ(StillBorderTracks(pan, u1, {}, kThreshold, kHalfHeight, kRadius).moved_by_turn, 0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Eigen::Vector2d> odd = {{nan, nan}, {1e9, 0}};
+  const StillBorder s = StillBorderTracks(Pan(120), odd, odd, kThreshold, kHalfHeight, kRadius);
+  EXPECT_EQ(s.still, 0);
+}
+
+// The shot rule: an unconfirmed motion (median support below one half) whose
+// border stays still in more than half the intervals that test it.
+TEST(StillBorderAroundMotion, UnconfirmedMotionWithAStillBorderIsAStillCamera) {
+  EXPECT_TRUE(StillBorderAroundMotion({0.33, 0.42, 0.25, 0.33}, {3, 8, -1, 0}));
+  // Confirmed motion: the border moves with it; a still corner is an overlay.
+  EXPECT_FALSE(StillBorderAroundMotion({0.92, 0.83, 1.0, 0.75}, {24, 18, -1, 9}));
+  // Exactly half the intervals held still: not most of them.
+  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25, 0.33}, {3, 0, -1, -1}));
+  // Too few still tracks: a stray stuck track or two.
+  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25}, {2, 2, 1}));
+  // An object turned over an empty background: nothing at the border.
+  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25}, {-1, -1, -1}));
+  // Median support of exactly one half is not below it.
+  EXPECT_FALSE(StillBorderAroundMotion({0.5, 0.5, 0.5}, {5, 5, 5}));
+}
+
+TEST(StillBorderAroundMotion, Degenerate) {
+  EXPECT_FALSE(StillBorderAroundMotion({}, {}));
+  EXPECT_FALSE(StillBorderAroundMotion({0.2, 0.2}, {5}));  // lists of different lengths
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(StillBorderAroundMotion({nan, nan}, {5, 5}));  // no finite support: no median
 }
 
 }  // namespace

@@ -123,6 +123,13 @@ struct WindowReport {
   // The same keyframes' border support (border_support.h; 1 where the
   // camera is still), in order.
   std::vector<double> border_support;
+  // And their still border tracks (StillBorderTracks; -1 where the turn
+  // and zoom move too few border tracks to test), in the same order.
+  std::vector<int> border_still;
+  // Set on a shot's last window when the shot was read as a still camera
+  // before a moving subject (StillBorderAroundMotion): every frame of the
+  // shot was held at its first pose.
+  bool shot_held_still = false;
   // Every zoom decision the window's tests made, with its evidence
   // (zoom_evidence.h; the first solve's too when the labels were revised).
   std::vector<ZoomDecision> zoom_decisions;
