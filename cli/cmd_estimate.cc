@@ -124,10 +124,13 @@ void AddModelOptions(CLI::App& app, EstimateArgs* a, EstimatorOptions* opt) {
                "keep the two-view labels: no window-level BIC test of a few translating (or "
                "zooming) intervals, nor of zoom intervals among translating ones "
                "(docs/estimate.md, step 4)");
-  app.add_flag("--lens-distortion", opt->lens_distortion,
-               "estimate one radial distortion coefficient k1 from the first shot's first frames "
-               "and undistort the tracks with it where it pays for itself (header k1=; "
-               "docs/estimate.md \"Lens distortion\")");
+  app.add_flag(
+         "--lens-distortion,!--no-lens-distortion", opt->lens_distortion,
+         "estimate one radial distortion coefficient k1 from frame pairs of the first shot's "
+         "first 6 s and, where it pays for itself, estimate again with the tracks undistorted "
+         "(header k1=; on unless --lens-bundle or --lens-k1 gives the lens; docs/estimate.md "
+         "\"Lens distortion\")")
+      ->capture_default_str();
   app.add_flag("--lens-bundle,!--no-lens-bundle", opt->lens_bundle,
                "measure k1 in a bundle adjustment of each of the first shot's first windows "
                "(--lens-windows; rigid points over many views); where two windows pay for their own "
@@ -353,6 +356,12 @@ int RunEstimate(int argc, char** argv) {
   AddOutputOptions(app, &a);
   GroupTuningOptions(app);
   return RunApp(app, argc, argv, [&]() {
+    // The pairs' measurement is the default and gives way to another source
+    // of k1; asked for beside one, it is a contradiction.
+    if (app.get_option("--lens-distortion")->count() > 0 && opt.lens_distortion &&
+        (opt.lens_bundle || opt.lens_k1 != 0))
+      throw UsageError(
+          "--lens-distortion, --lens-bundle and --lens-k1 exclude each other: choose one");
     CompleteOptions(a, &opt);
     return Estimate(a, opt);
   });

@@ -1,5 +1,6 @@
 #include "estimate/camera_estimator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -10,17 +11,21 @@
 #include "core/diagnostics.h"
 #include "core/error.h"
 #include "estimate/colmap_backend.h"
+#include "estimate/estimator_records.h"
 #include "estimate/lens_bundle.h"
 #include "estimate/lens_distortion.h"
 #include "estimate/shot_quality.h"
 #include "estimate/skipped_frames.h"
-#include "estimate/estimator_records.h"
 #include "estimate/stills_groups.h"
 #include "extract/bounded_queue.h"
 #include "extract/shot_detector.h"
 #include "extract/threaded_frame_source.h"
 
 namespace hapcine {
+
+bool EstimatorOptions::MeasuresLensFromPairs() const {
+  return lens_distortion && !lens_bundle && lens_k1 == 0;
+}
 
 void EstimatorOptions::Check() const {
   if (backend != "hapcine" && backend != "colmap")
@@ -29,9 +34,10 @@ void EstimatorOptions::Check() const {
   tracker.Check();
   estimator.Check();
   if (!(std::abs(lens_k1) <= 0.5)) throw UsageError("lens k1 must be within [-0.5, 0.5]");
-  // Each is a whole source of k1; two would undistort the tracks twice.
-  if ((lens_k1 != 0) + lens_distortion + lens_bundle > 1)
-    throw UsageError("lens distortion, lens bundle and a known lens k1 exclude each other: choose one");
+  // Each is a whole source of k1; two would undistort the tracks twice. The
+  // pairs' measurement (the default) gives way to either (MeasuresLensFromPairs).
+  if (lens_k1 != 0 && lens_bundle)
+    throw UsageError("lens bundle and a known lens k1 exclude each other: choose one");
   if (lens_bundle_windows < 1 || lens_bundle_windows > 8) throw UsageError("lens windows must be within [1, 8]");
   if (colmap_binary.empty()) throw UsageError("colmap binary must not be empty");
   if (backend == "colmap" && frames.skip_nonref_frames)
@@ -85,9 +91,9 @@ constexpr int kDecodeQueueFrames = 3;
 // as long as tracking a few dozen frames, and FrameTracks are small (a few
 // hundred points), so this is generous and still flat.
 constexpr size_t kTrackQueueFrames = 48;
-// Frames of the first shot held back for the lens distortion estimate: 6 s
-// at 24 fps, enough for its frame pairs on any but the slowest move (the
-// estimator then catches up; memory: a few hundred points a frame).
+// Frames of the first shot the lens distortion is measured on: 6 s at
+// 24 fps, enough for its frame pairs on any but the slowest move (memory:
+// a few hundred points a frame, kept until the decision).
 constexpr size_t kDistortionFrames = 144;
 
 std::string Num(double v) {
@@ -133,46 +139,66 @@ TrackEstimatorOptions StillsAware(const EstimatorOptions& options, const VideoIn
   return estimator;
 }
 
-// Holds back the first frames of the first shot, estimates k1 from them
-// (when asked), then passes every frame on undistorted.
-class LensUndistorter {
+// Measures k1 from frame pairs of the first shot's first frames
+// (lens_distortion.h) while the estimator runs on them as they are. Where k1
+// is kept, the caller starts a new estimator and replays every frame so far
+// undistorted: the cost of a second start falls only on footage with a lens
+// to correct, and the estimation overlaps tracking as without it.
+class LensFromPairs {
  public:
-  LensUndistorter(bool enabled, int width, int height, Diagnostics* diagnostics)
-      : deciding_(enabled), width_(width), height_(height), diagnostics_(diagnostics) {}
+  LensFromPairs(bool enabled, int width, int height, Diagnostics* diagnostics)
+      : watching_(enabled), width_(width), height_(height), diagnostics_(diagnostics) {}
 
-  // The frames ready for the estimator (none while deciding).
-  std::vector<FrameTracks> Add(FrameTracks tracks) {
-    if (deciding_ && held_.size() < kDistortionFrames &&
-        (held_.empty() || tracks.shot == held_.front().shot)) {
-      held_.push_back(std::move(tracks));
-      return {};
-    }
-    std::vector<FrameTracks> ready = Finish();
-    UndistortTracks(k1_, width_, height_, &tracks);
-    ready.push_back(std::move(tracks));
-    return ready;
+  // After `tracks` went to the estimator: true when k1 was found now (then
+  // TakeFrames() holds every frame so far, undistorted). Decides once the
+  // first shot has kDistortionFrames frames or another shot begins.
+  bool Watch(const FrameTracks& tracks) {
+    if (!watching_) return false;
+    kept_.push_back(tracks);
+    if (tracks.shot == kept_.front().shot && kept_.size() < kDistortionFrames) return false;
+    return Decide();
   }
 
-  // Decides (if still deciding) and returns the frames held.
-  std::vector<FrameTracks> Finish() {
-    if (!deciding_) return {};
-    deciding_ = false;
-    const RadialDistortionEstimate e = EstimateRadialDistortion(held_, width_, height_);
-    k1_ = e.k1;
-    Record(diagnostics_, "lens_distortion",
-           {{"k1", e.k1}, {"best_k1", e.best_k1}, {"gric_gain", e.gric_gain}, {"penalty", e.penalty},
-            {"pairs", e.pairs}, {"correspondences", e.correspondences}});
-    for (FrameTracks& t : held_) UndistortTracks(k1_, width_, height_, &t);
-    return std::move(held_);
+  // When the frames are in, or at the end with those seen by then.
+  bool Decide() {
+    if (!watching_) return false;
+    watching_ = false;
+    const auto first_shot_end = std::find_if(kept_.begin(), kept_.end(), [&](const FrameTracks& t) {
+      return t.shot != kept_.front().shot;
+    });
+    // Not on stills: the pairs' measurement rests on KLT's sub-pixel steps,
+    // and the tracks of stills are descriptor matches across whole viewpoint
+    // changes, whose errors a homography does not absorb either.
+    const bool stills =
+        std::any_of(kept_.begin(), first_shot_end, [](const FrameTracks& t) { return t.still; });
+    if (first_shot_end != kept_.begin() && !stills) Measure({kept_.begin(), first_shot_end});
+    if (k1_ == 0) kept_.clear();
+    for (FrameTracks& t : kept_) UndistortTracks(k1_, width_, height_, &t);
+    return k1_ != 0;
   }
 
+  std::vector<FrameTracks> TakeFrames() { return std::move(kept_); }
+  bool watching() const { return watching_; }
   double k1() const { return k1_; }
 
  private:
-  bool deciding_;
+  void Measure(const std::vector<FrameTracks>& first_shot) {
+    const RadialDistortionEstimate e = EstimateRadialDistortion(first_shot, width_, height_);
+    k1_ = e.k1;
+    Record(diagnostics_, "lens_distortion",
+           {{"method", "pairs"},
+            {"k1", e.k1},
+            {"best_k1", e.best_k1},
+            {"gric_gain", e.gric_gain},
+            {"penalty", e.penalty},
+            {"pairs", e.pairs},
+            {"correspondences", e.correspondences}});
+  }
+
+  bool watching_;
   int width_, height_;
   Diagnostics* diagnostics_;
-  std::vector<FrameTracks> held_;
+  std::vector<FrameTracks> kept_;
   double k1_ = 0;
 };
 
@@ -300,10 +326,10 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   // the first estimator's window records for the lens decision.
   EstimatorRecords estimator_records(options.diagnostics);
   HeldWindowRecords first_run_records(&estimator_records);
-  const bool measure_lens = options.lens_bundle;
-  std::unique_ptr<TrackCameraEstimator> estimator =
-      NewEstimator(options, info, false, measure_lens ? options.lens_bundle_windows : 0,
-                   measure_lens ? static_cast<Diagnostics*>(&first_run_records) : &estimator_records);
+  const bool measure_lens = options.lens_bundle || options.MeasuresLensFromPairs();
+  std::unique_ptr<TrackCameraEstimator> estimator = NewEstimator(
+      options, info, false, options.lens_bundle ? options.lens_bundle_windows : 0,
+      measure_lens ? static_cast<Diagnostics*>(&first_run_records) : &estimator_records);
   // Which stage of the estimation thread is on the critical path after
   // tracking ends (docs/estimate.md "Speed").
   StageLog stages(options.diagnostics);
@@ -331,33 +357,44 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
       queue.Finish(std::current_exception());
     }
   });
-  LensUndistorter lens(options.lens_distortion, info.width, info.height, options.diagnostics);
+  LensFromPairs lens_pairs(options.MeasuresLensFromPairs(), info.width, info.height,
+                           options.diagnostics);
   LensFromWindows lens_bundle(options.lens_bundle, options.lens_bundle_windows, info.width, info.height,
                               options.diagnostics);
-  // A focal the first window could not observe stays unobserved: undistorted,
-  // a translating window's focal looks observable and is not (docs/estimate.md).
-  auto replay = [&] {
+  // One source of k1 at most (EstimatorOptions::Check, MeasuresLensFromPairs).
+  auto k1 = [&] { return options.lens_k1 + lens_pairs.k1() + lens_bundle.k1(); };
+  // The estimation starts again on every frame so far, undistorted. hold_focal:
+  // a focal the first window could not observe stays unobserved (undistorted,
+  // a translating window's focal looks observable and is not, docs/estimate.md).
+  auto replay = [&](std::vector<FrameTracks> frames, bool hold_focal) {
     first_run_records.Release(false);
-    estimator = NewEstimator(options, info, !lens_bundle.focal_was_observable(), 0, &estimator_records);
-    for (const FrameTracks& t : lens_bundle.TakeFrames()) estimator->AddFrame(t);
+    estimator = NewEstimator(options, info, hold_focal, 0, &estimator_records);
+    for (const FrameTracks& t : frames) estimator->AddFrame(t);
   };
   auto estimate = [&](FrameTracks& tracks) {
     index_of_position.push_back(tracks.index);  // tracks.step keeps the gap
     tracks.index = static_cast<int>(index_of_position.size()) - 1;
-    UndistortTracks(options.lens_k1 != 0 ? options.lens_k1 : lens_bundle.k1(), info.width, info.height, &tracks);
+    UndistortTracks(k1(), info.width, info.height, &tracks);
     estimator->AddFrame(tracks);
-    if (lens_bundle.Watch(tracks, *estimator)) replay();
-    else if (!lens_bundle.watching()) first_run_records.Release(true);
+    if (lens_bundle.Watch(tracks, *estimator)) {
+      replay(lens_bundle.TakeFrames(), !lens_bundle.focal_was_observable());
+    } else if (lens_pairs.Watch(tracks)) {
+      replay(lens_pairs.TakeFrames(), false);
+    } else if (!lens_bundle.watching() && !lens_pairs.watching()) {
+      first_run_records.Release(true);
+    }
   };
   StillsRegrouper stills;  // stills shots linked across their splits: one shot (stills_groups.h)
   try {
     FrameTracks tracks;
     while (queue.Pop(&tracks)) {
       if (progress) progress(tracks.index + 1, info.frame_count);  // skipped frames count as done
-      for (FrameTracks& ready : stills.Add(lens.Add(std::move(tracks)))) estimate(ready);
+      for (FrameTracks& ready : stills.Add(std::move(tracks))) estimate(ready);
     }
-    for (FrameTracks& ready : stills.Add(lens.Finish())) estimate(ready);
     for (FrameTracks& ready : stills.Finish()) estimate(ready);
+    // A clip whose first shot is shorter than the pairs' frames: decided now,
+    // before the last window is solved.
+    if (lens_pairs.Decide()) replay(lens_pairs.TakeFrames(), false);
   } catch (...) {
     queue.Cancel();
     tracking.join();
@@ -367,12 +404,11 @@ CameraPath TrackAndEstimate(FrameSource& source, const EstimatorOptions& options
   stages.Stage("all frames estimated, last window next");
   CameraPath path = estimator->Finish();
   if (lens_bundle.Decide(*estimator)) {  // a short clip: its windows closed only now
-    replay();
+    replay(lens_bundle.TakeFrames(), !lens_bundle.focal_was_observable());
     path = estimator->Finish();
   }
   first_run_records.Release(true);  // no-op once released
-  const double k1 = lens.k1() + lens_bundle.k1() + options.lens_k1;  // one of them at most (Check)
-  if (k1 != 0) path.metadata["k1"] = Num(k1);
+  if (k1() != 0) path.metadata["k1"] = Num(k1());
   for (CameraFrame& f : path.frames) f.frame = index_of_position.at(f.frame);
   const std::map<int, int> shot_of_frame = ShotOfFrame(path);
   const std::vector<WindowReport> reports = stills.Restore(&path, estimator->reports());

@@ -28,14 +28,16 @@ struct EstimatorOptions {
   TrackerOptions tracker;            // feature tracking (max_tracks, default 600)
   TrackEstimatorOptions estimator;   // models, bundle adjustment, smoothing
   std::string colmap_binary = "colmap";  // used by the colmap backend
-  // Estimate one radial distortion coefficient from the first frames of the
-  // first shot and undistort every track with it (lens_distortion.h; kept
-  // only where it pays for itself; the path's header says k1=).
-  bool lens_distortion = false;
+  // Estimate one radial distortion coefficient from frame pairs of the first
+  // shot's first frames (lens_distortion.h; kept only where it pays for
+  // itself, the path's header then says k1=): where one is kept, the
+  // estimation starts again from the first frame with every track
+  // undistorted. Gives way to lens_bundle and lens_k1.
+  bool lens_distortion = true;
   // Measure k1 in a bundle adjustment of the first window the estimator
   // solves (lens_bundle.h): where it pays for itself, the estimation starts
   // again from the first frame with the tracks undistorted (header k1=).
-  // Not with lens_distortion or lens_k1 (Check()).
+  // Not with lens_k1 (Check()).
   bool lens_bundle = false;
   // Windows of the first shot it measures k1 in: 1, that window's own test;
   // more, each window's k1 must agree with the others' (lens_bundle.h).
@@ -48,6 +50,8 @@ struct EstimatorOptions {
   // Not owned; none by default.
   Diagnostics* diagnostics = nullptr;
   void Check() const;                // throws UsageError
+  // lens_distortion, unless lens_bundle or lens_k1 is the source of k1.
+  bool MeasuresLensFromPairs() const;
 };
 
 // The `--fast` preset: cheaper settings measured on the synthetic clips

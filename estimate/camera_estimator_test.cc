@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -79,20 +81,101 @@ class PanSource : public FrameSource {
   int count_, fail_at_, next_ = 0;
 };
 
+// PanSource's pan seen through a lens with radial distortion k1 (ffmpeg
+// lenscorrection's convention, lens_distortion.h: the undistorted point is
+// c + (p - c)(1 + k1 r^2), r in half-diagonals).
+class DistortedPanSource : public FrameSource {
+ public:
+  DistortedPanSource(int count, double k1) : pan_(count) {
+    const cv::Size size(pan_.info().width, pan_.info().height);
+    map_x_.create(size, CV_32F);
+    map_y_.create(size, CV_32F);
+    const double cx = 0.5 * (size.width - 1), cy = 0.5 * (size.height - 1);
+    const double half_diagonal = 0.5 * std::hypot(size.width, size.height);
+    for (int y = 0; y < size.height; ++y)
+      for (int x = 0; x < size.width; ++x) {
+        const double r2 = (std::pow(x - cx, 2) + std::pow(y - cy, 2)) / std::pow(half_diagonal, 2);
+        map_x_.at<float>(y, x) = static_cast<float>(cx + (x - cx) * (1 + k1 * r2));
+        map_y_.at<float>(y, x) = static_cast<float>(cy + (y - cy) * (1 + k1 * r2));
+      }
+  }
+  const VideoInfo& info() const override { return pan_.info(); }
+  bool Next(Frame* frame) override {
+    if (!pan_.Next(frame)) return false;
+    for (cv::Mat* image : {&frame->gray, &frame->bgr}) {
+      if (image->empty()) continue;
+      cv::Mat seen;
+      cv::remap(*image, seen, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REFLECT);
+      *image = seen;
+    }
+    return true;
+  }
+
+ private:
+  PanSource pan_;
+  cv::Mat map_x_, map_y_;
+};
+
+// The lens is measured at the defaults while the estimator runs on the
+// frames as they are; where a k1 is kept the estimation starts again from
+// the first frame with every track undistorted, which is the path a known
+// k1 gives. A pinhole pan keeps none and its path is the one without the
+// measurement.
+TEST(EstimateCameraPath, ALensKeptStartsTheEstimationAgainUndistorted) {
+  EstimatorOptions options;
+  options.tracker.max_tracks = 200;
+  DistortedPanSource distorted(96, 0.06);
+  const CameraPath measured = EstimateCameraPath(distorted, options);
+  ASSERT_TRUE(measured.metadata.count("k1"));
+  const double k1 = std::stod(measured.metadata.at("k1"));
+  EXPECT_NEAR(k1, 0.06, 0.03);
+  EstimatorOptions known = options;
+  known.lens_k1 = k1;
+  DistortedPanSource again(96, 0.06);
+  const CameraPath given = EstimateCameraPath(again, known);
+  // The same up to the header's six digits of k1.
+  ASSERT_EQ(measured.frames.size(), given.frames.size());
+  for (size_t i = 0; i < given.frames.size(); ++i) {
+    EXPECT_LT(measured.frames[i].world_from_cam.angularDistance(given.frames[i].world_from_cam),
+              1e-6)
+        << i;
+    EXPECT_NEAR(measured.frames[i].focal_px.value() / given.frames[i].focal_px.value(), 1.0, 1e-5)
+        << i;
+  }
+
+  PanSource pinhole(96);
+  const CameraPath none = EstimateCameraPath(pinhole, options);
+  EXPECT_FALSE(none.metadata.count("k1"));
+  EstimatorOptions off = options;
+  off.lens_distortion = false;
+  PanSource pinhole_again(96);
+  const CameraPath without = EstimateCameraPath(pinhole_again, off);
+  ASSERT_EQ(none.frames.size(), without.frames.size());
+  for (size_t i = 0; i < none.frames.size(); ++i)
+    EXPECT_EQ(none.frames[i].world_from_cam.coeffs(), without.frames[i].world_from_cam.coeffs())
+        << i;
+}
+
 TEST(EstimatorOptions, OneSourceOfLensDistortion) {
-  // Two sources would undistort the tracks twice and write their sum as k1.
+  // Two sources would undistort the tracks twice and write their sum as k1:
+  // the pairs' measurement (on by default) gives way to a known k1 or the
+  // bundle's, and those two exclude each other.
   EstimatorOptions o;
+  EXPECT_TRUE(o.MeasuresLensFromPairs());
   o.lens_k1 = 0.02;
   EXPECT_NO_THROW(o.Check());
-  o.lens_distortion = true;
+  EXPECT_FALSE(o.MeasuresLensFromPairs());
+  o.lens_bundle = true;
   EXPECT_THROW(o.Check(), UsageError);
   o.lens_k1 = 0;
   EXPECT_NO_THROW(o.Check());
-  o.lens_bundle = true;
-  EXPECT_THROW(o.Check(), UsageError);
+  EXPECT_FALSE(o.MeasuresLensFromPairs());
+  o.lens_bundle = false;
   o.lens_distortion = false;
-  EXPECT_NO_THROW(o.Check());
+  EXPECT_FALSE(o.MeasuresLensFromPairs());
   o.lens_k1 = -0.01;
+  EXPECT_NO_THROW(o.Check());
+  o.lens_k1 = 0.6;
   EXPECT_THROW(o.Check(), UsageError);
 }
 

@@ -350,6 +350,16 @@ TEST_F(PipelineTest, UsageErrorsExitTwo) {
   EXPECT_EQ(blur.exit_code, 2);
   EXPECT_NE(blur.err.find("--blur-noise: -1 is outside [0, 1]"), std::string::npos) << blur.err;
   EXPECT_EQ(CountFilesStartingWith(dir_, "y.camera.csv"), 0);
+  // The lens: the pairs' measurement is the default and gives way to a known
+  // k1 or the bundle's; asked for beside either, or those two together, it
+  // is a contradiction.
+  for (const char* lens : {"--lens-distortion --lens-k1 0.01", "--lens-distortion --lens-bundle",
+                           "--lens-bundle --lens-k1 0.01"}) {
+    const RunResult both =
+        RunHapcine(std::string("estimate ") + lens + " x.mp4 -o y.camera.csv", dir_);
+    EXPECT_EQ(both.exit_code, 2) << lens;
+    EXPECT_NE(both.err.find("exclude each other"), std::string::npos) << both.err;
+  }
   const RunResult help = RunHapcine("eval --help", dir_);
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--gt"), std::string::npos);
