@@ -151,11 +151,12 @@ std::string DoubtfulShotLine(const ShotQuality& q) {
 }
 
 std::string StillBorderLine(const ShotQuality& q) {
-  return "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
-         std::to_string(q.last_frame) +
-         "): read as a still camera: its motion rests on a region inside the " +
-         "picture (border support " + FormatFixed(q.border_support.value_or(0), 2) +
-         ") while the border stays where that motion would move it (a subject's motion)";
+  std::string s =
+      "shot " + std::to_string(q.shot) + " (frames " + std::to_string(q.first_frame) + "-" +
+      std::to_string(q.last_frame) +
+      "): read as a still camera: the frame's border stays where its motion would move it";
+  if (q.border_support) s += " (border support " + FormatFixed(*q.border_support, 2) + ")";
+  return s + ": a subject's motion, not the camera's";
 }
 
 std::string AmbiguousZoomLine(const ShotQuality& q) {

@@ -53,9 +53,9 @@ nlohmann::json ShotQualityJson(const ShotQuality& q);
 // (", border support 0.42 (the motion rests on a region inside the picture)"
 // where that rule holds)
 std::string DoubtfulShotLine(const ShotQuality& q);
-// "shot 3 (frames 200-269): read as a still camera: its motion rests on a
-// region inside the picture (border support 0.46) while the border stays
-// where that motion would move it (a subject's motion)"
+// "shot 3 (frames 200-269): read as a still camera: the frame's border
+// stays where its motion would move it (border support 0.46): a subject's
+// motion, not the camera's"
 std::string StillBorderLine(const ShotQuality& q);
 // "shot 0 (frames 0-159): zoom ambiguous in 41 of 160 frames (zoom or dolly,
 // zoom or none): the reading without zoom kept, confidence lowered" (or "the

@@ -141,9 +141,8 @@ TEST(ShotQuality, StillBorderShotIsNotDoubtfulByItsBorder) {
   EXPECT_EQ(q[0].zoom_ambiguous, 0);  // the shot writes no zoom
   EXPECT_EQ(
       StillBorderLine(q[0]),
-      "shot 0 (frames 0-19): read as a still camera: its motion rests on a region inside the "
-      "picture (border support 0.33) while the border stays where that motion would move it (a "
-      "subject's motion)");
+      "shot 0 (frames 0-19): read as a still camera: the frame's border stays where its motion "
+      "would move it (border support 0.33): a subject's motion, not the camera's");
   EXPECT_FALSE(q[1].still_border);
   WriteShotQuality(q, &path);
   EXPECT_TRUE(ThroughTheFile(path)[0].still_border);

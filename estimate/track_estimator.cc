@@ -325,10 +325,8 @@ TrackCameraEstimator::Keyframe TrackCameraEstimator::LinkedKeyframe(const Keyfra
     std::vector<Eigen::Vector2d> mid(u1.size());
     for (size_t i = 0; i < u1.size(); ++i) mid[i] = 0.5 * (u1[i] + u2[i]);
     k.border_support = BorderSupport(mid, tv.inliers, 0.5 * height_ / width_);
-    const StillBorder still =
-        StillBorderTracks(tv, u1, u2, TwoViewThreshold(tv, options_.two_view),
-                          0.5 * height_ / width_, options_.movers.border_radius);
-    k.border_still = still.moved_by_turn >= kMinStillBorderTracks ? still.still : -1;
+    k.border_still = StillBorderTracks(tv, u1, u2, TwoViewThreshold(tv, options_.two_view),
+                                       0.5 * height_ / width_, options_.movers.border_radius);
   }
   const Eigen::Matrix3d R_ba = tv.cam2_from_cam1;
   const Eigen::Matrix3d R_wa = a.cam.world_from_cam.toRotationMatrix();

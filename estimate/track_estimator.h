@@ -156,10 +156,10 @@ class TrackCameraEstimator {
     // The share of the frame's edge cells holding the camera motion's inliers
     // (border_support.h); 1 for a still camera, which needs no confirmation.
     double border_support = 1;
-    // Tracks at the border the interval's turn and zoom would move and that
-    // stayed where they were (StillBorderTracks); -1 where it would move
-    // fewer than kMinStillBorderTracks of them (a still camera too).
-    int border_still = -1;
+    // Tracks at the border the interval's turn and zoom would move, and of
+    // them those that stayed where they were (StillBorderTracks; none for a
+    // still camera).
+    StillBorder border_still;
   };
   struct RawPose {
     FrameTracks meta;                // index, time, shot, quality (points cleared)
@@ -263,7 +263,7 @@ class TrackCameraEstimator {
   // The shot's keyframe intervals as reported (Report): border support and
   // still border tracks, for the still-border rule (border_support.h).
   std::vector<double> shot_border_support_;
-  std::vector<int> shot_border_still_;
+  std::vector<StillBorder> shot_border_still_;
   bool focal_observed_ = false;
   bool scale_set_ = false;
   double scene_depth_ = 1;

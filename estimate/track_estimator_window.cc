@@ -241,7 +241,8 @@ void TrackCameraEstimator::Report(WindowReport r) {
         j["correspondences"] = k.correspondences;
         j["inliers"] = k.inliers;
         j["border_support"] = k.border_support;
-        j["border_still"] = k.border_still;
+        j["border_moved_by_turn"] = k.border_still.moved_by_turn;
+        j["border_still"] = k.border_still.still;
         nlohmann::json gric;
         for (int c = 0; c < kNumCandidates; ++c) gric[kCandidateNames[c]] = k.gric[c];
         j["gric"] = gric;

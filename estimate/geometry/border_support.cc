@@ -55,16 +55,21 @@ StillBorder StillBorderTracks(const TwoViewResult& motion, const std::vector<Eig
   return out;
 }
 
-bool StillBorderAroundMotion(const std::vector<double>& support, const std::vector<int>& still) {
-  if (support.empty() || support.size() != still.size()) return false;
-  if (!(Median(support) < kUnconfirmedBorderSupport)) return false;
-  int moving = 0, held = 0;
-  for (int s : still) {
-    if (s < 0) continue;  // nothing the turn would move
-    ++moving;
-    held += s >= kMinStillBorderTracks;
+bool StillBorderAroundMotion(const std::vector<double>& support,
+                             const std::vector<StillBorder>& border) {
+  if (support.empty() || support.size() != border.size()) return false;
+  int tested = 0, held = 0;
+  long still = 0, moved = 0;
+  for (const StillBorder& b : border) {
+    if (b.moved_by_turn < kMinStillBorderTracks) continue;  // nothing the turn would move
+    ++tested;
+    held += b.still >= kMinStillBorderTracks;
+    still += b.still;
+    moved += b.moved_by_turn;
   }
-  return moving > 0 && 2 * held > moving;
+  if (tested == 0 || 2 * held <= tested) return false;
+  const bool unconfirmed = Median(support) < kUnconfirmedBorderSupport;
+  return unconfirmed || 2 * still > moved;
 }
 
 }  // namespace hapcine

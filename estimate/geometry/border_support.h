@@ -56,18 +56,25 @@ StillBorder StillBorderTracks(const TwoViewResult& motion, const std::vector<Eig
                               double half_height, double border_radius);
 
 // The shot rule, over its keyframe intervals in order: `support` each
-// interval's border support (1 for a still one), `still` its still border
-// tracks, -1 where the interval's turn and zoom move fewer than
-// kMinStillBorderTracks of the border's tracks (a still interval, a
-// translation, a turn under the noise: nothing to contradict). The shot is
-// a still camera before a moving subject when its motion is unconfirmed
-// (median support below kUnconfirmedBorderSupport, the doubtful rule of
-// shot_quality.h) and the border stays still in most of the intervals that
-// test it: at least kMinStillBorderTracks in more than half of them.
-// Persistent: a stray stuck track or a moment of overlay does not make a
-// shot still. With no tracks at the border at all (an object turned over
+// interval's border support (1 for a still one), `border` its still border
+// (StillBorderTracks; an interval whose turn and zoom move fewer than
+// kMinStillBorderTracks of the border's tracks tests nothing: a still
+// camera, a translation, a turn under the noise). The shot is a still
+// camera before a moving subject when the border stays still in most of the
+// intervals that test it (at least kMinStillBorderTracks still tracks in
+// more than half of them: persistent, so a stray stuck track or a moment of
+// overlay does not make a shot still) and either
+//   - its motion is unconfirmed (median support below
+//     kUnconfirmedBorderSupport, the doubtful rule of shot_quality.h): no
+//     background follows the motion, and the background there is still; or
+//   - most of the border tracks its turn and zoom would move stayed still
+//     (summed over the tested intervals): a subject that reaches the edge
+//     holds the rest.
+// An overlay on a real camera motion (a logo) is a small share of a border
+// that moves; with no tracks at the border at all (an object turned before
 // an empty background) nothing contradicts the motion, and it stays.
 constexpr int kMinStillBorderTracks = 3;
-bool StillBorderAroundMotion(const std::vector<double>& support, const std::vector<int>& still);
+bool StillBorderAroundMotion(const std::vector<double>& support,
+                             const std::vector<StillBorder>& border);
 
 }  // namespace hapcine

@@ -132,27 +132,42 @@ TEST(StillBorderTracks, Degenerate) {
   EXPECT_EQ(s.still, 0);
 }
 
-// The shot rule: an unconfirmed motion (median support below one half) whose
-// border stays still in more than half the intervals that test it.
-TEST(StillBorderAroundMotion, UnconfirmedMotionWithAStillBorderIsAStillCamera) {
-  EXPECT_TRUE(StillBorderAroundMotion({0.33, 0.42, 0.25, 0.33}, {3, 8, -1, 0}));
-  // Confirmed motion: the border moves with it; a still corner is an overlay.
-  EXPECT_FALSE(StillBorderAroundMotion({0.92, 0.83, 1.0, 0.75}, {24, 18, -1, 9}));
-  // Exactly half the intervals held still: not most of them.
-  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25, 0.33}, {3, 0, -1, -1}));
+// The shot rule: the border still in most of the intervals that test it,
+// and the motion unconfirmed (median support below one half) or most of the
+// border it would move still.
+TEST(StillBorderAroundMotion, AStillBorderAroundAnUnconfirmedMotionIsAStillCamera) {
+  const StillBorder none{0, 0};  // a still interval, or a turn under the noise
+  // A talking face over a dark room with a candle at the edge: the motion
+  // holds a third of the edge cells, the candle stays.
+  EXPECT_TRUE(StillBorderAroundMotion({0.33, 0.42, 0.25, 0.33}, {{12, 3}, {16, 8}, none, {32, 0}}));
+  // A subject that reaches the edge (support 0.92) while most of the
+  // border its turn would move stays still.
+  EXPECT_TRUE(StillBorderAroundMotion({0.92, 0.92, 1.0}, {{34, 24}, none, none}));
+}
+
+TEST(StillBorderAroundMotion, AMovingBorderOrTooLittleStillnessKeepsTheMotion) {
+  const StillBorder none{0, 0};
+  // A pan with a logo: the logo's tracks stay in every interval, but the
+  // motion holds the edge and most of the border moves with it.
+  EXPECT_FALSE(StillBorderAroundMotion({1.0, 0.92, 1.0}, {{150, 12}, {140, 12}, {160, 11}}));
+  // Unconfirmed, but still in exactly half the tested intervals: not most.
+  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25, 0.33}, {{12, 3}, {16, 0}, none, none}));
   // Too few still tracks: a stray stuck track or two.
-  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25}, {2, 2, 1}));
-  // An object turned over an empty background: nothing at the border.
-  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25}, {-1, -1, -1}));
-  // Median support of exactly one half is not below it.
-  EXPECT_FALSE(StillBorderAroundMotion({0.5, 0.5, 0.5}, {5, 5, 5}));
+  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25}, {{10, 2}, {10, 2}, {10, 1}}));
+  // An object turned over an empty background: nothing at the border to test.
+  EXPECT_FALSE(StillBorderAroundMotion({0.33, 0.42, 0.25}, {none, {2, 2}, none}));
+  // Confirmed (median support exactly one half is not below it) and most of
+  // the border moving.
+  EXPECT_FALSE(StillBorderAroundMotion({0.5, 0.5, 0.5}, {{20, 5}, {20, 5}, {20, 5}}));
 }
 
 TEST(StillBorderAroundMotion, Degenerate) {
   EXPECT_FALSE(StillBorderAroundMotion({}, {}));
-  EXPECT_FALSE(StillBorderAroundMotion({0.2, 0.2}, {5}));  // lists of different lengths
+  EXPECT_FALSE(StillBorderAroundMotion({0.2, 0.2}, {{5, 5}}));  // lists of different lengths
+  // No finite support (no median): the share alone decides.
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(StillBorderAroundMotion({nan, nan}, {5, 5}));  // no finite support: no median
+  EXPECT_FALSE(StillBorderAroundMotion({nan, nan}, {{20, 5}, {20, 5}}));
+  EXPECT_TRUE(StillBorderAroundMotion({nan, nan}, {{20, 15}, {20, 15}}));
 }
 
 }  // namespace

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "estimate/bundle/bundle_adjustment.h"
+#include "estimate/geometry/border_support.h"
 #include "estimate/geometry/motion_model.h"
 #include "estimate/geometry/reference_width.h"
 #include "estimate/window/window_points.h"
@@ -123,9 +124,8 @@ struct WindowReport {
   // The same keyframes' border support (border_support.h; 1 where the
   // camera is still), in order.
   std::vector<double> border_support;
-  // And their still border tracks (StillBorderTracks; -1 where the turn
-  // and zoom move too few border tracks to test), in the same order.
-  std::vector<int> border_still;
+  // And their still border (StillBorderTracks), in the same order.
+  std::vector<StillBorder> border_still;
   // Set on a shot's last window when the shot was read as a still camera
   // before a moving subject (StillBorderAroundMotion): every frame of the
   // shot was held at its first pose.
