@@ -102,7 +102,8 @@ void CheckArguments(int (*run)(int, char**), const std::string& command,
 }
 
 // The shot's quality; a zoom-ambiguous one also says in how many frames (as
-// `hapcine estimate` warns and the batch summary counts).
+// `hapcine estimate` warns and the batch summary counts), and one read as a
+// still camera before a moving subject says so.
 std::string ShotLine(const ShotQuality& q) {
   std::ostringstream s;
   if (q.doubtful) {
@@ -116,6 +117,7 @@ std::string ShotLine(const ShotQuality& q) {
   }
   if (q.zoom_ambiguous.value_or(0) > 0)
     s << ", zoom ambiguous in " << *q.zoom_ambiguous << " of " << q.frames << " frames";
+  if (q.still_border) s << ", read as a still camera (its border stays still: a subject's motion)";
   return s.str();
 }
 
