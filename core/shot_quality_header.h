@@ -38,10 +38,10 @@ struct ShotQuality {
   // motion rests on a region inside the picture, no background confirms it.
   // Unknown without windows and in headers written before it.
   std::optional<double> border_support;
-  // The motion was unconfirmed and the border stayed still where it would
-  // have moved it (estimate/geometry/border_support.h,
-  // StillBorderAroundMotion): read as a subject moving before a still
-  // camera, every frame of the shot held at its first pose.
+  // The border stayed still where the shot's motion would have moved it
+  // (estimate/geometry/border_support.h, StillBorderAroundMotion): read as
+  // a subject moving before a still camera, every frame of the shot held at
+  // its first pose.
   bool still_border = false;
   bool doubtful = false;
 };

@@ -139,6 +139,14 @@ TrackEstimatorOptions StillsAware(const EstimatorOptions& options, const VideoIn
   return estimator;
 }
 
+// The frames kept for a replay once a lens is decided: none where no k1 was
+// kept, else every one undistorted by it. Returns whether to replay.
+bool UndistortForReplay(double k1, int width, int height, std::vector<FrameTracks>* kept) {
+  if (k1 == 0) kept->clear();
+  for (FrameTracks& t : *kept) UndistortTracks(k1, width, height, &t);
+  return k1 != 0;
+}
+
 // Measures k1 from frame pairs of the first shot's first frames
 // (lens_distortion.h) while the estimator runs on them as they are. Where k1
 // is kept, the caller starts a new estimator and replays every frame so far
@@ -172,9 +180,7 @@ class LensFromPairs {
     const bool stills =
         std::any_of(kept_.begin(), first_shot_end, [](const FrameTracks& t) { return t.still; });
     if (first_shot_end != kept_.begin() && !stills) Measure({kept_.begin(), first_shot_end});
-    if (k1_ == 0) kept_.clear();
-    for (FrameTracks& t : kept_) UndistortTracks(k1_, width_, height_, &t);
-    return k1_ != 0;
+    return UndistortForReplay(k1_, width_, height_, &kept_);
   }
 
   std::vector<FrameTracks> TakeFrames() { return std::move(kept_); }
@@ -264,9 +270,7 @@ class LensFromWindows {
     watching_ = false;
     const std::vector<SolvedWindow>& solved = estimator.solved_windows();
     if (!solved.empty()) Measure(solved);
-    if (k1_ == 0) kept_.clear();
-    for (FrameTracks& t : kept_) UndistortTracks(k1_, width_, height_, &t);
-    return k1_ != 0;
+    return UndistortForReplay(k1_, width_, height_, &kept_);
   }
 
   std::vector<FrameTracks> TakeFrames() { return std::move(kept_); }

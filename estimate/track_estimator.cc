@@ -95,8 +95,6 @@ void TrackCameraEstimator::StartShot(int shot) {
   outlier_tracks_.clear();
   mover_intervals_.clear();
   focal_samples_.clear();
-  shot_border_support_.clear();
-  shot_border_still_.clear();
   focal_observed_ = false;
   scale_set_ = false;
   scene_depth_ = 1;
@@ -389,9 +387,7 @@ void TrackCameraEstimator::FinishShot() {
     BorrowStillsFocal();
     ProcessWindow(true);
     if (options_.loop_bundle) AdjustShotLoop();
-    if (options_.movers.enabled &&
-        StillBorderAroundMotion(shot_border_support_, shot_border_still_))
-      HoldStillBeforeMover();
+    if (options_.movers.enabled && BorderStaysStill()) HoldStillBeforeMover();
   } else {
     // No usable frame in the whole shot: nothing is placed; the placeholder
     // is the origin at the prior focal.
@@ -435,6 +431,18 @@ void TrackCameraEstimator::FinishShot() {
   }
   raw_.clear();
   KeepStillsFocal();
+}
+
+// The still-border rule (StillBorderAroundMotion) over the keyframe
+// intervals the shot's windows reported (the shot's reports are the last).
+bool TrackCameraEstimator::BorderStaysStill() const {
+  std::vector<double> support;
+  std::vector<StillBorder> border;
+  for (auto r = reports_.rbegin(); r != reports_.rend() && r->shot == shot_; ++r) {
+    support.insert(support.end(), r->border_support.begin(), r->border_support.end());
+    border.insert(border.end(), r->border_still.begin(), r->border_still.end());
+  }
+  return StillBorderAroundMotion(support, border);
 }
 
 // Why the origin: a still camera stays where the shot started, at the

@@ -193,7 +193,8 @@ class TrackCameraEstimator {
                         std::vector<double>* lf) const;
   RawPose LostPose(const FrameTracks& meta, const BaCamera& placeholder) const;
   // The shot's motion rests on a subject while its border stays still
-  // (StillBorderAroundMotion): every placed frame takes the shot's origin.
+  // (BorderStaysStill): every placed frame takes the shot's origin.
+  bool BorderStaysStill() const;
   void HoldStillBeforeMover();
   void AddKeyframe(int pos, bool first);  // first: the chain's start (the shot's origin)
   int SharedWithLastKeyframe(const KeyframeTracks& u) const;
@@ -260,10 +261,6 @@ class TrackCameraEstimator {
   // start of a traveling, stays in).
   std::map<long, std::pair<int, int>> mover_intervals_;
   std::vector<double> focal_samples_;  // log f from rotation pairs with enough turn
-  // The shot's keyframe intervals as reported (Report): border support and
-  // still border tracks, for the still-border rule (border_support.h).
-  std::vector<double> shot_border_support_;
-  std::vector<StillBorder> shot_border_still_;
   bool focal_observed_ = false;
   bool scale_set_ = false;
   double scene_depth_ = 1;

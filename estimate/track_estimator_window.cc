@@ -227,8 +227,6 @@ void TrackCameraEstimator::Report(WindowReport r) {
     r.correspondences += k.correspondences;
     r.border_support.push_back(k.border_support);
     r.border_still.push_back(k.border_still);
-    shot_border_support_.push_back(k.border_support);
-    shot_border_still_.push_back(k.border_still);
   }
   if (Wants(diagnostics_, "window")) {
     nlohmann::json keyframes = nlohmann::json::array();

@@ -35,7 +35,7 @@ constexpr double kUnconfirmedBorderSupport = 0.5;
 double BorderSupport(const std::vector<Eigen::Vector2d>& u, const std::vector<char>& inlier,
                      double half_height);
 
-// A still border around an unconfirmed motion. Where a camera turns or
+// A still border around a subject's motion. Where a camera turns or
 // zooms, every part of the picture moves with it but an overlay and what
 // lies exactly at the depth where its translation cancels its turn; tracks
 // at the frame's border that stay where they were while the interval's
@@ -55,8 +55,8 @@ StillBorder StillBorderTracks(const TwoViewResult& motion, const std::vector<Eig
                               const std::vector<Eigen::Vector2d>& u2, double threshold,
                               double half_height, double border_radius);
 
-// The shot rule, over its keyframe intervals in order: `support` each
-// interval's border support (1 for a still one), `border` its still border
+// The shot rule, over its keyframe intervals (two parallel lists, in any
+// order): `support` each interval's border support (1 for a still one), `border` its still border
 // (StillBorderTracks; an interval whose turn and zoom move fewer than
 // kMinStillBorderTracks of the border's tracks tests nothing: a still
 // camera, a translation, a turn under the noise). The shot is a still
