@@ -8,6 +8,7 @@
 #include "cli/command.h"
 #include "core/error_message.h"
 #include "core/output_files.h"
+#include "estimate/bundle/solver_log.h"
 
 namespace {
 
@@ -55,6 +56,7 @@ void PrintUsage(std::ostream& out) {
 int main(int argc, char** argv) {
   // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished outputs.
   hapcine::InstallTempCleanupOnSignals();
+  hapcine::QuietSolverLog();  // Ceres' recoverable warnings stay off the progress lines
   if (argc < 2) {
     PrintUsage(std::cerr);
     return hapcine::cli::kExitUsage;
