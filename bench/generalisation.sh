@@ -5,12 +5,18 @@
 #
 #   bash bench/generalisation.sh OUT_DIR [options]
 #
-#   --colmap               also run `estimate --backend colmap` (COLMAP 3.8)
+#   --colmap               also run COLMAP 3.8 (bench/colmap_peer.sh: a subsample of the
+#                          frames at --colmap-side px, the others interpolated)
 #   --colmap-only REGEX    ... only on clips whose "set/clip" matches REGEX
-#   --colmap-args "ARGS"   extra estimate options for the COLMAP runs (e.g. "--max-side 480")
+#   --colmap-rate R        images COLMAP gets per second of video (default 4; never fewer
+#                          than 30 images, nor a frame skipped on clips under 60 frames)
+#   --colmap-side PX       longest side of COLMAP's images (default 480)
+#   --colmap-full          run `estimate --backend colmap` on every frame instead (slow:
+#                          20+ minutes per 168-frame clip on 2 cores)
+#   --colmap-args "ARGS"   extra estimate options for --colmap-full (e.g. "--max-side 480")
 #   --jobs N               runs in parallel (default 2)
 #   --timeout S            per-run time limit, hapcine (default 900 s)
-#   --colmap-timeout S     per-run time limit, COLMAP (default 1800 s)
+#   --colmap-timeout S     per-run time limit, COLMAP (default 900 s)
 #   --bin PATH             hapcine binary (default build/cli/hapcine of this checkout)
 #   --dev-clips DIR        the 17 presets (<p>.mp4 + <p>.camera.csv); default: rendered
 #                          into OUT_DIR/clips/dev with `hapcine synth --all`
@@ -36,13 +42,17 @@ START=$(date +%s)
 OUT=${1:-}
 if [ -z "$OUT" ] || [ "${OUT#-}" != "$OUT" ]; then sed -n 2,33p "$0"; exit 2; fi
 shift
-BIN="$ROOT/build/cli/hapcine" JOBS=2 TIMEOUT=900 CTIMEOUT=1800 COLMAP=0 CONLY="" CARGS=""
+BIN="$ROOT/build/cli/hapcine" JOBS=2 TIMEOUT=900 CTIMEOUT=900 COLMAP=0 CONLY="" CARGS=""
+CRATE=4 CSIDE=480 CFULL=0
 DEV="" TEST="" SIZE=1280x720 REALGT=${REALGT_DIR:-/work/shared/realgt} ONLY="" FRESH=0 REPORT_ONLY=0 RENDER=1
 while [ $# -gt 0 ]; do
   case $1 in
     --colmap) COLMAP=1 ;;
     --colmap-only) CONLY=$2; shift ;;
     --colmap-args) CARGS=$2; shift ;;
+    --colmap-rate) CRATE=$2; shift ;;
+    --colmap-side) CSIDE=$2; shift ;;
+    --colmap-full) CFULL=1 ;;
     --jobs) JOBS=$2; shift ;;
     --timeout) TIMEOUT=$2; shift ;;
     --colmap-timeout) CTIMEOUT=$2; shift ;;
@@ -110,15 +120,21 @@ run_one() {  # set clip video gt method
   local dir="$OUT/runs/$set" base="$OUT/runs/$set/$clip.$method"
   mkdir -p "$dir"
   [ "$FRESH" = 0 ] && [ -f "$base.time" ] && return 0
-  local opts=() limit=$TIMEOUT
+  local cmd=("$BIN" estimate "$video" -o "$base.camera.csv" -q) limit=$TIMEOUT
   case $method in
-    draft) opts=(--draft) ;;
-    colmap) opts=(--backend colmap $CARGS); limit=$CTIMEOUT ;;
+    draft) cmd+=(--draft) ;;
+    colmap)
+      limit=$CTIMEOUT
+      if [ "$CFULL" = 1 ]; then
+        cmd+=(--backend colmap $CARGS)
+      else
+        cmd=(bash "$ROOT/bench/colmap_peer.sh" "$video" "$base.camera.csv" "$(colmap_step "$video")"
+          "$CSIDE" "$(dirname "$(dirname "$BIN")")")
+      fi ;;
   esac
   local t0 t1 rc
   t0=$(date +%s.%N)
-  timeout --kill-after=10 "$limit" "$BIN" estimate "$video" -o "$base.camera.csv" -q "${opts[@]}" \
-    2>"$base.err"
+  timeout --kill-after=10 "$limit" "${cmd[@]}" 2>"$base.err"
   rc=$?
   t1=$(date +%s.%N)
   rm -f "$base.json"
@@ -132,6 +148,18 @@ run_one() {  # set clip video gt method
   echo "$set/$clip $method: rc $rc, $(cut -d' ' -f1 "$base.time") s" >&2
 }
 
+# COLMAP's frame step on VIDEO: --colmap-rate images per second, at least 30
+# images (incremental SfM needs views that overlap), every frame of a short clip.
+colmap_step() {  # VIDEO
+  local fps frames
+  fps=$(ffprobe -v error -select_streams v:0 -show_entries stream=r_frame_rate -of csv=p=0 "$1" |
+    awk -F/ '{print ($2 ? $1/$2 : $1)}')
+  frames=$(ffprobe -v error -select_streams v:0 -count_packets -show_entries \
+    stream=nb_read_packets -of csv=p=0 "$1")
+  awk -v fps="$fps" -v n="$frames" -v rate="$CRATE" 'BEGIN {
+    s = int(fps / rate + 0.5); m = int(n / 30); if (m < s) s = m; if (s < 1) s = 1; print s }'
+}
+
 # Decoding alone (the floor the estimator's time is compared with).
 decode_one() {  # set clip video
   local f="$OUT/decode/$1/$2.time"
@@ -143,8 +171,8 @@ decode_one() {  # set clip video
   t1=$(date +%s.%N)
   echo "$t1 - $t0" | bc >"$f"
 }
-export -f run_one decode_one
-export OUT BIN TIMEOUT CTIMEOUT CARGS FRESH
+export -f run_one decode_one colmap_step
+export OUT BIN TIMEOUT CTIMEOUT CARGS FRESH ROOT CRATE CSIDE CFULL
 
 if [ "$REPORT_ONLY" = 0 ] && [ "$RENDER" = 1 ]; then
   [ -d "$DEV" ] && ls "$DEV"/*.mp4 >/dev/null 2>&1 || render_missing "$DEV" --all -j "$JOBS"
@@ -171,7 +199,8 @@ if [ "$REPORT_ONLY" = 0 ]; then
 fi
 
 COMMIT=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
-python3 "$ROOT/bench/generalisation_table.py" "$OUT" "$COMMIT" "$COLMAP" >"$OUT/generalisation.md" ||
+CLABEL=$([ "$CFULL" = 1 ] && echo "every frame" || echo "$CRATE images/s, ${CSIDE} px")
+python3 "$ROOT/bench/generalisation_table.py" "$OUT" "$COMMIT" "$COLMAP" "$CLABEL" >"$OUT/generalisation.md" ||
   exit 1
 cat "$OUT/generalisation.md"
 echo "generalisation.sh: $(( $(date +%s) - START )) s wall; table in $OUT/generalisation.md" >&2

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The markdown table of bench/generalisation.sh (docs/generalisation.md).
 
-usage: generalisation_table.py OUT_DIR COMMIT COLMAP(0|1) > table.md
+usage: generalisation_table.py OUT_DIR COMMIT COLMAP(0|1) [COLMAP_LABEL] > table.md
 
 Reads OUT_DIR/runs/<set>/<clip>.<method>.{json,time,err} and
 OUT_DIR/decode/<set>/<clip>.time; writes OUT_DIR/generalisation.json too.
@@ -13,6 +13,7 @@ import statistics
 import sys
 
 OUT, COMMIT, COLMAP = sys.argv[1], sys.argv[2], sys.argv[3] == "1"
+COLMAP_LABEL = sys.argv[4] if len(sys.argv) > 4 else ""
 METHODS = ["default", "draft"] + (["colmap"] if COLMAP else [])
 SETS = [("development", "presets"), ("development", "realgt"),
         ("test", "variants"), ("test", "movers")]
@@ -94,6 +95,12 @@ def result(set_, clip, method):
         return r
     o = json.loads(js)["overall"]
     r["status"] = "ok"
+    r["lost_share"] = o.get("lost_share")
+    # bench/colmap_peer.sh ends with "colmap: N of M images registered (...)".
+    for line in (read(base + ".err") or "").splitlines():
+        if line.startswith("colmap: ") and "images registered" in line:
+            n, _, m = line.split()[1:4]
+            r["registered"] = "%s of %s images" % (n, m)
     r["rot"] = o["rotation_deg"]["mean"]
     r["fov"] = o["fov_percent"]["mean"]
     r["zoom"] = o["zoom_ratio_percent"]["mean"]
@@ -137,6 +144,10 @@ def cell(r, static):
         s += " / tr %s, model %s" % (fmt(r["spurious"], 2),
                                      fmt(r["model_agreement"], 2) if r["model_agreement"]
                                      is not None else "n/a")
+    if r.get("lost_share"):
+        s += " / lost %s %%" % fmt(100 * r["lost_share"], 2)
+    if r.get("registered"):
+        s += " (%s)" % r["registered"]
     return s
 
 
@@ -164,9 +175,9 @@ def main():
     rows, records = [], []
     head = "| split | set | clip | target | " + " | ".join(
         "%s: rot deg / FOV %% / zoom %% / ATE %% | %s: time s (x decode)" % (m, m)
-        for m in METHODS) + " | default vs target | draft vs target |"
+        for m in METHODS) + " | " + " | ".join("%s vs target" % m for m in METHODS) + " |"
     rows.append(head)
-    rows.append("|" + "---|" * (4 + 2 * len(METHODS) + 2))
+    rows.append("|" + "---|" * (4 + 3 * len(METHODS)))
     per_split = {}
     for split, set_ in SETS:
         for clip in clips_of(set_):
@@ -181,10 +192,11 @@ def main():
             line = "| %s | %s | %s | %s | " % (split, set_, clip, target_text(t))
             line += " | ".join("%s | %s" % (cell(res[m], t.get("static")), time_cell(res[m]))
                                for m in METHODS)
-            line += " | %s | %s |" % (res["default"]["verdict"], res["draft"]["verdict"])
+            line += " | " + " | ".join(res[m]["verdict"] for m in METHODS) + " |"
             rows.append(line)
-    print("Measured %s UTC on commit %s (`bash bench/generalisation.sh`).\n"
-          % (datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"), COMMIT))
+    print("Measured %s UTC on commit %s (`bash bench/generalisation.sh`)%s.\n"
+          % (datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"), COMMIT,
+             "; COLMAP: " + COLMAP_LABEL if COLMAP and COLMAP_LABEL else ""))
     print("\n".join(rows))
     print("\nPer-split medians (runs that finished; rotation mean deg / FOV % / zoom % / "
           "ATE % / time ratio to decoding; passed / with a target):\n")
