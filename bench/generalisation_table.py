@@ -93,9 +93,16 @@ def result(set_, clip, method):
         err = (read(base + ".err") or "").splitlines()
         r["status"] = "failed: " + (err[-1][:90] if err else "exit %s" % rc)
         return r
-    o = json.loads(js)["overall"]
+    report = json.loads(js)
+    o = report["overall"]
     r["status"] = "ok"
-    r["lost_share"] = o.get("lost_share")
+    # Frames of the truth not placed: model `lost`, or no row at all (COLMAP's
+    # unregistered stretches); the errors are over the others.
+    frames = report.get("frames", {})
+    gt_frames = frames.get("gt") or 0
+    if gt_frames:
+        lost = (o.get("lost_share") or 0) * frames.get("matched", 0)
+        r["lost_share"] = (lost + frames.get("unmatched_gt", 0)) / gt_frames
     # bench/colmap_peer.sh ends with "colmap: N of M images registered (...)".
     for line in (read(base + ".err") or "").splitlines():
         if line.startswith("colmap: ") and "images registered" in line:

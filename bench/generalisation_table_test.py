@@ -14,8 +14,9 @@ import unittest
 SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "generalisation_table.py")
 
 
-def overall(rot, fov=0.0, zoom=0.0, ate=0.1, lost_share=0.0):
-    return {"overall": {"rotation_deg": {"mean": rot}, "fov_percent": {"mean": fov},
+def overall(rot, fov=0.0, zoom=0.0, ate=0.1, lost_share=0.0, unmatched_gt=0):
+    return {"frames": {"gt": 100, "matched": 100 - unmatched_gt, "unmatched_gt": unmatched_gt},
+            "overall": {"rotation_deg": {"mean": rot}, "fov_percent": {"mean": fov},
                         "zoom_ratio_percent": {"mean": zoom}, "ate_percent": ate,
                         "gt_static": False, "spurious_translation": None,
                         "model_agreement": 1.0, "lost_share": lost_share}}
@@ -54,11 +55,12 @@ class GeneralisationTableTest(unittest.TestCase):
     def test_colmap_cell_says_what_it_registered_and_its_verdict(self):
         self.run_("traveling", "default", 4.0, 0, overall(0.04))
         self.run_("traveling", "draft", 2.0, 0, overall(0.2, lost_share=0.05))
-        self.run_("traveling", "colmap", 40.0, 0, overall(0.02),
+        self.run_("traveling", "colmap", 40.0, 0, overall(0.02, unmatched_gt=20),
                   "colmap: 33 of 34 images registered (1 frame in 5, 480 px)\n")
         text = self.table()
         cells = [c.strip() for c in self.row(text, "traveling").split("|")[1:-1]]
         self.assertIn("(33 of 34 images)", cells[8])
+        self.assertIn("lost 20 %", cells[8])  # frames without a row count as not placed
         self.assertEqual(cells[9], "40.0 (20.0x)")
         self.assertIn("lost 5 %", cells[6])
         self.assertEqual(cells[-3:], ["PASS", "FAIL", "PASS"])  # default, draft, colmap
