@@ -40,7 +40,9 @@ set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 START=$(date +%s)
 OUT=${1:-}
-if [ -z "$OUT" ] || [ "${OUT#-}" != "$OUT" ]; then sed -n 2,33p "$0"; exit 2; fi
+# The comment block at the top of this file, without its "# " (--help).
+usage() { sed -n '2,/^[^#]/s/^# \{0,1\}//p' "$0"; }
+if [ -z "$OUT" ] || [ "${OUT#-}" != "$OUT" ]; then usage; exit 2; fi
 shift
 BIN="$ROOT/build/cli/hapcine" JOBS=2 TIMEOUT=900 CTIMEOUT=900 COLMAP=0 CONLY="" CARGS=""
 CRATE=4 CSIDE=480 CFULL=0
@@ -65,7 +67,7 @@ while [ $# -gt 0 ]; do
     --fresh) FRESH=1 ;;
     --no-render) RENDER=0 ;;
     --report-only) REPORT_ONLY=1 ;;
-    -h|--help) sed -n 2,33p "$0"; exit 0 ;;
+    -h|--help) usage; exit 0 ;;
     *) echo "generalisation.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
